@@ -1,0 +1,105 @@
+// CSV per SPEC.md §2: UTF-8, comma-separated, one header row, '.' decimal point,
+// '#' comment lines anywhere, columns found by name, empty field = not available.
+//
+// CsvTable keeps every cell with its file line and character column so that any
+// complaint about a value names "file:line:col". CsvWriter builds the whole
+// output in memory and writes it atomically (or to stdout for "-"), so a tool
+// that fails half-way leaves no partial file.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "io/error.h"
+
+namespace rk::io {
+
+class CsvTable {
+ public:
+  // Reads `path` ("-" = stdin). Throws IoError if unreadable, DataError if the
+  // header is missing or a row has a different number of fields than the header.
+  static CsvTable Read(const std::string& path);
+  // Parses text already in memory; `name` is used in messages.
+  static CsvTable Parse(std::string_view text, const std::string& name);
+
+  const std::string& name() const { return name_; }
+  const std::vector<std::string>& header() const { return header_; }
+  std::size_t rows() const { return rows_.size(); }
+
+  // Index of a column, or -1 if absent.
+  int Column(std::string_view column) const;
+  // Index of a column; throws DataError naming the header line if absent.
+  int RequireColumn(std::string_view column) const;
+  bool HasColumn(std::string_view column) const { return Column(column) >= 0; }
+
+  std::string_view Cell(std::size_t row, int col) const;
+  bool IsEmpty(std::size_t row, int col) const { return Cell(row, col).empty(); }
+  // A finite number; throws DataError at file:line:col if empty, not a number,
+  // NaN or infinite.
+  double Double(std::size_t row, int col) const;
+  // Empty field → nullopt; otherwise as Double().
+  std::optional<double> OptionalDouble(std::size_t row, int col) const;
+  // An integer; throws DataError if not one.
+  std::int64_t Int(std::size_t row, int col) const;
+
+  // 1-based line in the file of a data row, and 1-based character column of a cell.
+  std::size_t Line(std::size_t row) const { return rows_[row].line; }
+  std::size_t CharColumn(std::size_t row, int col) const;
+  std::size_t header_line() const { return header_line_; }
+
+  // Throws DataError at the first row whose value in `col` is smaller than the
+  // previous one (e.g. time going backwards). Empty values are errors.
+  void RequireNonDecreasing(int col) const;
+  // Same, but strictly increasing (duplicate times rejected too).
+  void RequireIncreasing(int col) const;
+
+  // Builds a DataError for a cell.
+  [[nodiscard]] Error CellError(std::size_t row, int col, const std::string& what) const;
+
+ private:
+  struct Row {
+    std::size_t line = 0;
+    std::vector<std::string> cells;
+    std::vector<std::size_t> char_col;  // 1-based column where each cell starts
+  };
+  std::string name_;
+  std::size_t header_line_ = 0;
+  std::vector<std::string> header_;
+  std::vector<Row> rows_;
+};
+
+class CsvWriter {
+ public:
+  explicit CsvWriter(std::vector<std::string> columns);
+
+  // "# text" line; allowed anywhere.
+  void Comment(std::string_view text);
+  CsvWriter& Add(std::string_view text);
+  CsvWriter& Add(std::int64_t value);
+  CsvWriter& Add(int value) { return Add(static_cast<std::int64_t>(value)); }
+  // Fixed-point with `decimals` digits; NaN is written as an empty field.
+  CsvWriter& Add(double value, int decimals);
+  CsvWriter& Add(std::optional<double> value, int decimals);
+  CsvWriter& AddEmpty();
+  // Ends the row; RK_CHECKs that it has as many fields as the header.
+  void EndRow();
+
+  const std::string& str() const { return text_; }
+  std::size_t rows() const { return rows_; }
+  // Atomic write to `path`, or stdout for "-".
+  void Write(const std::string& path) const;
+
+ private:
+  std::vector<std::string> columns_;
+  std::string text_;
+  std::size_t fields_in_row_ = 0;
+  std::size_t rows_ = 0;
+};
+
+// Splits "a,b,c" into names (used for --columns).
+std::vector<std::string> SplitList(std::string_view list, char sep = ',');
+
+}  // namespace rk::io

@@ -1,0 +1,79 @@
+#include "io/json_util.h"
+
+#include <cmath>
+
+#include "io/error.h"
+#include "io/file_util.h"
+
+namespace rk::io {
+
+Json ParseJson(const std::string& text, const std::string& name) {
+  try {
+    return Json::parse(text, nullptr, true, /*ignore_comments=*/true);
+  } catch (const nlohmann::json::parse_error& e) {
+    // e.byte is the 1-based offset of the offending byte; turn it into line/col.
+    std::size_t line = 1, col = 1;
+    std::size_t end = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
+    for (std::size_t i = 0; i < end; ++i) {
+      if (text[i] == '\n') {
+        ++line;
+        col = 1;
+      } else {
+        ++col;
+      }
+    }
+    std::string what = e.what();
+    auto p = what.find("parse error");
+    if (p != std::string::npos) what = what.substr(p);
+    throw DataError(name, line, col, "invalid JSON: " + what);
+  }
+}
+
+Json LoadJson(const std::string& path) {
+  return ParseJson(ReadFile(path), IsStdStream(path) ? "<stdin>" : path);
+}
+
+double RequireNumber(const Json& j, const std::string& key, const std::string& where) {
+  if (!j.is_object() || !j.contains(key)) throw DataError(where, 0, 0, "missing field '" + key + "'");
+  const Json& v = j.at(key);
+  if (!v.is_number()) throw DataError(where, 0, 0, "field '" + key + "' must be a number");
+  double d = v.get<double>();
+  if (!std::isfinite(d)) throw DataError(where, 0, 0, "field '" + key + "' is not finite");
+  return d;
+}
+
+double NumberOr(const Json& j, const std::string& key, double fallback, const std::string& where) {
+  if (!j.is_object() || !j.contains(key) || j.at(key).is_null()) return fallback;
+  return RequireNumber(j, key, where);
+}
+
+std::vector<double> RequireNumbers(const Json& j, const std::string& key, std::size_t min_n, std::size_t max_n,
+                                   const std::string& where) {
+  if (!j.is_object() || !j.contains(key)) throw DataError(where, 0, 0, "missing field '" + key + "'");
+  const Json& v = j.at(key);
+  if (!v.is_array() || v.size() < min_n || v.size() > max_n) {
+    throw DataError(where, 0, 0,
+                    "field '" + key + "' must be an array of " +
+                        (min_n == max_n ? std::to_string(min_n)
+                                        : std::to_string(min_n) + " to " + std::to_string(max_n)) +
+                        " numbers");
+  }
+  std::vector<double> out;
+  for (const auto& e : v) {
+    if (!e.is_number() || !std::isfinite(e.get<double>())) {
+      throw DataError(where, 0, 0, "field '" + key + "' must contain only finite numbers");
+    }
+    out.push_back(e.get<double>());
+  }
+  return out;
+}
+
+std::string RequireString(const Json& j, const std::string& key, const std::string& where) {
+  if (!j.is_object() || !j.contains(key)) throw DataError(where, 0, 0, "missing field '" + key + "'");
+  if (!j.at(key).is_string()) throw DataError(where, 0, 0, "field '" + key + "' must be a string");
+  return j.at(key).get<std::string>();
+}
+
+void WriteJson(const std::string& path, const Json& j) { WriteFileAtomic(path, j.dump(2) + "\n"); }
+
+}  // namespace rk::io
