@@ -1,0 +1,122 @@
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "io/csv.h"
+#include "io/error.h"
+#include "io/file_util.h"
+#include "io/json_util.h"
+
+namespace rk::io {
+namespace {
+
+// Runs `f`, expects an rk::Error with `code` whose message contains `needle`.
+template <typename F>
+void ExpectError(F f, ExitCode code, const std::string& needle) {
+  try {
+    f();
+    FAIL() << "no error thrown; expected one containing '" << needle << "'";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), code) << e.what();
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+TEST(CsvTable, ColumnsByNameCommentsAndEmptyFields) {
+  auto t = CsvTable::Parse("# a comment\nt_s,range_m,status\n0.0,22.1,0\n# mid comment\n0.2,,255\n", "r.csv");
+  ASSERT_EQ(t.rows(), 2u);
+  int r = t.RequireColumn("range_m");
+  EXPECT_DOUBLE_EQ(t.Double(0, r), 22.1);
+  EXPECT_FALSE(t.OptionalDouble(1, r).has_value());
+  EXPECT_EQ(t.Int(1, t.RequireColumn("status")), 255);
+  EXPECT_EQ(t.Line(1), 5u);
+  EXPECT_EQ(t.Column("nope"), -1);
+}
+
+TEST(CsvTable, ErrorsNameFileLineAndColumn) {
+  auto t = CsvTable::Parse("t_s,x_px\n0.0,1.5\n0.05,abc\n", "track.csv");
+  int x = t.RequireColumn("x_px");
+  ExpectError([&] { t.Double(1, x); }, ExitCode::kInvalidData, "track.csv:3:6:");
+  ExpectError([&] { t.RequireColumn("y_px"); }, ExitCode::kInvalidData, "track.csv:1:1: missing column 'y_px'");
+}
+
+TEST(CsvTable, RejectsNanInfAndRaggedRows) {
+  auto t = CsvTable::Parse("t_s\nnan\ninf\n", "a.csv");
+  ExpectError([&] { t.Double(0, 0); }, ExitCode::kInvalidData, "a.csv:2:1:");
+  ExpectError([&] { t.Double(1, 0); }, ExitCode::kInvalidData, "a.csv:3:1:");
+  ExpectError([&] { CsvTable::Parse("a,b\n1,2,3\n", "b.csv"); }, ExitCode::kInvalidData, "b.csv:2:5:");
+  ExpectError([&] { CsvTable::Parse("# only a comment\n", "c.csv"); }, ExitCode::kInvalidData, "no header");
+  ExpectError([&] { CsvTable::Parse("a,a\n", "d.csv"); }, ExitCode::kInvalidData, "duplicate column");
+}
+
+TEST(CsvTable, TimeGoingBackwardsIsReportedWhereItHappens) {
+  auto t = CsvTable::Parse("t_s\n0.0\n0.1\n0.05\n", "f.csv");
+  ExpectError([&] { t.RequireNonDecreasing(0); }, ExitCode::kInvalidData, "f.csv:4:1:");
+  auto dup = CsvTable::Parse("t_s\n0.0\n0.0\n", "g.csv");
+  EXPECT_NO_THROW(dup.RequireNonDecreasing(0));
+  ExpectError([&] { dup.RequireIncreasing(0); }, ExitCode::kInvalidData, "g.csv:3:1:");
+}
+
+TEST(CsvTable, QuotedFieldsAndCrLf) {
+  auto t = CsvTable::Parse("id,note\r\nnose,\"a, b \"\"c\"\"\"\r\n", "q.csv");
+  EXPECT_EQ(t.Cell(0, 1), "a, b \"c\"");
+}
+
+TEST(CsvWriter, RoundTripsThroughParser) {
+  CsvWriter w({"t_s", "x_px", "status"});
+  w.Add(1.0 / 3.0, 9).Add(std::optional<double>{}, 3).Add("ok");
+  w.EndRow();
+  w.Add(-0.0000001, 3).Add(2.5, 3).Add("a,b");
+  w.EndRow();
+  auto t = CsvTable::Parse(w.str(), "w.csv");
+  EXPECT_EQ(t.Cell(0, 0), "0.333333333");
+  EXPECT_TRUE(t.IsEmpty(0, 1));
+  EXPECT_EQ(t.Cell(1, 0), "0.000");  // never "-0.000"
+  EXPECT_EQ(t.Cell(1, 2), "a,b");
+}
+
+TEST(FileUtil, AtomicWriteLeavesNoTemporaryAndRefusesToOverwriteInputs) {
+  namespace fs = std::filesystem;
+  fs::path dir = fs::temp_directory_path() / "rk_test_atomic";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string out = (dir / "out.csv").string();
+  WriteFileAtomic(out, "a\n1\n");
+  WriteFileAtomic(out, "a\n2\n");
+  EXPECT_EQ(ReadFile(out), "a\n2\n");
+  int files = 0;
+  for (auto& e : fs::directory_iterator(dir)) {
+    (void)e;
+    ++files;
+  }
+  EXPECT_EQ(files, 1);
+  ExpectError([&] { CheckOutputNotInput(out, {out}); }, ExitCode::kUsage, "refusing");
+  EXPECT_NO_THROW(CheckOutputNotInput((dir / "other.csv").string(), {out}));
+  ExpectError([&] { WriteFileAtomic((dir / "no/such/dir/x.csv").string(), "x"); }, ExitCode::kIo, "x.csv");
+  ExpectError([&] { ReadFile((dir / "missing.csv").string()); }, ExitCode::kIo, "missing.csv");
+  {
+    PendingFile p(out + ".mkv");
+    std::ofstream(p.temp_path()) << "partial";
+  }  // not committed → removed
+  EXPECT_FALSE(fs::exists(out + ".mkv"));
+  fs::remove_all(dir);
+}
+
+TEST(Json, SyntaxErrorsGiveLineAndColumnAndMissingFieldsAreNamed) {
+  ExpectError([] { ParseJson("{\n  \"a\": 1,\n  \"b\": ]\n}", "cam.json"); }, ExitCode::kInvalidData,
+              "cam.json:3:");
+  Json j = ParseJson("{\"a\": 1, \"v\": [1, 2]}", "x.json");
+  EXPECT_EQ(RequireNumber(j, "a", "x.json"), 1.0);
+  ExpectError([&] { RequireNumber(j, "b", "x.json"); }, ExitCode::kInvalidData, "missing field 'b'");
+  ExpectError([&] { RequireNumbers(j, "v", 3, 3, "x.json"); }, ExitCode::kInvalidData, "array of 3");
+}
+
+TEST(SplitList, TrimsAndDropsEmpties) {
+  auto v = SplitList(" az_deg, el_deg ,,range_m");
+  ASSERT_EQ(v.size(), 3u);
+  EXPECT_EQ(v[1], "el_deg");
+}
+
+}  // namespace
+}  // namespace rk::io
