@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# Idempotent set-up for a fresh Debian 12 machine (run as root, or with sudo available):
+# installs the Debian packages that are missing, then configures and builds with CMake.
+#   scripts/setup.sh            Release build in build/
+#   scripts/setup.sh --asan     also an ASan+UBSan build in build-asan/
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+ASAN=0
+for arg in "$@"; do
+  case "$arg" in
+    --asan) ASAN=1 ;;
+    *) echo "setup.sh: error: unknown option $arg" >&2; exit 2 ;;
+  esac
+done
+
+PACKAGES=(
+  build-essential cmake pkg-config git
+  libopencv-dev libeigen3-dev libceres-dev libcli11-dev nlohmann-json3-dev libgeographiclib-dev
+  libgtest-dev libgmock-dev googletest libbenchmark-dev
+  python3 python3-matplotlib ffmpeg
+)
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  SUDO=""
+  if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; fi
+  echo "setup: installing ${missing[*]}" >&2
+  $SUDO apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}" >&2
+fi
+
+JOBS=$(nproc)
+cmake -S "$ROOT" -B "$ROOT/build" -DCMAKE_BUILD_TYPE=Release >&2
+cmake --build "$ROOT/build" -j"$JOBS" >&2
+if [ "$ASAN" = 1 ]; then
+  # RelWithDebInfo keeps the sanitizer build fast enough for the whole suite.
+  cmake -S "$ROOT" -B "$ROOT/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRANGEKIT_ENABLE_ASAN=ON \
+    -DRANGEKIT_BUILD_BENCH=OFF >&2
+  cmake --build "$ROOT/build-asan" -j"$JOBS" >&2
+fi
