@@ -44,20 +44,26 @@ cv::Mat Digitise(const cv::Mat& signal, const SensorOptions& opt, std::mt19937_6
   const double max_dn = deep ? 65535.0 : 255.0;
   cv::Mat out(signal.size(), deep ? CV_16UC1 : CV_8UC1);
   std::normal_distribution<double> normal(0.0, 1.0);
+  const double read_var = opt.read_noise_dn * opt.read_noise_dn;
   for (int y = 0; y < signal.rows; ++y) {
     const float* in = signal.ptr<float>(y);
     for (int x = 0; x < signal.cols; ++x) {
-      double mean = opt.background_dn + std::max(0.0f, in[x]);
+      const double mean = opt.background_dn + std::max(0.0f, in[x]);
       double v = mean;
       if (opt.gain_e_per_dn > 0) {
-        // Shot noise: Poisson in electrons; the normal approximation is exact
-        // enough above ~20 e- and we draw the Poisson itself below that.
-        double electrons = mean * opt.gain_e_per_dn;
-        double e = electrons < 20.0 ? static_cast<double>(std::poisson_distribution<int>(electrons)(rng))
-                                    : electrons + std::sqrt(electrons) * normal(rng);
-        v = e / opt.gain_e_per_dn;
+        const double electrons = mean * opt.gain_e_per_dn;
+        if (electrons < 20.0) {
+          // Few electrons: draw the Poisson itself, then the read noise.
+          v = static_cast<double>(std::poisson_distribution<int>(electrons)(rng)) / opt.gain_e_per_dn +
+              opt.read_noise_dn * normal(rng);
+        } else {
+          // Shot (Poisson, normal above ~20 e-) and read noise are independent Gaussians: one draw
+          // with the summed variance mean/gain + read² (half the cost of two draws).
+          v = mean + std::sqrt(mean / opt.gain_e_per_dn + read_var) * normal(rng);
+        }
+      } else {
+        v += opt.read_noise_dn * normal(rng);
       }
-      v += opt.read_noise_dn * normal(rng);
       v = std::clamp(std::round(v), 0.0, max_dn);
       if (deep) {
         out.ptr<std::uint16_t>(y)[x] = static_cast<std::uint16_t>(v);

@@ -1,0 +1,417 @@
+#include "sim/beacon_scenario.h"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "geo/angles.h"
+#include "geo/line_of_sight.h"
+#include "io/error.h"
+
+namespace rk::sim {
+namespace {
+
+constexpr double kSampleMarginS = 0.5;  // turret/range logs extend this far beyond the frames
+constexpr double kServoMarginS = 1.0;   // the servo is simulated this far beyond the frames
+constexpr double kGlintSigmaPx = 1.0;
+constexpr double kGlintClearancePx = 30.0;  // glint never nearer than cluster radius + this
+constexpr double kGlintEdgePx = 10.0;       // glints stay this far inside the image
+
+std::mt19937_64 Stream(std::uint64_t seed, std::uint64_t stream, std::uint64_t index = 0) {
+  std::seed_seq seq{seed, stream, index};
+  return std::mt19937_64(seq);
+}
+
+// Reflects x into [lo, hi] (a glint bouncing off the image borders).
+double Fold(double x, double lo, double hi) {
+  const double len = hi - lo;
+  if (len <= 0) return lo;
+  double y = std::fmod(x - lo, 2 * len);
+  if (y < 0) y += 2 * len;
+  return lo + (y <= len ? y : 2 * len - y);
+}
+
+BeaconSimOptions Prepared(BeaconSimOptions opt) {
+  std::string why;
+  if (!opt.Check(&why)) throw UsageError(why);
+  opt.trajectory.t_mid_s = opt.t0_s + 0.5 * opt.duration_s;
+  return opt;
+}
+
+std::int64_t FrameCount(const BeaconSimOptions& o) {
+  return static_cast<std::int64_t>(std::floor(o.duration_s * o.fps + 1e-9));
+}
+
+double LastFrameTime(const BeaconSimOptions& o) {
+  return o.t0_s + static_cast<double>(std::max<std::int64_t>(FrameCount(o) - 1, 0)) / o.fps;
+}
+
+// Sample times t0 − margin + offset + i / rate up to t_last + margin.
+std::vector<double> SampleTimes(const BeaconSimOptions& o, double rate_hz, double offset_s) {
+  std::vector<double> t;
+  const double begin = o.t0_s - kSampleMarginS + offset_s;
+  const double end = LastFrameTime(o) + kSampleMarginS;
+  for (std::int64_t i = 0;; ++i) {
+    const double ti = begin + static_cast<double>(i) / rate_hz;
+    if (ti > end) break;
+    t.push_back(ti);
+  }
+  return t;
+}
+
+}  // namespace
+
+bool CameraPreset(const std::string& name, camera::CameraModel* cam) {
+  camera::CameraModel c = camera::DefaultCamera();
+  if (name == "default") {
+    c.width_px = 2448;
+    c.height_px = 2048;
+  } else if (name == "small") {
+    c.width_px = 640;
+    c.height_px = 512;
+  } else {
+    return false;
+  }
+  c.pixel_size_mm = {0.00345, 0.00345};
+  c.focal_length_mm = 50.0;
+  c.principal_point_px = {0.5 * (c.width_px - 1), 0.5 * (c.height_px - 1)};
+  *cam = c;
+  return true;
+}
+
+TrajectoryOptions DefaultTrajectoryOptions(TrajectoryKind kind, double range_m) {
+  TrajectoryOptions t = DefaultTrajectoryOptions(kind);
+  if (!std::isfinite(range_m)) return t;
+  // Keep the angular rate of the default geometry: speed proportional to range.
+  const double scale = range_m / t.range_m;
+  t.range_m = range_m;
+  switch (kind) {
+    case TrajectoryKind::kDefault: t.speed_mps *= std::min(1.0, scale); break;
+    case TrajectoryKind::kStraight:
+    case TrajectoryKind::kTurning:
+    case TrajectoryKind::kOverhead: t.speed_mps = std::min(300.0, t.speed_mps * scale); break;
+    case TrajectoryKind::kStatic: break;
+  }
+  return t;
+}
+
+TrajectoryOptions DefaultTrajectoryOptions(TrajectoryKind kind) {
+  TrajectoryOptions t;
+  t.kind = kind;
+  t.azimuth_rad = geo::DegToRad(30.0);
+  t.elevation_rad = geo::DegToRad(5.0);
+  switch (kind) {
+    case TrajectoryKind::kDefault: t.range_m = 80.0; t.speed_mps = 2.7; break;
+    case TrajectoryKind::kStraight: t.range_m = 500.0; t.speed_mps = 30.0; break;
+    case TrajectoryKind::kTurning: t.range_m = 600.0; t.speed_mps = 15.0; t.turn_rate_rad_s = 0.1; break;
+    case TrajectoryKind::kOverhead: t.range_m = 150.0; t.speed_mps = 10.0; break;
+    case TrajectoryKind::kStatic: t.range_m = 80.0; t.speed_mps = 0.0; break;
+  }
+  return t;
+}
+
+bool ParseOcclusion(const std::string& text, OcclusionInterval* occ, std::string* why) {
+  const auto colon = text.find(':');
+  if (colon == std::string::npos) {
+    *why = "occlusion '" + text + "' must be START_S:DURATION_S (DURATION_S may be 'short' or 'long')";
+    return false;
+  }
+  const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
+  auto number = [](const std::string& s, double* v) {
+    if (s.empty()) return false;
+    std::size_t used = 0;
+    try {
+      *v = std::stod(s, &used);
+    } catch (...) {
+      return false;
+    }
+    return used == s.size() && std::isfinite(*v);
+  };
+  OcclusionInterval o;
+  if (!number(a, &o.start_s) || o.start_s < 0) {
+    *why = "occlusion start '" + a + "' must be a number of seconds >= 0";
+    return false;
+  }
+  if (b == "short") {
+    o.duration_s = 0.5;
+  } else if (b == "long") {
+    o.duration_s = 5.0;
+  } else if (!number(b, &o.duration_s) || !(o.duration_s > 0)) {
+    *why = "occlusion duration '" + b + "' must be a number of seconds > 0, 'short' or 'long'";
+    return false;
+  }
+  *occ = o;
+  return true;
+}
+
+bool BeaconSimOptions::Check(std::string* why) const {
+  auto fail = [&](const std::string& w) {
+    if (why) *why = w;
+    return false;
+  };
+  if (camera.width_px < 32 || camera.height_px < 32) return fail("image must be at least 32x32 px");
+  if (!trajectory.Check(why)) return false;
+  if (!servo.Check(why)) return false;
+  if (!(duration_s > 0 && duration_s <= 3600)) return fail("duration must be in (0, 3600] s");
+  if (!(fps > 0 && fps <= 1000)) return fail("fps must be in (0, 1000] Hz");
+  if (duration_s * fps < 1.0 - 1e-9) return fail("duration x fps must give at least one frame");
+  if (!std::isfinite(t0_s) || std::abs(t0_s) > 1e7) return fail("t0 must be a finite time in s");
+  if (lamps < 5 || lamps > 64) return fail("lamps must be in [5, 64]");
+  if (!(cluster_span_m >= 0.001 && cluster_span_m <= 10)) return fail("cluster span must be in [0.001, 10] m");
+  if (!(psf_sigma_px >= 0.3 && psf_sigma_px <= 10)) return fail("PSF sigma must be in [0.3, 10] px");
+  if (!(peak_dn > 0 && peak_dn <= 255)) return fail("peak must be in (0, 255] DN (8-bit scale)");
+  if (!(sensor.background_dn >= 0 && sensor.background_dn <= 255)) return fail("background must be in [0, 255] DN");
+  if (!(sensor.read_noise_dn >= 0 && sensor.read_noise_dn <= 100)) return fail("read noise must be in [0, 100] DN");
+  if (!(sensor.gain_e_per_dn >= 0 && sensor.gain_e_per_dn <= 1e6)) return fail("gain must be in [0, 1e6] e-/DN");
+  if (sensor.bit_depth != 8 && sensor.bit_depth != 16) return fail("bit depth must be 8 or 16");
+  if (distractors < 0 || distractors > 50) return fail("distractors must be in [0, 50]");
+  if (!(distractor_margin_px >= 0)) return fail("distractor margin must be >= 0 px");
+  for (const auto& o : occlusions) {
+    if (!(o.start_s >= 0 && o.duration_s > 0 && std::isfinite(o.start_s + o.duration_s))) {
+      return fail("occlusion intervals need start >= 0 and duration > 0");
+    }
+  }
+  if (!(turret_rate_hz > 0 && turret_rate_hz <= 10000)) return fail("turret rate must be in (0, 10000] Hz");
+  if (!(std::abs(turret_offset_s) <= kSampleMarginS)) return fail("turret offset must be in [-0.5, 0.5] s");
+  if (!(turret_resolution_rad >= 0 && turret_resolution_rad <= 0.01)) {
+    return fail("turret resolution must be in [0, 0.57] deg");
+  }
+  if (!(turret_noise_rad >= 0 && turret_noise_rad <= 0.01)) return fail("turret noise must be in [0, 0.57] deg");
+  if (!(range_rate_hz > 0 && range_rate_hz <= 1000)) return fail("range rate must be in (0, 1000] Hz");
+  if (!(std::abs(range_offset_s) <= kSampleMarginS)) return fail("range offset must be in [-0.5, 0.5] s");
+  if (!(range_noise_m >= 0 && range_noise_m <= 10)) return fail("range noise must be in [0, 10000] mm");
+  if (!(range_error_rate >= 0 && range_error_rate < 1)) return fail("range error rate must be in [0, 1)");
+  return true;
+}
+
+io::Json BeaconSimOptionsToJson(const BeaconSimOptions& o) {
+  using geo::RadToDeg;
+  io::Json j;
+  j["camera_preset"] = o.camera_preset;
+  j["camera"] = camera::CameraModelToJson(o.camera);
+  j["trajectory"] = {{"kind", TrajectoryKindName(o.trajectory.kind)},
+                     {"range_m", o.trajectory.range_m},
+                     {"speed_mps", o.trajectory.speed_mps},
+                     {"azimuth_deg", RadToDeg(o.trajectory.azimuth_rad)},
+                     {"elevation_deg", RadToDeg(o.trajectory.elevation_rad)},
+                     {"max_elevation_deg", RadToDeg(o.trajectory.max_elevation_rad)},
+                     {"turn_rate_deg_s", RadToDeg(o.trajectory.turn_rate_rad_s)},
+                     {"t_mid_s", o.t0_s + 0.5 * o.duration_s}};
+  j["duration_s"] = o.duration_s;
+  j["fps"] = o.fps;
+  j["t0_s"] = o.t0_s;
+  j["lamps"] = o.lamps;
+  j["cluster_span_m"] = o.cluster_span_m;
+  j["psf_sigma_px"] = o.psf_sigma_px;
+  j["peak_dn"] = o.peak_dn;
+  j["background_dn"] = o.sensor.background_dn;
+  j["read_noise_dn"] = o.sensor.read_noise_dn;
+  j["gain_e_per_dn"] = o.sensor.gain_e_per_dn;
+  j["bit_depth"] = o.sensor.bit_depth;
+  j["distractors"] = o.distractors;
+  j["distractor_margin_px"] = o.distractor_margin_px;
+  io::Json occ = io::Json::array();
+  for (const auto& x : o.occlusions) occ.push_back({{"start_s", x.start_s}, {"duration_s", x.duration_s}});
+  j["occlusions"] = occ;
+  j["turret_lag_s"] = o.servo.lag_s;
+  j["jitter_arcsec"] = o.servo.jitter_rms_rad * geo::kArcsecPerRad;
+  j["jitter_band_hz"] = {o.servo.jitter_min_hz, o.servo.jitter_max_hz};
+  j["turret_rate_hz"] = o.turret_rate_hz;
+  j["turret_offset_s"] = o.turret_offset_s;
+  j["turret_resolution_deg"] = RadToDeg(o.turret_resolution_rad);
+  j["turret_noise_deg"] = RadToDeg(o.turret_noise_rad);
+  j["range_rate_hz"] = o.range_rate_hz;
+  j["range_offset_s"] = o.range_offset_s;
+  j["range_noise_mm"] = o.range_noise_m * 1e3;
+  j["range_error_rate"] = o.range_error_rate;
+  j["seed"] = o.seed;
+  return j;
+}
+
+BeaconSimulator::BeaconSimulator(BeaconSimOptions opt)
+    : opt_(Prepared(std::move(opt))),
+      trajectory_(opt_.trajectory),
+      servo_(opt_.servo, [this](double t) { return trajectory_.PositionEnu(t); }, opt_.t0_s - kServoMarginS,
+             LastFrameTime(opt_) + kServoMarginS, opt_.seed) {
+  // Lamp layout (a_i, b_i) and relative intensities w_i.
+  lamp_unit_.push_back({0.0, 0.0});
+  lamp_weight_.push_back(1.0);
+  for (int i = 1; i < opt_.lamps; ++i) {
+    const double ang = 0.3 + geo::kTwoPi * (i - 1) / (opt_.lamps - 1);
+    lamp_unit_.push_back({std::cos(ang), std::sin(ang)});
+    const double frac = 0.618034 * i - std::floor(0.618034 * i);
+    lamp_weight_.push_back(1.0 - 0.3 * frac);
+  }
+
+  const std::int64_t n = FrameCount(opt_);
+  const camera::CameraModel& cam = opt_.camera;
+  const double edge = 3.0 * opt_.psf_sigma_px + 1.0;
+  frames_.reserve(static_cast<std::size_t>(n));
+  for (std::int64_t k = 0; k < n; ++k) {
+    FrameTruth f;
+    f.frame = k;
+    f.t_s = opt_.t0_s + static_cast<double>(k) / opt_.fps;
+    const geo::AzEl bore = servo_.Boresight(f.t_s);
+    f.boresight_az_rad = bore.az_rad;
+    f.boresight_el_rad = bore.el_rad;
+    f.p_enu = trajectory_.PositionEnu(f.t_s);
+    f.range_m = f.p_enu.norm();
+    const Eigen::Vector3d los = f.p_enu / f.range_m;
+    const Eigen::Vector3d right = los.cross(Eigen::Vector3d::UnitZ()).normalized();
+    const Eigen::Vector3d up = right.cross(los);
+    std::vector<Spot> all;
+    for (std::size_t i = 0; i < lamp_unit_.size(); ++i) {
+      const Eigen::Vector3d lamp =
+          f.p_enu + 0.5 * opt_.cluster_span_m * (lamp_unit_[i].x() * right + lamp_unit_[i].y() * up);
+      const auto px = cam.ProjectEnu(lamp.normalized(), bore.az_rad, bore.el_rad);
+      if (!px || px->x() < edge || px->y() < edge || px->x() > cam.width_px - 1 - edge ||
+          px->y() > cam.height_px - 1 - edge) {
+        std::ostringstream ss;
+        ss << "the target leaves the image at frame " << k << " (t = " << f.t_s
+           << " s): the turret lags too far behind; lower --speed-mps or --turret-lag-s, or raise --range-m";
+        throw UsageError(ss.str());
+      }
+      all.push_back(Spot{px->x(), px->y(), opt_.psf_sigma_px, opt_.peak_dn * lamp_weight_[i]});
+    }
+    const cv::Point2d c = FluxWeightedCentre(all);
+    f.centre_px = {c.x, c.y};
+    for (const Spot& s : all) f.cluster_radius_px = std::max(f.cluster_radius_px, std::hypot(s.x_px - c.x, s.y_px - c.y));
+    const geo::AzEl ae = geo::AzElFromEnu(cam.RayEnu(f.centre_px, bore.az_rad, bore.el_rad));
+    f.az_rad = ae.az_rad;
+    f.el_rad = ae.el_rad;
+    f.visible = !Occluded(f.t_s);
+    if (f.visible) f.lamps = std::move(all);
+    frames_.push_back(std::move(f));
+  }
+  PlaceDistractors();
+}
+
+bool BeaconSimulator::Occluded(double t_s) const {
+  const double rel = t_s - opt_.t0_s;
+  for (const auto& o : opt_.occlusions) {
+    if (rel >= o.start_s - 1e-9 && rel < o.start_s + o.duration_s - 1e-9) return true;
+  }
+  return false;
+}
+
+void BeaconSimulator::PlaceDistractors() {
+  if (opt_.distractors == 0 || frames_.empty()) return;
+  std::mt19937_64 rng = Stream(opt_.seed, 3);
+  const double w = opt_.camera.width_px, h = opt_.camera.height_px;
+  std::uniform_real_distribution<double> ux(kGlintEdgePx, w - 1 - kGlintEdgePx), uy(kGlintEdgePx, h - 1 - kGlintEdgePx);
+  std::uniform_real_distribution<double> speed(3.0, 15.0), dir(0.0, geo::kTwoPi), amp(0.5, 1.5);
+  auto position = [&](const Glint& g, double dt) {
+    return Eigen::Vector2d(Fold(g.p0_px.x() + g.v_pxps.x() * dt, kGlintEdgePx, w - 1 - kGlintEdgePx),
+                           Fold(g.p0_px.y() + g.v_pxps.y() * dt, kGlintEdgePx, h - 1 - kGlintEdgePx));
+  };
+  for (int i = 0; i < opt_.distractors; ++i) {
+    bool placed = false;
+    for (int attempt = 0; attempt < 5000 && !placed; ++attempt) {
+      Glint g;
+      g.p0_px = {ux(rng), uy(rng)};
+      const double v = (i % 2 == 0) ? speed(rng) : 0.0;  // even glints drift, odd ones are fixed
+      const double a = dir(rng);
+      g.v_pxps = {v * std::cos(a), v * std::sin(a)};
+      g.amplitude_dn = opt_.peak_dn * amp(rng);
+      g.sigma_px = kGlintSigmaPx;
+      if ((g.p0_px - frames_[0].centre_px).norm() < opt_.distractor_margin_px) continue;
+      placed = true;
+      for (const FrameTruth& f : frames_) {
+        const Eigen::Vector2d p = position(g, f.t_s - opt_.t0_s);
+        if ((p - f.centre_px).norm() < f.cluster_radius_px + kGlintClearancePx + 3 * opt_.psf_sigma_px) {
+          placed = false;
+          break;
+        }
+      }
+      if (placed) glints_.push_back(g);
+    }
+    if (!placed) {
+      throw UsageError("cannot place " + std::to_string(opt_.distractors) +
+                       " distractors away from the beacon; use fewer, a smaller --distractor-margin-px or a larger image");
+    }
+  }
+  for (FrameTruth& f : frames_) {
+    double dmin = -1.0;
+    for (const Glint& g : glints_) {
+      const Eigen::Vector2d p = position(g, f.t_s - opt_.t0_s);
+      f.distractors.push_back(Spot{p.x(), p.y(), g.sigma_px, g.amplitude_dn});
+      const double d = (p - f.centre_px).norm();
+      dmin = dmin < 0 ? d : std::min(dmin, d);
+    }
+    f.distractor_min_dist_px = dmin;
+  }
+}
+
+cv::Mat BeaconSimulator::RenderSignal(std::size_t k) const {
+  const FrameTruth& f = frames_.at(k);
+  cv::Mat signal = cv::Mat::zeros(opt_.camera.height_px, opt_.camera.width_px, CV_32FC1);
+  AddSpots(&signal, f.lamps);
+  AddSpots(&signal, f.distractors);
+  return signal;
+}
+
+cv::Mat BeaconSimulator::RenderFrame(std::size_t k, std::mt19937_64& rng) const {
+  cv::Mat signal = RenderSignal(k);
+  SensorOptions s = opt_.sensor;
+  if (s.bit_depth == 16) {
+    // Same electrons, DN ×256: full scale 65535 ≈ 8-bit 256.
+    constexpr double kScale = 256.0;
+    signal *= kScale;
+    s.background_dn *= kScale;
+    s.read_noise_dn *= kScale;
+    s.gain_e_per_dn /= kScale;
+  }
+  return Digitise(signal, s, rng);
+}
+
+cv::Mat BeaconSimulator::RenderFrame(std::size_t k) const {
+  std::mt19937_64 rng = Stream(opt_.seed, 1000, k);
+  return RenderFrame(k, rng);
+}
+
+std::vector<TurretSample> BeaconSimulator::TurretLog() const {
+  std::mt19937_64 rng = Stream(opt_.seed, 4);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const double q = opt_.turret_resolution_rad;
+  auto record = [&](double v) {
+    if (opt_.turret_noise_rad > 0) v += opt_.turret_noise_rad * normal(rng);
+    if (q > 0) v = q * std::round(v / q);
+    return v;
+  };
+  std::vector<TurretSample> out;
+  for (double t : SampleTimes(opt_, opt_.turret_rate_hz, opt_.turret_offset_s)) {
+    TurretSample s;
+    s.t_s = t;
+    const geo::AzEl b = servo_.Boresight(t);
+    s.true_az_rad = b.az_rad;
+    s.true_el_rad = b.el_rad;
+    s.az_rad = geo::WrapTwoPi(record(b.az_rad));
+    s.el_rad = record(b.el_rad);
+    out.push_back(s);
+  }
+  return out;
+}
+
+std::vector<RangeSample> BeaconSimulator::RangeLog() const {
+  std::mt19937_64 rng = Stream(opt_.seed, 5);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  std::vector<RangeSample> out;
+  for (double t : SampleTimes(opt_, opt_.range_rate_hz, opt_.range_offset_s)) {
+    RangeSample s;
+    s.t_s = t;
+    s.true_range_m = trajectory_.PositionEnu(t).norm();
+    const double noise = opt_.range_noise_m * normal(rng);  // drawn every row: error rows do not shift the stream
+    if (uniform(rng) < opt_.range_error_rate) {
+      s.range_m = std::nan("");
+      s.status = 255;
+    } else {
+      s.range_m = s.true_range_m + noise;
+      s.status = 0;
+    }
+    out.push_back(s);
+  }
+  return out;
+}
+
+}  // namespace rk::sim

@@ -1,0 +1,262 @@
+#include "sim/beacon_trial.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <regex>
+
+#include "camera/camera_model.h"
+#include "geo/angles.h"
+#include "io/csv.h"
+#include "io/error.h"
+#include "io/file_util.h"
+#include "video/frame_sink.h"
+
+namespace rk::sim {
+namespace fs = std::filesystem;
+namespace {
+
+constexpr int kTimeDecimals = 9;
+constexpr int kAngleDecimals = 9;
+constexpr int kMetreDecimals = 6;
+constexpr int kPixelDecimals = 4;
+
+// Creates a fresh folder "<parent>/.<stem>.XXXXXX" (mode 0777 & ~umask).
+std::string MakeTempDir(const fs::path& parent, const std::string& stem, const std::string& for_path) {
+  std::string templ = (parent / ("." + stem + ".XXXXXX")).string();
+  std::vector<char> buf(templ.begin(), templ.end());
+  buf.push_back('\0');
+  if (!::mkdtemp(buf.data())) {
+    throw IoError(for_path, std::string("cannot create a folder beside it: ") + std::strerror(errno));
+  }
+  mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::chmod(buf.data(), 0777 & ~mask);
+  return std::string(buf.data());
+}
+
+// Removes a folder tree unless released (failed runs leave nothing behind).
+class TempDirGuard {
+ public:
+  explicit TempDirGuard(std::string path) : path_(std::move(path)) {}
+  ~TempDirGuard() {
+    if (!path_.empty()) {
+      std::error_code ec;
+      fs::remove_all(path_, ec);
+    }
+  }
+  void Release() { path_.clear(); }
+
+ private:
+  std::string path_;
+};
+
+double Deg(double rad) { return geo::RadToDeg(rad); }
+
+}  // namespace
+
+bool TrialWriteOptions::Check(std::string* why) const {
+  auto fail = [&](const std::string& w) {
+    if (why) *why = w;
+    return false;
+  };
+  if (out_dir.empty() || out_dir == "-") return fail("--out must name a folder");
+  if (format != "mkv" && format != "png") return fail("format must be 'mkv' or 'png'");
+  static const std::regex iso(R"(\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}(\.\d+)?Z)");
+  if (!std::regex_match(epoch_utc, iso)) return fail("epoch must be ISO-8601 UTC, e.g. 2026-01-01T00:00:00Z");
+  if (!(std::abs(station_lat_deg) <= 90 && std::abs(station_lon_deg) <= 180 && std::isfinite(station_h_m))) {
+    return fail("station latitude/longitude out of range");
+  }
+  return true;
+}
+
+io::Json TrialSummary::ToJson() const {
+  io::Json j;
+  j["frames"] = frames;
+  j["visible_frames"] = visible_frames;
+  j["turret_rows"] = turret_rows;
+  j["range_rows"] = range_rows;
+  j["range_error_rows"] = range_error_rows;
+  j["min_range_m"] = min_range_m;
+  j["max_range_m"] = max_range_m;
+  j["max_elevation_deg"] = max_elevation_deg;
+  if (min_distractor_dist_px >= 0) j["min_distractor_dist_px"] = min_distractor_dist_px;
+  return j;
+}
+
+TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOptions& opt) {
+  std::string why;
+  if (!opt.Check(&why)) throw UsageError(why);
+  const BeaconSimOptions& so = sim.options();
+
+  fs::path out = fs::path(opt.out_dir).lexically_normal();
+  if (!out.has_filename() && out.has_parent_path()) out = out.parent_path();
+  const std::string out_str = out.string();
+  if (out.filename() == "." || out.filename() == ".." || out_str.empty()) {
+    throw UsageError("--out '" + opt.out_dir + "' must name a new folder");
+  }
+  std::error_code ec;
+  const bool exists = fs::exists(fs::symlink_status(out, ec));
+  if (exists) {
+    if (!fs::is_directory(out, ec)) throw UsageError("--out " + out_str + " exists and is not a folder");
+    if (!fs::is_empty(out, ec) && !opt.force) {
+      throw UsageError("--out " + out_str + " exists and is not empty; use --force to replace it");
+    }
+  }
+  const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
+  io::MakeDirectories(parent.string());
+  const std::string stem = out.filename().string();
+  const std::string tmp = MakeTempDir(parent, stem, out_str);
+  TempDirGuard guard(tmp);
+  const fs::path root(tmp);
+  io::MakeDirectories((root / "az").string());
+  io::MakeDirectories((root / "truth").string());
+
+  TrialSummary sum;
+  // Camera model and frame times.
+  io::WriteJson((root / "az" / "camera.json").string(), camera::CameraModelToJson(so.camera));
+  io::CsvWriter frames_csv({"frame", "t_s"});
+  io::CsvWriter beacon_csv({"frame", "t_s", "x_px", "y_px", "visible", "distractor_min_dist_px"});
+  io::CsvWriter target_csv(
+      {"frame", "t_s", "az_deg", "el_deg", "range_m", "e_m", "n_m", "u_m", "boresight_az_deg", "boresight_el_deg"});
+  sum.min_range_m = std::numeric_limits<double>::infinity();
+  sum.max_range_m = 0;
+  sum.max_elevation_deg = -90;
+  for (const FrameTruth& f : sim.frames()) {
+    frames_csv.Add(f.frame).Add(f.t_s, kTimeDecimals).EndRow();
+    beacon_csv.Add(f.frame).Add(f.t_s, kTimeDecimals);
+    if (f.visible) {
+      beacon_csv.Add(f.centre_px.x(), kPixelDecimals).Add(f.centre_px.y(), kPixelDecimals).Add(1);
+    } else {
+      beacon_csv.AddEmpty().AddEmpty().Add(0);
+    }
+    if (f.distractor_min_dist_px >= 0) {
+      beacon_csv.Add(f.distractor_min_dist_px, kPixelDecimals);
+      sum.min_distractor_dist_px = sum.min_distractor_dist_px < 0
+                                       ? f.distractor_min_dist_px
+                                       : std::min(sum.min_distractor_dist_px, f.distractor_min_dist_px);
+    } else {
+      beacon_csv.AddEmpty();
+    }
+    beacon_csv.EndRow();
+    target_csv.Add(f.frame)
+        .Add(f.t_s, kTimeDecimals)
+        .Add(Deg(f.az_rad), kAngleDecimals)
+        .Add(Deg(f.el_rad), kAngleDecimals)
+        .Add(f.range_m, kMetreDecimals)
+        .Add(f.p_enu.x(), kMetreDecimals)
+        .Add(f.p_enu.y(), kMetreDecimals)
+        .Add(f.p_enu.z(), kMetreDecimals)
+        .Add(Deg(f.boresight_az_rad), kAngleDecimals)
+        .Add(Deg(f.boresight_el_rad), kAngleDecimals)
+        .EndRow();
+    ++sum.frames;
+    if (f.visible) ++sum.visible_frames;
+    sum.min_range_m = std::min(sum.min_range_m, f.range_m);
+    sum.max_range_m = std::max(sum.max_range_m, f.range_m);
+    sum.max_elevation_deg = std::max(sum.max_elevation_deg, Deg(f.el_rad));
+  }
+  frames_csv.Write((root / "az" / "frames.csv").string());
+  beacon_csv.Write((root / "truth" / "beacon.csv").string());
+  target_csv.Write((root / "truth" / "target.csv").string());
+
+  // Turret and range logs (recorded and true).
+  io::CsvWriter turret_csv({"t_s", "az_deg", "el_deg"}), turret_truth({"t_s", "az_deg", "el_deg"});
+  for (const TurretSample& s : sim.TurretLog()) {
+    turret_csv.Add(s.t_s, kTimeDecimals).Add(Deg(s.az_rad), kAngleDecimals).Add(Deg(s.el_rad), kAngleDecimals).EndRow();
+    turret_truth.Add(s.t_s, kTimeDecimals)
+        .Add(Deg(s.true_az_rad), kAngleDecimals)
+        .Add(Deg(s.true_el_rad), kAngleDecimals)
+        .EndRow();
+    ++sum.turret_rows;
+  }
+  turret_csv.Write((root / "turret.csv").string());
+  turret_truth.Write((root / "truth" / "turret.csv").string());
+  io::CsvWriter range_csv({"t_s", "range_m", "status"}), range_truth({"t_s", "range_m"});
+  for (const RangeSample& s : sim.RangeLog()) {
+    range_csv.Add(s.t_s, kTimeDecimals);
+    if (s.status == 0) {
+      range_csv.Add(s.range_m, kMetreDecimals);
+    } else {
+      range_csv.AddEmpty();
+      ++sum.range_error_rows;
+    }
+    range_csv.Add(s.status).EndRow();
+    range_truth.Add(s.t_s, kTimeDecimals).Add(s.true_range_m, kMetreDecimals).EndRow();
+    ++sum.range_rows;
+  }
+  range_csv.Write((root / "range.csv").string());
+  range_truth.Write((root / "truth" / "range.csv").string());
+
+  // Video.
+  const std::string video_rel = opt.format == "mkv" ? "az/video.mkv" : "az/%06d.png";
+  {
+    video::FrameSink sink((root / video_rel).string(), so.camera.width_px, so.camera.height_px, so.sensor.bit_depth,
+                          so.fps);
+    for (std::size_t k = 0; k < sim.frame_count(); ++k) {
+      sink.Write(sim.RenderFrame(k));
+      if (opt.progress) opt.progress(k + 1, sim.frame_count());
+    }
+    sink.Close();
+  }
+
+  // Manifest.
+  io::Json m;
+  m["name"] = opt.name.empty() ? stem : opt.name;
+  m["epoch_utc"] = opt.epoch_utc;
+  m["station"] = {{"lat_deg", opt.station_lat_deg}, {"lon_deg", opt.station_lon_deg}, {"h_m", opt.station_h_m}};
+  m["cameras"] = {{"az",
+                   {{"video", {video_rel}},
+                    {"frames", "az/frames.csv"},
+                    {"model", "az/camera.json"},
+                    {"role", "beacon"}}}};
+  m["turret"] = "turret.csv";
+  m["range"] = "range.csv";
+  m["theodolite"] = nullptr;
+  m["radar"] = nullptr;
+  m["steps"] = io::Json::object();
+  io::Json simj;
+  simj["generator"] = "rk-sim beacon";
+  simj["seed"] = so.seed;
+  simj["format"] = opt.format;
+  simj["options"] = BeaconSimOptionsToJson(so);
+  simj["truth"] = {{"beacon", "truth/beacon.csv"},
+                   {"target", "truth/target.csv"},
+                   {"turret", "truth/turret.csv"},
+                   {"range", "truth/range.csv"}};
+  simj["summary"] = sum.ToJson();
+  m["sim"] = simj;
+  io::WriteJson((root / "trial.json").string(), m);
+
+  // Move into place: an empty folder is replaced directly; a non-empty one
+  // (only with force) is first moved aside and removed after the switch.
+  std::string trash;
+  if (fs::exists(fs::symlink_status(out, ec))) {
+    if (fs::is_directory(out, ec) && fs::is_empty(out, ec)) {
+      fs::remove(out, ec);
+      if (ec) throw IoError(out_str, "cannot replace the empty folder: " + ec.message());
+    } else {
+      trash = MakeTempDir(parent, stem + ".old", out_str);
+      if (std::rename(out_str.c_str(), trash.c_str()) != 0) {
+        const int e = errno;
+        fs::remove(trash, ec);
+        throw IoError(out_str, std::string("cannot move the old folder aside: ") + std::strerror(e));
+      }
+    }
+  }
+  if (std::rename(tmp.c_str(), out_str.c_str()) != 0) {
+    const int e = errno;
+    if (!trash.empty()) std::rename(trash.c_str(), out_str.c_str());  // put the old trial back
+    throw IoError(out_str, std::string("cannot rename into place: ") + std::strerror(e));
+  }
+  guard.Release();
+  if (!trash.empty()) fs::remove_all(trash, ec);
+  return sum;
+}
+
+}  // namespace rk::sim
