@@ -1,0 +1,139 @@
+// rk-locate: beacon track + turret log + camera model (+ range log) →
+// azimuth, elevation, range and ENU position per frame (SPEC.md §1.1, §3).
+// Thin CLI: the method lives in lib/locate (locate/locate.h).
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <string>
+
+#include "camera/camera_model.h"
+#include "io/cli.h"
+#include "io/csv.h"
+#include "io/error.h"
+#include "io/file_util.h"
+#include "locate/inputs.h"
+#include "locate/locate.h"
+
+namespace {
+
+const char* const kTool = "rk-locate";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Locate the target: beacon track + turret log + camera model (+ range log) -> azimuth, elevation, "
+      "range and "
+      "station ENU position per frame (exact SPEC.md section 3 geometry with lens distortion).",
+      kTool};
+  rk::cli::CommonOptions common;
+  rk::cli::AddCommonOptions(app, kTool, &common);
+  std::string track_path, camera_path, turret_path, range_path, out_path;
+  rk::locate::LocateOptions opt;
+  std::string turret_interp = "cubic", range_interp = "local-cubic";
+  app.add_option("--track", track_path, "Beacon track CSV: frame,t_s,x_px,y_px[,status] ('-' = stdin)")
+      ->required();
+  app.add_option("--camera", camera_path, "Camera model JSON (SPEC.md section 3)")->required();
+  app.add_option("--turret", turret_path, "Turret log CSV: t_s,az_deg,el_deg (boresight)")->required();
+  app.add_option("--range", range_path,
+                 "Range log CSV: t_s,range_m[,status]; without it no range/ENU is given");
+  app.add_option("-o,--output", out_path, "Located target CSV ('-' = stdout)")->required();
+  app.add_option("--turret-interp", turret_interp,
+                 "Turret angle interpolation to frame times: linear or cubic")
+      ->check(CLI::IsMember({"linear", "cubic"}))
+      ->capture_default_str();
+  app.add_option("--turret-max-gap", opt.turret_max_gap_s,
+                 "Longest turret-log interval (s) interpolated across; frames in longer gaps are invalid")
+      ->default_val(opt.turret_max_gap_s);
+  app.add_option("--range-interp", range_interp,
+                 "Range interpolation to frame times: linear, cubic, local-quadratic or local-cubic")
+      ->check(CLI::IsMember({"linear", "cubic", "local-quadratic", "local-cubic"}))
+      ->capture_default_str();
+  app.add_option("--range-max-gap", opt.range_max_gap_s,
+                 "Longest interval (s) between usable range samples interpolated across; device-error rows "
+                 "always break the interval")
+      ->default_val(opt.range_max_gap_s);
+  app.add_option("--range-window", opt.range_window,
+                 "local-quadratic/local-cubic: range samples used on each side of the frame interval, 2..50")
+      ->default_val(opt.range_window);
+
+  return rk::cli::Run(app, kTool, argc, argv, [&]() -> int {
+    if (!rk::track::ParseInterpMethod(turret_interp, &opt.turret_method) ||
+        !rk::track::ParseInterpMethod(range_interp, &opt.range_method)) {
+      throw rk::UsageError("unknown interpolation method");
+    }
+    std::string why;
+    if (!opt.Check(&why)) throw rk::UsageError(why);
+    std::vector<std::string> inputs = {track_path, camera_path, turret_path};
+    if (!range_path.empty()) inputs.push_back(range_path);
+    int n_stdin = 0;
+    for (const auto& in : inputs) n_stdin += rk::io::IsStdStream(in) ? 1 : 0;
+    if (n_stdin > 1) throw rk::UsageError("only one input can be read from stdin ('-')");
+    rk::io::CheckOutputNotInput(out_path, inputs);
+    if (!common.report_path.empty()) {
+      rk::io::CheckOutputNotInput(common.report_path, inputs);
+      if (rk::io::IsStdStream(common.report_path) && rk::io::IsStdStream(out_path)) {
+        throw rk::UsageError("--report and -o cannot both be stdout");
+      }
+    }
+
+    const rk::locate::Track track = rk::locate::ReadTrack(rk::io::CsvTable::Read(track_path));
+    const rk::camera::CameraModel camera = rk::camera::LoadCameraModel(camera_path);
+    const rk::locate::TurretLog turret = rk::locate::ReadTurretLog(rk::io::CsvTable::Read(turret_path));
+    std::optional<rk::locate::RangeLog> range;
+    if (!range_path.empty()) range = rk::locate::ReadRangeLog(rk::io::CsvTable::Read(range_path));
+
+    const rk::locate::LocateResult result =
+        rk::locate::Locate(track, camera, turret, range ? &*range : nullptr, opt);
+    if (result.rows_turret_not_covered > 0) {
+      rk::cli::Warn(kTool, common,
+                    std::to_string(result.rows_turret_not_covered) + " of " +
+                        std::to_string(result.rows.size()) + " frame times are not covered by " +
+                        turret_path + " (" + std::to_string(result.measured_rows_turret_not_covered) +
+                        " measured rows written as invalid)");
+    }
+    if (range && result.rows_with_los > 0 && result.rows_with_range == 0) {
+      rk::cli::Warn(kTool, common,
+                    "no frame got a range from " + range_path + " (check its time span and status)");
+    }
+    rk::locate::LocatedCsv(result).Write(out_path);
+
+    if (!common.report_path.empty()) {
+      rk::io::Json report = rk::cli::MakeReport(kTool, argc, argv);
+      rk::cli::AddReportInput(&report, "track", track_path);
+      rk::cli::AddReportInput(&report, "camera", camera_path);
+      rk::cli::AddReportInput(&report, "turret", turret_path);
+      if (range) rk::cli::AddReportInput(&report, "range", range_path);
+      report["output"] = out_path;
+      report["options"] = {{"turret_interp", rk::track::InterpMethodName(opt.turret_method)},
+                           {"turret_max_gap_s", opt.turret_max_gap_s},
+                           {"range_interp", rk::track::InterpMethodName(opt.range_method)},
+                           {"range_max_gap_s", opt.range_max_gap_s},
+                           {"range_window", opt.range_window}};
+      rk::io::Json status = rk::io::Json::object();
+      for (int s = 0; s < 5; ++s) {
+        status[rk::locate::TrackStatusName(static_cast<rk::locate::TrackStatus>(s))] =
+            result.rows_by_status[s];
+      }
+      rk::io::Json range_status = rk::io::Json::object();
+      for (int s = 0; s < 5; ++s) {
+        range_status[rk::locate::RangeStatusName(static_cast<rk::locate::RangeStatus>(s))] =
+            result.rows_by_range_status[s];
+      }
+      const double coverage = result.RangeCoverage();
+      report["counts"] = {{"rows", result.rows.size()},
+                          {"status", status},
+                          {"range_status", range_status},
+                          {"rows_with_line_of_sight", result.rows_with_los},
+                          {"rows_with_range", result.rows_with_range},
+                          {"rows_turret_not_covered", result.rows_turret_not_covered},
+                          {"measured_rows_turret_not_covered", result.measured_rows_turret_not_covered},
+                          {"turret_duplicate_times", result.turret_duplicate_times},
+                          {"turret_empty_samples", turret.empty_samples},
+                          {"range_duplicate_times", result.range_duplicate_times},
+                          {"range_device_errors", result.range_device_errors}};
+      report["range_coverage"] = std::isfinite(coverage) ? rk::io::Json(coverage) : rk::io::Json(nullptr);
+      rk::io::WriteJson(common.report_path, report);
+    }
+    return 0;
+  });
+}

@@ -1,0 +1,123 @@
+// Input readers of rk-locate; formats in inputs.h.
+#include "locate/inputs.h"
+
+#include "geo/angles.h"
+#include "io/error.h"
+
+namespace rk::locate {
+
+bool ParseTrackStatus(const std::string& text, TrackStatus* status) {
+  if (text == "ok") {
+    *status = TrackStatus::kOk;
+  } else if (text == "reacquired") {
+    *status = TrackStatus::kReacquired;
+  } else if (text == "predicted") {
+    *status = TrackStatus::kPredicted;
+  } else if (text == "lost") {
+    *status = TrackStatus::kLost;
+  } else if (text == "invalid") {
+    *status = TrackStatus::kInvalid;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+std::string TrackStatusName(TrackStatus status) {
+  switch (status) {
+    case TrackStatus::kOk:
+      return "ok";
+    case TrackStatus::kReacquired:
+      return "reacquired";
+    case TrackStatus::kPredicted:
+      return "predicted";
+    case TrackStatus::kLost:
+      return "lost";
+    case TrackStatus::kInvalid:
+      return "invalid";
+  }
+  return "?";
+}
+
+Track ReadTrack(const io::CsvTable& table) {
+  Track track;
+  track.source = table.name();
+  const int c_t = table.RequireColumn("t_s");
+  const int c_x = table.RequireColumn("x_px");
+  const int c_y = table.RequireColumn("y_px");
+  const int c_frame = table.Column("frame");
+  const int c_status = table.Column("status");
+  track.has_frame = c_frame >= 0;
+  table.RequireNonDecreasing(c_t);
+  track.rows.reserve(table.rows());
+  for (std::size_t r = 0; r < table.rows(); ++r) {
+    TrackRow row;
+    row.t_s = table.Double(r, c_t);
+    if (c_frame >= 0 && !table.IsEmpty(r, c_frame)) row.frame = table.Int(r, c_frame);
+    const auto x = table.OptionalDouble(r, c_x);
+    const auto y = table.OptionalDouble(r, c_y);
+    if (c_status >= 0 && !table.IsEmpty(r, c_status)) {
+      if (!ParseTrackStatus(std::string(table.Cell(r, c_status)), &row.status)) {
+        throw table.CellError(r, c_status,
+                              "unknown status '" + std::string(table.Cell(r, c_status)) +
+                                  "' (expected ok, reacquired, predicted, lost or invalid)");
+      }
+    } else {
+      row.status = TrackStatus::kOk;
+    }
+    const bool measured = row.status != TrackStatus::kLost && row.status != TrackStatus::kInvalid;
+    if (x && y && measured) {
+      row.px = Eigen::Vector2d(*x, *y);
+    } else if (!(x && y)) {
+      // No pixel: there is no measurement on this row, whatever the status said.
+      if (row.status != TrackStatus::kInvalid) row.status = TrackStatus::kLost;
+    }
+    track.rows.push_back(row);
+  }
+  return track;
+}
+
+TurretLog ReadTurretLog(const io::CsvTable& table) {
+  TurretLog log;
+  log.source = table.name();
+  const int c_t = table.RequireColumn("t_s");
+  const int c_az = table.RequireColumn("az_deg");
+  const int c_el = table.RequireColumn("el_deg");
+  table.RequireNonDecreasing(c_t);
+  for (std::size_t r = 0; r < table.rows(); ++r) {
+    log.t_s.push_back(table.Double(r, c_t));
+    const auto az = table.OptionalDouble(r, c_az);
+    const auto el = table.OptionalDouble(r, c_el);
+    if (el && (*el < -90.0 || *el > 90.0))
+      throw table.CellError(r, c_el, "elevation outside [-90, 90] degrees");
+    if (!az || !el) ++log.empty_samples;
+    log.az_rad.push_back(az ? std::optional<double>(geo::DegToRad(*az)) : std::nullopt);
+    log.el_rad.push_back(el ? std::optional<double>(geo::DegToRad(*el)) : std::nullopt);
+  }
+  return log;
+}
+
+RangeLog ReadRangeLog(const io::CsvTable& table) {
+  RangeLog log;
+  log.source = table.name();
+  const int c_t = table.RequireColumn("t_s");
+  const int c_r = table.RequireColumn("range_m");
+  const int c_status = table.Column("status");
+  table.RequireNonDecreasing(c_t);
+  for (std::size_t r = 0; r < table.rows(); ++r) {
+    log.t_s.push_back(table.Double(r, c_t));
+    std::int64_t code = 0;
+    if (c_status >= 0 && !table.IsEmpty(r, c_status)) code = table.Int(r, c_status);
+    const auto range = table.OptionalDouble(r, c_r);
+    if (code != 0 || !range) {
+      ++log.device_errors;
+      log.range_m.push_back(std::nullopt);
+      continue;
+    }
+    if (!(*range > 0.0)) throw table.CellError(r, c_r, "range must be > 0 m on a row with status 0");
+    log.range_m.push_back(*range);
+  }
+  return log;
+}
+
+}  // namespace rk::locate

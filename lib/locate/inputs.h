@@ -1,0 +1,62 @@
+// Readers for the inputs of rk-locate (SPEC.md §2.1): beacon track, turret
+// log, range log. Columns are found by name; every complaint names
+// file:line:col. Angles are converted to radians here (file boundary).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/csv.h"
+
+namespace rk::locate {
+
+// Per-frame status of a beacon track row (SPEC.md §2 statuses).
+enum class TrackStatus { kOk, kReacquired, kPredicted, kLost, kInvalid };
+bool ParseTrackStatus(const std::string& text, TrackStatus* status);
+std::string TrackStatusName(TrackStatus status);
+
+struct TrackRow {
+  std::optional<std::int64_t> frame;  // `frame` column when present
+  double t_s = 0.0;                   // frame time (s since the trial epoch)
+  std::optional<Eigen::Vector2d> px;  // beacon centre (x_px, y_px); nullopt = no measurement
+  TrackStatus status = TrackStatus::kOk;
+};
+
+// Beacon track `frame,t_s,x_px,y_px[,...,status]`. Required: t_s, x_px, y_px.
+// `status` is optional: without it (e.g. rk-sim's truth/beacon.csv) a row
+// with both x_px and y_px is `ok` and one without is `lost`. A row whose
+// x_px or y_px is empty is `lost` whatever its status says (no measurement).
+// t_s must be non-decreasing.
+struct Track {
+  std::string source;
+  bool has_frame = false;
+  std::vector<TrackRow> rows;
+};
+Track ReadTrack(const io::CsvTable& table);
+
+// Turret log `t_s,az_deg,el_deg` (boresight). Empty angle = sample not
+// available (breaks the interpolation interval). el must be in [−90, 90];
+// az any value (wrapped through 0/360). t_s non-decreasing.
+struct TurretLog {
+  std::string source;
+  std::vector<double> t_s;
+  std::vector<std::optional<double>> az_rad, el_rad;
+  std::size_t empty_samples = 0;
+};
+TurretLog ReadTurretLog(const io::CsvTable& table);
+
+// Range log `t_s,range_m[,status]`: status 0 (or empty, or no column) = ok,
+// anything else = device error code; an empty range_m is a device error too.
+// Usable ranges must be > 0. t_s non-decreasing.
+struct RangeLog {
+  std::string source;
+  std::vector<double> t_s;
+  std::vector<std::optional<double>> range_m;  // nullopt = device error
+  std::size_t device_errors = 0;
+};
+RangeLog ReadRangeLog(const io::CsvTable& table);
+
+}  // namespace rk::locate

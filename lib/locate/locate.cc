@@ -1,0 +1,197 @@
+// Locate pipeline; method, equations and assumptions in locate.h.
+#include "locate/locate.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "geo/angles.h"
+#include "geo/line_of_sight.h"
+#include "io/error.h"
+
+namespace rk::locate {
+
+bool LocateOptions::Check(std::string* why) const {
+  if (!(turret_max_gap_s > 0.0)) {
+    *why = "--turret-max-gap must be > 0 s";
+    return false;
+  }
+  if (!(range_max_gap_s > 0.0)) {
+    *why = "--range-max-gap must be > 0 s";
+    return false;
+  }
+  if (range_window < 2 || range_window > 50) {
+    *why = "--range-window must be in [2, 50] samples per side";
+    return false;
+  }
+  return true;
+}
+
+std::string RangeStatusName(RangeStatus status) {
+  switch (status) {
+    case RangeStatus::kOk:
+      return "ok";
+    case RangeStatus::kGap:
+      return "gap";
+    case RangeStatus::kDeviceError:
+      return "device_error";
+    case RangeStatus::kOutside:
+      return "outside";
+    case RangeStatus::kNoLog:
+      return "none";
+    case RangeStatus::kNotApplicable:
+      return "";
+  }
+  return "?";
+}
+
+double LocateResult::RangeCoverage() const {
+  if (rows_with_los == 0) return std::nan("");
+  return static_cast<double>(rows_with_range) / static_cast<double>(rows_with_los);
+}
+
+static RangeStatus FromInterpStatus(track::InterpStatus s) {
+  switch (s) {
+    case track::InterpStatus::kOk:
+      return RangeStatus::kOk;
+    case track::InterpStatus::kOutside:
+      return RangeStatus::kOutside;
+    case track::InterpStatus::kGap:
+      return RangeStatus::kGap;
+    case track::InterpStatus::kUnusable:
+      return RangeStatus::kDeviceError;
+  }
+  return RangeStatus::kOutside;
+}
+
+static std::string Num(double v) {
+  std::ostringstream s;
+  s.precision(9);
+  s << v;
+  return s.str();
+}
+
+LocateResult Locate(const Track& track, const camera::CameraModel& camera, const TurretLog& turret,
+                    const RangeLog* range, const LocateOptions& options) {
+  std::string why;
+  if (!options.Check(&why)) throw UsageError(why);
+  LocateResult result;
+  result.has_frame = track.has_frame;
+
+  // Turret: merge repeated time stamps, interpolate az on the unwrapped sequence.
+  std::vector<double> t_az = turret.t_s, t_el = turret.t_s;
+  auto az = track::UnwrapAngles(turret.az_rad);
+  auto el = turret.el_rad;
+  result.turret_duplicate_times = track::MergeDuplicateTimes(&t_az, &az);
+  track::MergeDuplicateTimes(&t_el, &el);
+  track::InterpOptions turret_opt;
+  turret_opt.method = options.turret_method;
+  turret_opt.max_gap_s = options.turret_max_gap_s;
+  turret_opt.angle = true;
+  const track::TimeSeriesInterpolator az_interp(t_az, az, turret_opt);
+  turret_opt.angle = false;
+  const track::TimeSeriesInterpolator el_interp(t_el, el, turret_opt);
+
+  std::optional<track::TimeSeriesInterpolator> range_interp;
+  if (range != nullptr) {
+    std::vector<double> t_r = range->t_s;
+    auto r = range->range_m;
+    result.range_duplicate_times = track::MergeDuplicateTimes(&t_r, &r);
+    result.range_device_errors = range->device_errors;
+    track::InterpOptions range_opt;
+    range_opt.method = options.range_method;
+    range_opt.max_gap_s = options.range_max_gap_s;
+    range_opt.window = options.range_window;
+    range_interp.emplace(t_r, r, range_opt);
+  }
+
+  result.rows.reserve(track.rows.size());
+  for (const TrackRow& in : track.rows) {
+    LocatedRow out;
+    out.frame = in.frame;
+    out.t_s = in.t_s;
+    out.status = in.status;
+    const track::InterpValue a = az_interp.At(in.t_s);
+    const track::InterpValue e = el_interp.At(in.t_s);
+    const bool turret_ok = a.ok() && e.ok();
+    if (turret_ok) {
+      out.boresight_az_rad = geo::WrapTwoPi(a.value);
+      out.boresight_el_rad = e.value;
+    } else {
+      ++result.rows_turret_not_covered;
+    }
+    if (in.px && !turret_ok) {
+      ++result.measured_rows_turret_not_covered;
+      out.status = TrackStatus::kInvalid;
+    } else if (in.px) {
+      const Eigen::Vector3d ray_enu = camera.RayEnu(*in.px, a.value, e.value).normalized();
+      const geo::AzEl los = geo::AzElFromEnu(ray_enu);
+      out.az_rad = los.az_rad;
+      out.el_rad = los.el_rad;
+      ++result.rows_with_los;
+      if (!range_interp) {
+        out.range_status = RangeStatus::kNoLog;
+      } else {
+        const track::InterpValue r = range_interp->At(in.t_s);
+        out.range_status = FromInterpStatus(r.status);
+        if (r.ok()) {
+          out.range_m = r.value;
+          out.p_enu_m = r.value * ray_enu;
+          ++result.rows_with_range;
+        }
+      }
+    }
+    ++result.rows_by_status[static_cast<std::size_t>(out.status)];
+    ++result.rows_by_range_status[static_cast<std::size_t>(out.range_status)];
+    result.rows.push_back(out);
+  }
+
+  if (!track.rows.empty() && result.rows_turret_not_covered == track.rows.size()) {
+    std::string span = az_interp.usable_samples() == 0 ? std::string("has no usable sample")
+                                                       : "covers t_s " + Num(az_interp.first_time()) +
+                                                             " .. " + Num(az_interp.last_time());
+    throw DataError(turret.source, 0, 0,
+                    "turret log " + span + " but no frame time of " + track.source + " (t_s " +
+                        Num(track.rows.front().t_s) + " .. " + Num(track.rows.back().t_s) +
+                        ") is covered within the --turret-max-gap limit");
+  }
+  return result;
+}
+
+io::CsvWriter LocatedCsv(const LocateResult& result) {
+  std::vector<std::string> cols;
+  if (result.has_frame) cols.push_back("frame");
+  for (const char* c : {"t_s", "az_deg", "el_deg", "range_m", "e_m", "n_m", "u_m", "status", "range_status",
+                        "boresight_az_deg", "boresight_el_deg"}) {
+    cols.push_back(c);
+  }
+  io::CsvWriter w(cols);
+  constexpr int kAngleDecimals = 9;   // 1e-9° = 3.6e-6″
+  constexpr int kLengthDecimals = 6;  // µm
+  auto deg = [](const std::optional<double>& rad) {
+    return rad ? std::optional<double>(geo::RadToDeg(*rad)) : std::nullopt;
+  };
+  for (const LocatedRow& row : result.rows) {
+    if (result.has_frame) {
+      if (row.frame) {
+        w.Add(*row.frame);
+      } else {
+        w.AddEmpty();
+      }
+    }
+    w.Add(row.t_s, 9);
+    w.Add(deg(row.az_rad), kAngleDecimals);
+    w.Add(deg(row.el_rad), kAngleDecimals);
+    w.Add(row.range_m, kLengthDecimals);
+    for (int i = 0; i < 3; ++i) {
+      w.Add(row.p_enu_m ? std::optional<double>((*row.p_enu_m)(i)) : std::nullopt, kLengthDecimals);
+    }
+    w.Add(TrackStatusName(row.status));
+    w.Add(RangeStatusName(row.range_status));
+    w.Add(deg(row.boresight_az_rad), kAngleDecimals);
+    w.Add(deg(row.boresight_el_rad), kAngleDecimals);
+    w.EndRow();
+  }
+  return w;
+}
+
+}  // namespace rk::locate
