@@ -1,0 +1,47 @@
+// `rk-extract beacon` as a library call: decode the recording frame by frame
+// (video::FrameSource), time-stamp each frame (FrameClock), track the beacon
+// (BeaconTracker) and build the beacon track CSV of SPEC.md §2.1:
+//   frame,t_s,x_px,y_px,peak,area_px,status,ncc,sigma_x_px,sigma_y_px
+// Every decoded frame gets a row; x/y are empty without an accepted
+// measurement (or prediction, status `predicted`).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "extract/beacon_tracker.h"
+#include "extract/frame_times.h"
+#include "io/csv.h"
+
+namespace rk::extract {
+
+struct BeaconRunResult {
+  std::vector<BeaconFrameResult> rows;
+  BeaconTrackSummary summary;
+  std::int64_t frames = 0;
+  int width_px = 0, height_px = 0, bit_depth = 8;
+  double wall_s = 0.0;     // decode + extraction
+  double extract_s = 0.0;  // time spent in the tracker only
+};
+
+// Runs the tracker over all frames of `videos`. Throws DataError naming the
+// frames file if it has fewer times than the video has frames, and naming the
+// (last) video if it has fewer frames than the frames file lists (truncated);
+// ProcessingError if the beacon was never found. `progress(frames)` is called
+// every 100 frames when set.
+BeaconRunResult RunBeacon(const std::vector<std::string>& videos, const FrameClock& clock,
+                          const BeaconTrackOptions& opt, const std::function<void(std::int64_t)>& progress = {});
+
+// Reads every frame and does nothing else (for timing the decoder).
+struct DecodeResult {
+  std::int64_t frames = 0;
+  double wall_s = 0.0;
+};
+DecodeResult DecodeOnly(const std::vector<std::string>& videos);
+
+// The track as CSV (columns above).
+io::CsvWriter BeaconTrackCsv(const std::vector<BeaconFrameResult>& rows, int bit_depth);
+
+}  // namespace rk::extract

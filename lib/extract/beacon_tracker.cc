@@ -1,0 +1,218 @@
+// Beacon tracking with Singer prediction, gating, template validation and
+// occlusion handling; the method is described in beacon_tracker.h (seed 001 §2.2).
+#include "extract/beacon_tracker.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace rk::extract {
+
+const char* BeaconStatusName(BeaconStatus s) {
+  switch (s) {
+    case BeaconStatus::kOk: return "ok";
+    case BeaconStatus::kReacquired: return "reacquired";
+    case BeaconStatus::kLost: return "lost";
+    case BeaconStatus::kPredicted: return "predicted";
+    case BeaconStatus::kInvalid: return "invalid";
+  }
+  return "lost";
+}
+
+bool BeaconTrackOptions::Check(std::string* why) const {
+  if (!detect.Check(why)) return false;
+  auto fail = [&](const char* w) {
+    if (why) *why = w;
+    return false;
+  };
+  if (!(maneuver_time_s > 0) || !std::isfinite(maneuver_time_s)) return fail("maneuver time constant must be > 0 s");
+  if (!(accel_sigma_px_s2 > 0) || !std::isfinite(accel_sigma_px_s2)) return fail("acceleration sigma must be > 0 px/s^2");
+  if (!(meas_sigma_px > 0)) return fail("measurement sigma must be > 0 px");
+  if (!(init_vel_sigma_px_s > 0)) return fail("initial velocity sigma must be > 0 px/s");
+  if (!(gate_sigma > 0) || !(gate_chi2 > 0)) return fail("gate sizes must be > 0");
+  if (min_window_px < 4 || max_window_px < min_window_px) return fail("need 4 <= min window <= max window (px)");
+  if (!(ncc_track >= -1 && ncc_track <= 1) || !(ncc_reacquire >= -1 && ncc_reacquire <= 1) ||
+      !(ncc_template_update >= -1 && ncc_template_update <= 1))
+    return fail("NCC thresholds must be in [-1, 1]");
+  if (!(size_ratio >= 1)) return fail("size ratio must be >= 1");
+  if (!(long_loss_s >= 0)) return fail("long-loss time must be >= 0 s");
+  if (!(min_flux_dn >= 0)) return fail("minimum flux must be >= 0");
+  if (!(fill_gaps_s >= 0)) return fail("fill-gaps time must be >= 0 s");
+  return true;
+}
+
+namespace {
+track::SingerAxisOptions Axis(const BeaconTrackOptions& o) {
+  track::SingerAxisOptions a;
+  a.maneuver_time_s = o.maneuver_time_s;
+  a.accel_sigma = o.accel_sigma_px_s2;
+  return a;
+}
+}  // namespace
+
+BeaconTracker::BeaconTracker(const BeaconTrackOptions& opt)
+    : opt_(opt), det_(opt.detect), kf_({Axis(opt), Axis(opt)}) {
+  cand_.reserve(static_cast<std::size_t>(opt.detect.max_candidates) + 4);
+}
+
+bool BeaconTracker::AcquireInitial(const cv::Mat& frame, SpotMeasurement* best) {
+  det_.FindInFrame(frame, &cand_);
+  ++summary_.full_frame_searches;
+  bool found = false;
+  for (const auto& c : cand_) {
+    if (c.clipped || c.flux_dn < opt_.min_flux_dn) continue;
+    if (!found || c.size_px > best->size_px) {
+      *best = c;
+      found = true;
+    }
+  }
+  return found;
+}
+
+void BeaconTracker::Accept(const cv::Mat& frame, const SpotMeasurement& m, double ncc, bool restart,
+                           BeaconFrameResult* r) {
+  const Eigen::Vector2d z(m.x_px, m.y_px);
+  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * (opt_.meas_sigma_px * opt_.meas_sigma_px);
+  if (restart || !kf_.initialised()) {
+    kf_.Initialise(z, R, opt_.init_vel_sigma_px_s, opt_.accel_sigma_px_s2);
+  } else {
+    kf_.Update(z, R);
+  }
+  if (restart || !template_.valid() || ncc >= opt_.ncc_template_update) det_.MakeTemplate(frame, m, &template_);
+  mode_ = Mode::kTrack;
+  r->has_xy = true;
+  r->x_px = m.x_px;
+  r->y_px = m.y_px;
+  r->sigma_x_px = m.sigma_x_px;
+  r->sigma_y_px = m.sigma_y_px;
+  r->has_spot = true;
+  r->peak_dn = m.peak_dn;
+  r->area_px = m.area_px;
+}
+
+void BeaconTracker::Miss(bool invalid, BeaconFrameResult* r) {
+  if (mode_ == Mode::kTrack) {
+    mode_ = Mode::kLostShort;
+    lost_since_s_ = r->t_s;
+  }
+  r->status = invalid ? BeaconStatus::kInvalid : BeaconStatus::kLost;
+  if (!invalid && opt_.fill_gaps_s > 0 && kf_.initialised() && mode_ != Mode::kAcquire &&
+      r->t_s - lost_since_s_ < opt_.fill_gaps_s) {
+    const Eigen::Vector2d p = kf_.PredictedMeasurement();
+    const Eigen::Matrix2d S = kf_.InnovationCovariance(Eigen::Matrix2d::Zero());
+    r->status = BeaconStatus::kPredicted;
+    r->has_xy = true;
+    r->x_px = p(0);
+    r->y_px = p(1);
+    r->sigma_x_px = std::sqrt(std::max(0.0, S(0, 0)));
+    r->sigma_y_px = std::sqrt(std::max(0.0, S(1, 1)));
+  }
+}
+
+BeaconFrameResult BeaconTracker::Process(const cv::Mat& frame, std::int64_t frame_index, double t_s) {
+  BeaconFrameResult r;
+  r.frame = frame_index;
+  r.t_s = t_s;
+  ++summary_.frames;
+  const double dt = have_time_ ? std::max(0.0, t_s - last_t_s_) : 0.0;
+  last_t_s_ = t_s;
+  have_time_ = true;
+
+  if (mode_ == Mode::kAcquire) {
+    SpotMeasurement m;
+    if (AcquireInitial(frame, &m)) {
+      ++summary_.acquisitions;
+      Accept(frame, m, 1.0, true, &r);
+      r.status = BeaconStatus::kOk;
+      ++summary_.ok;
+    } else {
+      r.status = BeaconStatus::kLost;
+      ++summary_.lost;
+    }
+    return r;
+  }
+
+  kf_.Predict(dt);
+  if (mode_ == Mode::kLostShort && t_s - lost_since_s_ >= opt_.long_loss_s) mode_ = Mode::kLostLong;
+  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * (opt_.meas_sigma_px * opt_.meas_sigma_px);
+  const Eigen::Vector2d pred = kf_.PredictedMeasurement();
+  const Eigen::Matrix2d S = kf_.InnovationCovariance(R);
+  const double gx = opt_.gate_sigma * std::sqrt(S(0, 0)), gy = opt_.gate_sigma * std::sqrt(S(1, 1));
+  const bool tracking = mode_ == Mode::kTrack;
+  const bool long_loss = mode_ == Mode::kLostLong;
+  const bool window_too_big = gx > opt_.max_window_px || gy > opt_.max_window_px || !std::isfinite(gx + gy) ||
+                              !std::isfinite(pred(0) + pred(1));
+  const double ncc_min = tracking ? opt_.ncc_track : opt_.ncc_reacquire;
+
+  cand_.clear();
+  bool windowed = false;
+  if (!long_loss && !window_too_big) {
+    const int hw_x = std::clamp(static_cast<int>(std::ceil(gx)) + template_.half + opt_.detect.cluster_gap_px, opt_.min_window_px, opt_.max_window_px);
+    const int hw_y = std::clamp(static_cast<int>(std::ceil(gy)) + template_.half + opt_.detect.cluster_gap_px, opt_.min_window_px, opt_.max_window_px);
+    const int px = static_cast<int>(std::lround(pred(0))), py = static_cast<int>(std::lround(pred(1)));
+    const PixelBox box{px - hw_x, py - hw_y, px + hw_x, py + hw_y};
+    const NoiseStats noise = det_.BorderStats(frame, box);
+    det_.FindInBox(frame, box, noise, &cand_);
+    windowed = true;
+  } else {
+    det_.FindInFrame(frame, &cand_);
+    ++summary_.full_frame_searches;
+  }
+
+  // Choose: among candidates passing identity checks (and, for a full-frame
+  // search during a short loss, the Mahalanobis gate), the smallest d².
+  const SpotMeasurement* best = nullptr;
+  double best_d2 = std::numeric_limits<double>::infinity(), best_ncc = 0.0;
+  bool rejected = false;
+  for (const auto& c : cand_) {
+    if (c.area_px <= 0) continue;
+    const double d2 = kf_.Mahalanobis2(Eigen::Vector2d(c.x_px, c.y_px), R);
+    if (!windowed && !long_loss && d2 > opt_.gate_chi2) continue;  // outside the gate
+    const double ncc = det_.Ncc(frame, c, template_);
+    const double ratio = template_.size_px > 0 && c.size_px > 0 ? c.size_px / template_.size_px : 0.0;
+    const bool shape_ok = ratio >= 1.0 / opt_.size_ratio && ratio <= opt_.size_ratio;
+    if (ncc < ncc_min || !shape_ok || c.clipped) {
+      rejected = true;
+      if (tracking) {  // report what was seen and rejected
+        r.has_spot = true;
+        r.peak_dn = c.peak_dn;
+        r.area_px = c.area_px;
+        r.has_ncc = true;
+        r.ncc = ncc;
+      }
+      continue;
+    }
+    if (d2 < best_d2) {
+      best = &c;
+      best_d2 = d2;
+      best_ncc = ncc;
+    }
+  }
+
+  if (best) {
+    const bool was_tracking = tracking;
+    Accept(frame, *best, best_ncc, long_loss, &r);
+    r.has_ncc = true;
+    r.ncc = best_ncc;
+    summary_.ncc_sum += best_ncc;
+    ++summary_.ncc_count;
+    if (was_tracking) {
+      r.status = BeaconStatus::kOk;
+      ++summary_.ok;
+    } else {
+      r.status = BeaconStatus::kReacquired;
+      ++summary_.reacquired;
+      if (long_loss) ++summary_.acquisitions;
+    }
+    return r;
+  }
+  Miss(tracking && rejected, &r);
+  switch (r.status) {
+    case BeaconStatus::kInvalid: ++summary_.invalid; break;
+    case BeaconStatus::kPredicted: ++summary_.predicted; break;
+    default: ++summary_.lost; break;
+  }
+  return r;
+}
+
+}  // namespace rk::extract

@@ -1,0 +1,118 @@
+// Beacon tracking over a frame sequence, seed 001 §2.2 (Guan et al. 2014):
+// a Singer-model Kalman filter (track/singer.h) per image axis predicts the
+// beacon position so that only a gated window around the prediction is
+// searched; the template (NCC) validates identity; occlusions are handled as in
+// the paper.
+//
+// Per frame (time t_k):
+//   no track yet  → full-frame acquisition (beacon_detect.h, grey projection);
+//                   without a template the candidate with the largest
+//                   signal-weighted size (a lamp cluster is wider than a single
+//                   glint) among those with flux ≥ min_flux is taken.
+//   tracking      → predict to t_k; search window = prediction ± (gate_sigma·√S_ii
+//                   + template half size), clamped to [min_window, max_window];
+//                   accept the candidate with the smallest Mahalanobis distance
+//                   d² ≤ gate_chi2 whose NCC with the template ≥ ncc_track and whose
+//                   size ratio to the template is within size_ratio → status ok;
+//                   candidates that fail the checks → invalid; none → lost.
+//   short loss    (lost for < long_loss_s) → the same window search with the
+//                   template saved before the loss (ncc ≥ ncc_reacquire); when
+//                   the gate would exceed max_window, full-frame search gated by
+//                   the prediction.
+//   long loss     → full-frame re-detection every frame; candidates must match
+//                   the saved template (NCC ≥ ncc_reacquire, size ratio); among
+//                   them the one most consistent with the Singer prediction
+//                   (smallest d²) wins; the filter restarts there.
+//   The first accepted frame after a loss has status `reacquired`.
+// Nothing outside the gate is accepted while tracking, so a distractor outside
+// the window can never capture the track. Frames without an accepted
+// measurement get `lost` (or `predicted`, with the prediction, when
+// fill_gaps_s > 0 and the gap is shorter than that).
+// No heap allocation per frame in tracking mode once buffers are warm.
+#pragma once
+
+#include <cstdint>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "extract/beacon_detect.h"
+#include "track/singer.h"
+
+namespace rk::extract {
+
+enum class BeaconStatus { kOk, kReacquired, kLost, kPredicted, kInvalid };
+const char* BeaconStatusName(BeaconStatus s);
+
+struct BeaconTrackOptions {
+  DetectOptions detect;
+  double maneuver_time_s = 1.0;     // Singer τ_m (s)
+  double accel_sigma_px_s2 = 100.0; // Singer σ_m, RMS image acceleration (px/s²)
+  double meas_sigma_px = 0.1;       // centroid measurement noise in the filter (px)
+  double init_vel_sigma_px_s = 50.0;// velocity uncertainty at (re)acquisition (px/s)
+  double gate_sigma = 5.0;          // window half size in innovation sigmas
+  double gate_chi2 = 25.0;          // Mahalanobis gate d² (2 dof)
+  int min_window_px = 12;           // window half size bounds (px)
+  int max_window_px = 96;
+  double ncc_track = 0.6;           // NCC needed while tracking
+  double ncc_reacquire = 0.75;      // NCC needed to re-acquire after a loss
+  double ncc_template_update = 0.8; // template replaced by the current patch when NCC ≥ this
+  double size_ratio = 1.8;          // candidate size / template size within [1/r, r]
+  double long_loss_s = 1.0;         // losses at least this long → full-frame re-detection
+  double min_flux_dn = 0.0;         // acquisition: minimum flux (DN·px); 0 = any
+  double fill_gaps_s = 0.0;         // > 0: frames of gaps shorter than this get `predicted`
+  bool Check(std::string* why) const;
+};
+
+struct BeaconFrameResult {
+  std::int64_t frame = 0;
+  double t_s = 0.0;
+  BeaconStatus status = BeaconStatus::kLost;
+  bool has_xy = false;      // x/y written (ok, reacquired, predicted)
+  double x_px = 0.0, y_px = 0.0;
+  double sigma_x_px = 0.0, sigma_y_px = 0.0;
+  bool has_spot = false;    // peak/area/ncc available (a measurement was made)
+  double peak_dn = 0.0;
+  int area_px = 0;
+  double ncc = 0.0;         // NaN-free: valid only when has_ncc
+  bool has_ncc = false;
+};
+
+struct BeaconTrackSummary {
+  std::int64_t frames = 0;
+  std::int64_t ok = 0, reacquired = 0, lost = 0, predicted = 0, invalid = 0;
+  std::int64_t acquisitions = 0;       // full-frame acquisitions that succeeded
+  std::int64_t full_frame_searches = 0;
+  double ncc_sum = 0.0;
+  std::int64_t ncc_count = 0;
+  double mean_ncc() const { return ncc_count ? ncc_sum / static_cast<double>(ncc_count) : 0.0; }
+};
+
+class BeaconTracker {
+ public:
+  explicit BeaconTracker(const BeaconTrackOptions& opt);
+  // Processes one frame (CV_8UC1 or CV_16UC1) taken at t_s (non-decreasing).
+  BeaconFrameResult Process(const cv::Mat& frame, std::int64_t frame_index, double t_s);
+  const BeaconTrackSummary& summary() const { return summary_; }
+  const SpotTemplate& current_template() const { return template_; }
+
+ private:
+  enum class Mode { kAcquire, kTrack, kLostShort, kLostLong };
+  bool AcquireInitial(const cv::Mat& frame, SpotMeasurement* best);
+  void Accept(const cv::Mat& frame, const SpotMeasurement& m, double ncc, bool restart, BeaconFrameResult* r);
+  void Miss(bool invalid, BeaconFrameResult* r);
+
+  BeaconTrackOptions opt_;
+  SpotDetector det_;
+  track::SingerFilter<2> kf_;
+  SpotTemplate template_;
+  Mode mode_ = Mode::kAcquire;
+  double last_t_s_ = 0.0;
+  bool have_time_ = false;
+  double lost_since_s_ = 0.0;
+  bool have_prediction_ = false;
+  std::vector<SpotMeasurement> cand_;
+  BeaconTrackSummary summary_;
+};
+
+}  // namespace rk::extract

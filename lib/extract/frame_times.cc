@@ -1,0 +1,52 @@
+// Frame times from frames.csv or from a constant rate; see frame_times.h.
+#include "extract/frame_times.h"
+
+#include <cmath>
+
+#include "io/csv.h"
+#include "io/error.h"
+
+namespace rk::extract {
+
+FrameClock FrameClock::FromCsv(const std::string& path) {
+  const io::CsvTable table = io::CsvTable::Read(path);
+  const int c_frame = table.RequireColumn("frame");
+  const int c_t = table.RequireColumn("t_s");
+  FrameClock clock;
+  clock.from_file_ = true;
+  clock.path_ = path;
+  clock.t_s_.reserve(table.rows());
+  for (std::size_t i = 0; i < table.rows(); ++i) {
+    const std::int64_t frame = table.Int(i, c_frame);
+    if (frame != static_cast<std::int64_t>(i)) {
+      throw table.CellError(i, c_frame,
+                            "frame numbers must count 0, 1, 2, ... in decode order; expected " + std::to_string(i) +
+                                ", found " + std::to_string(frame));
+    }
+    clock.t_s_.push_back(table.Double(i, c_t));
+  }
+  table.RequireNonDecreasing(c_t);
+  if (clock.t_s_.empty()) throw DataError(path, 0, 0, "no frame times (the file has a header but no rows)");
+  return clock;
+}
+
+FrameClock FrameClock::FromRate(double fps_hz, double t0_s) {
+  if (!(fps_hz > 0) || !std::isfinite(fps_hz)) throw UsageError("--fps must be a positive number of frames per second");
+  if (!std::isfinite(t0_s)) throw UsageError("--t0 must be a finite number of seconds");
+  FrameClock clock;
+  clock.fps_hz_ = fps_hz;
+  clock.t0_s_ = t0_s;
+  return clock;
+}
+
+double FrameClock::TimeOf(std::int64_t frame) const {
+  if (!from_file_) return t0_s_ + static_cast<double>(frame) / fps_hz_;
+  if (frame < 0 || frame >= size()) {
+    throw DataError(path_, 0, 0,
+                    "lists times for " + std::to_string(size()) + " frames but the video has more (no time for frame " +
+                        std::to_string(frame) + ")");
+  }
+  return t_s_[static_cast<std::size_t>(frame)];
+}
+
+}  // namespace rk::extract

@@ -1,0 +1,36 @@
+// Frame times of a recording (SPEC.md §2.1 "video frame times"): either a
+// frames.csv with columns frame,t_s (frame = 0-based decode index counting on
+// across segments, t_s non-decreasing), or a constant rate t = t0 + frame / fps.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rk::extract {
+
+class FrameClock {
+ public:
+  // Reads frame,t_s by column name ("-" = stdin). Throws DataError (file:line:col)
+  // for a non-numeric or non-finite cell, time going backwards, or frame numbers
+  // that do not count 0, 1, 2, ...; IoError if unreadable.
+  static FrameClock FromCsv(const std::string& path);
+  // t = t0 + frame / fps; throws UsageError unless fps > 0 and both finite.
+  static FrameClock FromRate(double fps_hz, double t0_s);
+
+  bool from_file() const { return from_file_; }
+  const std::string& path() const { return path_; }
+  // Number of frame times in the file (from_file() only).
+  std::int64_t size() const { return static_cast<std::int64_t>(t_s_.size()); }
+  // Time of a frame; throws DataError naming the file if it lists fewer frames.
+  double TimeOf(std::int64_t frame) const;
+
+ private:
+  bool from_file_ = false;
+  std::string path_;
+  std::vector<double> t_s_;
+  double fps_hz_ = 0.0;
+  double t0_s_ = 0.0;
+};
+
+}  // namespace rk::extract
