@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
          elevation_deg = NAN, max_el_deg = 80, turn_rate_deg_s = NAN;
   std::uint64_t seed = 1;
   int bit_depth = 8, lamps = 5, distractors = 0;
-  double peak_dn = 200, read_noise_dn = 2, background_dn = 10, gain = 40, psf_sigma_px = 1.2, span_m = 0.1,
+  double peak_dn = 160, read_noise_dn = 2, background_dn = 10, gain = 40, psf_sigma_px = 1.2, span_m = 0.03,
          margin_px = 120;
   std::vector<std::string> occlusions;
   double range_noise_mm = 0.35, range_error_rate = 0.01, range_rate_hz = 5, range_offset_s = 0.071;

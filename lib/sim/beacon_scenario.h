@@ -73,9 +73,10 @@ struct BeaconSimOptions {
   double t0_s = 1.0;                   // time of frame 0 since the trial epoch (s)
 
   int lamps = 5;                       // lamps in the cluster, [5, 64]
-  double cluster_span_m = 0.1;         // S: cluster diameter (m), [0.001, 10]
+  double cluster_span_m = 0.03;        // S: cluster diameter (m), [0.001, 10]; 3 cm = a five-LED beacon head
   double psf_sigma_px = 1.2;           // lamp PSF std (px), [0.3, 10]
-  double peak_dn = 200.0;              // brightest lamp amplitude above background (8-bit DN), (0, 255]
+  double peak_dn = 160.0;              // brightest lamp amplitude above background (8-bit DN), (0, 255];
+                                       // 160: the overlapping lamps of the 3 cm head peak at ≈ 200 DN at 80 m
   SensorOptions sensor;                // background 10 DN, read noise 2 DN, gain 40 e-/DN, 8 bit
 
   int distractors = 0;                 // number of glints, [0, 50]

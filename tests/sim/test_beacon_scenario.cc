@@ -309,9 +309,11 @@ TEST(BeaconScenario, FrameBrightnessMatchesPeakAndBackground) {
   ASSERT_EQ(f.type(), CV_8UC1);
   double maxv;
   cv::minMaxLoc(f, nullptr, &maxv);
-  // Pixel-integrated peak of a sigma 1.2 px Gaussian is ~0.9-1.0 of the amplitude, plus 10 DN background.
+  // The default 3 cm head at the small preset's range: lamps (amplitude 160 DN, sigma 1.2 px, pixel-
+  // integrated ~0.9 of the amplitude) overlap into a blob peaking at ~200 DN above the 10 DN background,
+  // clear of 8-bit saturation.
   EXPECT_GT(maxv, 170.0);
-  EXPECT_LT(maxv, 235.0);
+  EXPECT_LT(maxv, 240.0);
   cv::Mat corner = f(cv::Rect(0, 0, 100, 100));
   cv::Scalar mean, sd;
   cv::meanStdDev(corner, mean, sd);
