@@ -26,6 +26,6 @@ echo "== rk-locate: azimuth, elevation, range and ENU position at frame times"
 echo "== rk-analyze compare: located target against the simulator's truth (angles in arc-seconds)"
 "$B/rk-analyze" compare --estimate "$OUT/located.csv" --reference "$D/truth/target.csv" \
   --columns az_deg,el_deg,range_m,e_m,n_m,u_m --arcsec --table --errors "$OUT/errors.csv" -o "$OUT/stats.json"
-"$ROOT/scripts/rk-plot" -i "$OUT/errors.csv" --columns az_deg,el_deg --title "located - truth (sample trial)" \
+"$ROOT/scripts/rk-plot" -i "$OUT/errors.csv" --columns err_az_deg,err_el_deg --title "located - truth (sample trial), degrees" \
   -o "$OUT/azel_error.png"
 echo "== wrote $OUT: track.csv located.csv stats.json errors.csv azel_error.png"
