@@ -8,17 +8,6 @@
 
 namespace rk::extract {
 
-const char* BeaconStatusName(BeaconStatus s) {
-  switch (s) {
-    case BeaconStatus::kOk: return "ok";
-    case BeaconStatus::kReacquired: return "reacquired";
-    case BeaconStatus::kLost: return "lost";
-    case BeaconStatus::kPredicted: return "predicted";
-    case BeaconStatus::kInvalid: return "invalid";
-  }
-  return "lost";
-}
-
 bool BeaconTrackOptions::Check(std::string* why) const {
   if (!detect.Check(why)) return false;
   auto fail = [&](const char* w) {

@@ -31,6 +31,8 @@
 // No heap allocation per frame in tracking mode once buffers are warm.
 #pragma once
 
+#include "io/row_status.h"
+
 #include <cstdint>
 #include <opencv2/core.hpp>
 #include <string>
@@ -41,8 +43,8 @@
 
 namespace rk::extract {
 
-enum class BeaconStatus { kOk, kReacquired, kLost, kPredicted, kInvalid };
-const char* BeaconStatusName(BeaconStatus s);
+using BeaconStatus = RowStatus;  // SPEC.md §2 statuses (io/row_status.h)
+inline const char* BeaconStatusName(BeaconStatus s) { return RowStatusName(s); }
 
 struct BeaconTrackOptions {
   DetectOptions detect;

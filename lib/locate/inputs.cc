@@ -6,39 +6,6 @@
 
 namespace rk::locate {
 
-bool ParseTrackStatus(const std::string& text, TrackStatus* status) {
-  if (text == "ok") {
-    *status = TrackStatus::kOk;
-  } else if (text == "reacquired") {
-    *status = TrackStatus::kReacquired;
-  } else if (text == "predicted") {
-    *status = TrackStatus::kPredicted;
-  } else if (text == "lost") {
-    *status = TrackStatus::kLost;
-  } else if (text == "invalid") {
-    *status = TrackStatus::kInvalid;
-  } else {
-    return false;
-  }
-  return true;
-}
-
-std::string TrackStatusName(TrackStatus status) {
-  switch (status) {
-    case TrackStatus::kOk:
-      return "ok";
-    case TrackStatus::kReacquired:
-      return "reacquired";
-    case TrackStatus::kPredicted:
-      return "predicted";
-    case TrackStatus::kLost:
-      return "lost";
-    case TrackStatus::kInvalid:
-      return "invalid";
-  }
-  return "?";
-}
-
 Track ReadTrack(const io::CsvTable& table) {
   Track track;
   track.source = table.name();

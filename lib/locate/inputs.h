@@ -3,6 +3,8 @@
 // file:line:col. Angles are converted to radians here (file boundary).
 #pragma once
 
+#include "io/row_status.h"
+
 #include <Eigen/Core>
 #include <cstdint>
 #include <optional>
@@ -14,9 +16,9 @@
 namespace rk::locate {
 
 // Per-frame status of a beacon track row (SPEC.md §2 statuses).
-enum class TrackStatus { kOk, kReacquired, kPredicted, kLost, kInvalid };
-bool ParseTrackStatus(const std::string& text, TrackStatus* status);
-std::string TrackStatusName(TrackStatus status);
+using TrackStatus = RowStatus;  // SPEC.md §2 statuses (io/row_status.h)
+inline bool ParseTrackStatus(const std::string& text, TrackStatus* status) { return ParseRowStatus(text, status); }
+inline std::string TrackStatusName(TrackStatus status) { return RowStatusName(status); }
 
 struct TrackRow {
   std::optional<std::int64_t> frame;  // `frame` column when present

@@ -17,14 +17,7 @@ FrameSink::FrameSink(std::string path, int width, int height, int bit_depth, dou
   RK_CHECK(bit_depth == 8 || bit_depth == 16, "bit depth must be 8 or 16");
   sequence_ = IsSequencePattern(path_);
   if (sequence_) return;
-  const char* tmp = std::getenv("TMPDIR");
-  std::string templ = std::string(tmp && *tmp ? tmp : "/tmp") + "/rk-ffmpeg-XXXXXX";
-  std::vector<char> buf(templ.begin(), templ.end());
-  buf.push_back('\0');
-  int fd = mkstemp(buf.data());
-  if (fd < 0) throw IoError(templ, "cannot create a temporary file");
-  ::close(fd);
-  stderr_path_ = buf.data();
+  stderr_path_ = MakeTempFile();
   // FFV1 version 3 with slices (decodes on several threads) and per-slice CRCs
   // (corruption is detected on reading); every frame a key frame.
   char size[64];
@@ -49,14 +42,9 @@ void FrameSink::Write(const cv::Mat& frame) {
   RK_CHECK(frame.rows == height_ && frame.cols == width_, "frame size");
   RK_CHECK(frame.type() == (bit_depth_ == 16 ? CV_16UC1 : CV_8UC1), "frame type");
   if (sequence_) {
-    std::vector<char> buf(path_.size() + 64);
-    std::string pat = path_;
-    auto p = pat.find('%');
-    auto d = pat.find('d', p);
-    pat = pat.substr(0, d) + "lld" + pat.substr(d + 1);
-    std::snprintf(buf.data(), buf.size(), pat.c_str(), static_cast<long long>(frames_));
-    if (!cv::imwrite(buf.data(), frame, {cv::IMWRITE_PNG_COMPRESSION, 1})) {
-      throw IoError(buf.data(), "cannot write image");
+    const std::string file = SequenceFramePath(path_, frames_);
+    if (!cv::imwrite(file, frame, {cv::IMWRITE_PNG_COMPRESSION, 1})) {
+      throw IoError(file, "cannot write image");
     }
   } else {
     cv::Mat c = frame.isContinuous() ? frame : frame.clone();

@@ -37,20 +37,6 @@ bool IsSequencePattern(const std::string& path) {
 
 namespace {
 
-std::string SequencePath(const std::string& pattern, std::int64_t index) {
-  std::vector<char> buf(pattern.size() + 64);
-  std::snprintf(buf.data(), buf.size(), pattern.c_str(), static_cast<long long>(index));
-  // Patterns are "%06d"-style; the long long is read as int for small indices on x86-64 via %d?
-  // To stay well-defined we rewrite "%...d" to "%...lld" below.
-  return std::string(buf.data());
-}
-
-std::string WithLongLong(const std::string& pattern) {
-  auto p = pattern.find('%');
-  auto d = pattern.find('d', p);
-  return pattern.substr(0, d) + "lld" + pattern.substr(d + 1);
-}
-
 std::string ReadSmallFile(const std::string& path) {
   std::ifstream in(path);
   std::stringstream ss;
@@ -63,17 +49,6 @@ std::string FirstLine(const std::string& s) {
   return e == std::string::npos ? s : s.substr(0, e);
 }
 
-std::string TempStderrPath() {
-  const char* tmp = std::getenv("TMPDIR");
-  std::string templ = std::string(tmp && *tmp ? tmp : "/tmp") + "/rk-ffmpeg-XXXXXX";
-  std::vector<char> buf(templ.begin(), templ.end());
-  buf.push_back('\0');
-  int fd = mkstemp(buf.data());
-  if (fd < 0) throw IoError(templ, "cannot create a temporary file");
-  ::close(fd);
-  return buf.data();
-}
-
 void CheckReadable(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw IoError(path, "no such file");
@@ -84,11 +59,31 @@ void CheckReadable(const std::string& path) {
 
 }  // namespace
 
+std::string SequenceFramePath(const std::string& pattern, std::int64_t index) {
+  // "%06d" → "%06lld" so the 64-bit index is passed with a matching conversion.
+  auto p = pattern.find('%');
+  auto d = pattern.find('d', p);
+  const std::string fmt = pattern.substr(0, d) + "lld" + pattern.substr(d + 1);
+  std::vector<char> buf(pattern.size() + 64);
+  std::snprintf(buf.data(), buf.size(), fmt.c_str(), static_cast<long long>(index));
+  return std::string(buf.data());
+}
+
+std::string MakeTempFile() {
+  const char* tmp = std::getenv("TMPDIR");
+  std::string templ = std::string(tmp && *tmp ? tmp : "/tmp") + "/rk-ffmpeg-XXXXXX";
+  std::vector<char> buf(templ.begin(), templ.end());
+  buf.push_back('\0');
+  int fd = mkstemp(buf.data());
+  if (fd < 0) throw IoError(templ, "cannot create a temporary file");
+  ::close(fd);
+  return buf.data();
+}
+
 VideoInfo ProbeVideo(const std::string& path) {
   if (IsSequencePattern(path)) {
-    std::string pat = WithLongLong(path);
     for (std::int64_t start : {0, 1}) {
-      std::string first = SequencePath(pat, start);
+      std::string first = SequenceFramePath(path, start);
       if (fs::exists(first)) {
         cv::Mat img = cv::imread(first, cv::IMREAD_UNCHANGED);
         if (img.empty()) throw DataError(first, 0, 0, "cannot decode image");
@@ -98,7 +93,7 @@ VideoInfo ProbeVideo(const std::string& path) {
     throw IoError(path, "no image matches the pattern (tried numbering from 0 and 1)");
   }
   CheckReadable(path);
-  std::string err = TempStderrPath();
+  std::string err = MakeTempFile();
   std::string cmd = "ffprobe -v error -select_streams v:0 -show_entries stream=width,height,pix_fmt -of csv=p=0 " +
                     ShellQuote(path) + " 2>" + ShellQuote(err);
   FILE* p = ::popen(cmd.c_str(), "r");
@@ -169,11 +164,10 @@ bool FrameSource::OpenNext() {
   buffer_.create(info_.height, info_.width, info_.bit_depth == 16 ? CV_16UC1 : CV_8UC1);
   is_sequence_ = IsSequencePattern(current_);
   if (is_sequence_) {
-    std::string pat = WithLongLong(current_);
-    seq_index_ = fs::exists(SequencePath(pat, 0)) ? 0 : 1;
+    seq_index_ = fs::exists(SequenceFramePath(current_, 0)) ? 0 : 1;
     return true;
   }
-  stderr_path_ = TempStderrPath();
+  stderr_path_ = MakeTempFile();
   const char* fmt = info_.bit_depth == 16 ? "gray16le" : "gray";
   std::string cmd = "ffmpeg -v error -nostdin -i " + ShellQuote(current_) + " -map 0:v:0 -f rawvideo -pix_fmt " +
                     fmt + " - 2>" + ShellQuote(stderr_path_);
@@ -216,7 +210,7 @@ bool FrameSource::ReadFromPipe(cv::Mat* frame) {
 }
 
 bool FrameSource::ReadFromSequence(cv::Mat* frame) {
-  std::string path = SequencePath(WithLongLong(current_), seq_index_);
+  std::string path = SequenceFramePath(current_, seq_index_);
   if (!fs::exists(path)) return false;
   cv::Mat img = cv::imread(path, cv::IMREAD_UNCHANGED);
   if (img.empty()) throw DataError(path, 0, 0, "cannot decode image (truncated or not an image)");

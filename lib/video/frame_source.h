@@ -73,4 +73,11 @@ bool IsSequencePattern(const std::string& path);
 // Single-quotes a string for /bin/sh.
 std::string ShellQuote(const std::string& s);
 
+// Path of frame `index` of an image-sequence pattern ("dir/%06d.png" → "dir/000012.png").
+std::string SequenceFramePath(const std::string& pattern, std::int64_t index);
+
+// Creates an empty temporary file in $TMPDIR (or /tmp) for a child process's
+// stderr and returns its path; the caller unlinks it.
+std::string MakeTempFile();
+
 }  // namespace rk::video
