@@ -1,0 +1,33 @@
+// Time series read from a CSV for the filters of rk-smooth (SPEC.md §2): `t_s` plus value
+// columns chosen by name. Values in radians for angle columns (names ending `_deg`), SI
+// otherwise; a missing value (empty field) is NaN and means "no measurement in this row".
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "io/csv.h"
+
+namespace rk::filter {
+
+struct Series {
+  std::string source;                // file name, for messages
+  std::vector<std::string> columns;  // as named in the file
+  std::vector<bool> is_angle;        // column ends with "_deg": radians inside, wrap-safe
+  std::vector<double> t_s;           // strictly increasing
+  Eigen::MatrixXd values;            // rows = samples, cols = columns; NaN = missing
+  std::vector<std::size_t> line;     // file line of each sample, for messages
+  std::size_t rows() const { return t_s.size(); }
+};
+
+// Reads `t_s` and `columns` from `table`. Throws DataError (exit 3) naming file, line and
+// column when a column is absent, a value is not a number, t_s is empty, repeats or goes
+// backwards, or fewer than `min_samples` rows carry at least one value. Throws UsageError
+// (exit 2) for an empty or repeated column list. Angle columns are converted to radians.
+Series ReadSeries(const io::CsvTable& table, const std::vector<std::string>& columns, std::size_t min_samples = 3);
+
+// True if a column name is an angle in degrees (SPEC.md units: suffix `_deg`).
+bool IsAngleColumn(const std::string& name);
+
+}  // namespace rk::filter
