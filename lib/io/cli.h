@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "io/error.h"
 #include "io/json_util.h"
 
 namespace rk::cli {

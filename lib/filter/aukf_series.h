@@ -1,0 +1,139 @@
+// Adaptive unscented Kalman filter with fixed-lead prediction over a time series — seed 000
+// (Sun & Zhang 2015, "Pose prediction method for moving helmet based on Kalman filtering",
+// eqs. 1–20, with the errata of docs/seed-notes.md), plus an unscented Rauch–Tung–Striebel smoother
+// (S. Särkkä, "Unscented Rauch–Tung–Striebel smoother", IEEE TAC 53(3), 2008).
+//
+// Model, per value column c (m columns, n = 3m states):
+//   state x_c = [p, p', p'']ᵀ (constant acceleration, eq. 1), Φ(τ) = blockdiag [[1, τ, τ²/2], [0, 1, τ], [0, 0, 1]],
+//   process noise: white jerk of intensity q_c (unit²/s⁵):
+//     Q_c(τ) = q_c [[τ⁵/20, τ⁴/8, τ³/6], [τ⁴/8, τ³/3, τ²/2], [τ³/6, τ²/2, τ]],
+//   which composes exactly over sub-steps: Φ(b) Q(a) Φ(b)ᵀ + Q(b) = Q(a + b), so splitting an interval
+//   into two half steps each with its own Q(·) gives the same one-step covariance.
+//   measurement z = H x + v, H picks p of every column (eq. 2), v ~ N(0, R).
+// Cycle for each interval t_{k−1} → t_k, τ_k = t_k − t_{k−1} (irregular sampling allowed):
+//   1. sigma points of (x_{k−1}, P_{k−1}) (eqs. 3–4), propagate by Φ(ℓτ_k) (ℓ = lead, default ½):
+//      X̂ = Σ W ΦX,  P = Σ W (ΦX − X̂)(ΦX − X̂)ᵀ + Q(ℓτ_k)          (eqs. 5–6)
+//      → the `prediction` output at t_{k−1} + ℓτ_k.
+//   2. new sigma points at the mid-time (eqs. 7–8), propagate by Φ((1−ℓ)τ_k) with Q((1−ℓ)τ_k) (eqs. 9–10).
+//   3. update with the measured components a of Z_k (partial H when some are missing; none → no update):
+//      P_y = H P_{k|k−½} Hᵀ + R,  P_xy = P_{k|k−½} Hᵀ,  K = P_xy P_y⁻¹,
+//      X_k = X_{k|k−½} + K (Z_k − Ŷ),  P_k = P_{k|k−½} − K P_y Kᵀ          (eqs. 11–16)
+//      (the extracted eqs. 12–13 take P_y and P_xy from the propagated sigma points without Q; with
+//      additive Q and linear H the unscented transform of the redrawn points gives exactly the forms
+//      above, which is what makes the filter equal the Kalman filter on a linear model.)
+//   Every covariance is symmetrised after each step; a covariance without a Cholesky factor is
+//   repaired (ukf::RepairSpd) and counted.
+// Adaptation (adaptive_noise.h, Mohamed & Schwarz 1999): R̂ = C_k − ⟨H P_{k|k−½} Hᵀ⟩ (averaged over the
+//   same memory) replaces R from the
+//   next update; Q̂ = K_k C_k K_kᵀ is the process noise of one interval τ_k, used per unit time
+//   (Q̂/τ_k) and scaled by the sub-step length for each half step.
+// Angles (columns ending `_deg`, radians inside): wrap-safe sigma-point means, innovations, state
+//   after each update, smoother differences (all wrapped to (−π, π]).
+// Initialisation (documented in docs/rk-smooth.md): for each column, from its first two values
+//   z_i, z_j: p = z_i − v (t_i − t_0), v = (z_j − z_i)/(t_j − t_i), p'' = 0, with
+//   P = [[σ², −σ²/Δ, 0], [−σ²/Δ, 2σ²/Δ², 0], [0, 0, 600 σ²/Δ⁴ + a₃²]] (Δ = t_j − t_i, a₃ = second
+//   difference of the first three values / Δ²: deliberately loose).
+// Default noise (when not given): per column from third differences of the measurements at lags
+//   h = 1, 2, 4, 8 samples, v_h = mean (Δ³_h z)², with E v_h = 20σ² + 0.55 q (hT)⁵ for white jerk
+//   (0.55 = ∫B₂², B₂ the quadratic B-spline): weighted least-squares fit of a + b h⁵ (weights 1/v_h²),
+//   q̂ = b/(0.55 T⁵) ≥ 0, σ̂² = (v₁ − b)/20 (T = median interval; assumes near-regular sampling).
+// Smoother: unscented RTS over the sequence of half steps (sample and mid-times alike): from the
+//   stored filtered (x_j, P_j) of every node, sigma points are propagated to node j+1,
+//   x⁻ = Σ W ΦX, P⁻ = Σ W (ΦX − x⁻)(·)ᵀ + Q_j, C = Σ W (X − x_j)(ΦX − x⁻)ᵀ, G = C (P⁻)⁻¹,
+//   x_j^s = x_j + G (x_{j+1}^s − x⁻), P_j^s = P_j + G (P_{j+1}^s − P⁻) Gᵀ.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "filter/adaptive_noise.h"
+#include "filter/series.h"
+#include "filter/ukf.h"
+#include "io/csv.h"
+#include "io/json_util.h"
+
+namespace rk::filter {
+
+struct AukfOptions {
+  double lead = 0.5;   // fraction ℓ of each interval at which the prediction is output, in (0, 1)
+  double kappa = 1.0;  // sigma-point parameter κ (the paper's m): W0 = κ/(n+κ); n + κ > 0
+  // Initial measurement noise σ per column, SI/radians (one value = all columns); empty → estimated.
+  std::vector<double> meas_sigma;
+  // White-jerk intensity q per column, SI/radians: unit²/s⁵ (one value = all columns); empty → estimated.
+  std::vector<double> q;
+  AdaptiveNoiseOptions adapt;
+  bool smooth = false;           // run the unscented RTS smoother
+  bool keep_covariance = false;  // keep every node's filtered covariance (tests, NEES)
+  bool Check(std::string* why) const;
+};
+
+enum class AukfStatus { kOk, kPredicted };
+
+struct AukfResult {
+  int m = 0, n = 0;
+  // One node per sample time and per mid-time, in time order: sample 0, mid, sample 1, mid, ...
+  std::vector<double> t_s;
+  std::vector<bool> is_mid;
+  std::vector<int> sample;          // sample row of a sample node; preceding sample row of a mid node
+  std::vector<AukfStatus> status;   // kPredicted: sample row without any measured column
+  Eigen::MatrixXd x_filter, sd_filter;  // n × nodes: filtered (sample) or predicted (mid) mean, 1σ
+  Eigen::MatrixXd x_smooth, sd_smooth;  // n × nodes, when smoothing
+  std::vector<double> cov_filter;       // packed upper triangles, n(n+1)/2 per node (keep_covariance/smooth)
+  ukf::StateMat FilterCovariance(std::size_t node) const;
+
+  // What was used.
+  double interval_s = 0.0;          // median sample interval T
+  std::vector<double> meas_sigma;   // initial σ per column (SI/radians)
+  std::vector<double> q;            // white-jerk intensity per column (SI/radians)
+  bool meas_sigma_estimated = false, q_estimated = false;
+  ukf::MeasMat final_R;             // R at the end (SI/radians²)
+  ukf::StateMat final_Q;            // process noise of one interval T at the end
+  bool final_Q_adapted = false;
+
+  // Counters.
+  std::size_t samples = 0;
+  std::size_t updates = 0;           // sample rows with at least one measured column
+  std::size_t partial_updates = 0;   // ... of which some columns were missing
+  std::size_t skipped_updates = 0;   // sample rows without any measured column (status predicted)
+  std::size_t adapt_steps = 0;       // Q/R re-estimated
+  std::size_t adapt_skipped = 0;     // partial rows that did not enter C_k
+  std::size_t q_repairs = 0, r_repairs = 0, p_repairs = 0;
+  double nis_sum = 0.0;              // Σ dᵀ P_y⁻¹ d over updates
+  std::size_t nis_dof = 0;           // Σ dim(d)
+  double NisMean() const { return updates ? nis_sum / static_cast<double>(updates) : 0.0; }
+};
+
+// Runs the cycle (and the smoother with options.smooth). Throws UsageError for options that do not
+// fit the series (more σ/q values than columns, more than 12 columns), DataError when a column has
+// fewer than two values.
+AukfResult RunAukf(const Series& series, const AukfOptions& options);
+
+// White-jerk Q of one column block over τ (unit²/s⁵ · s⁵ …).
+Eigen::Matrix3d WhiteJerkQ(double tau_s, double q);
+
+// Per-column noise estimate from third differences (see header comment). Returns false when the
+// column has no run of 4 consecutive values.
+bool EstimateColumnNoise(const Series& series, int column, double interval_s, double* sigma, double* q);
+
+struct AukfOutputOptions {
+  bool derivatives = false;  // <base>_rate_<unit>_s, <base>_accel_<unit>_s2 columns (singer_series.h naming)
+  bool sigmas = false;       // <base>_sigma_<unit> (1σ of the value) columns
+  int decimals = 9;
+};
+
+// Names of the derivative columns of a value column (`yaw_deg` → `yaw_rate_deg_s`, `yaw_accel_deg_s2`;
+// a name without '_' → `<name>_rate_per_s`, `<name>_accel_per_s2`). Shared by the rk-smooth subcommands.
+std::string RateColumnName(const std::string& column);
+std::string AccelColumnName(const std::string& column);
+
+// Output table `t_s,kind,<columns>,status[,<rate>,<accel> per column][,<base>_sigma_<unit> per column]`, rows in
+// time order: `estimate` (sample times) / `prediction` (mid-times), each followed by its `smoothed`
+// row when smoothing. Angles in degrees, in [0, 360) for azimuth/yaw-like columns (name starts with
+// `az` or `yaw`) or when some input value exceeds 180°, else in (−180, 180] (AngleColumnIs360).
+io::CsvWriter AukfCsv(const Series& series, const AukfResult& result, const AukfOutputOptions& out);
+
+// Options, counters, final Q and R (SI/radians) and NIS for the JSON report.
+io::Json AukfReportJson(const Series& series, const AukfOptions& options, const AukfResult& result);
+
+}  // namespace rk::filter
