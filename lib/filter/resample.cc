@@ -1,0 +1,182 @@
+// Resampling to target times; see resample.h.
+#include "filter/resample.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "geo/angles.h"
+#include "io/error.h"
+#include "track/interp.h"
+
+namespace rk::filter {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kGapSlack = 1e-9;  // relative, as in track/interp.cc (decimal time stamps)
+
+}  // namespace
+
+bool ParseResampleMethod(const std::string& name, ResampleMethod* method) {
+  if (name == "linear") *method = ResampleMethod::kLinear;
+  else if (name == "cubic") *method = ResampleMethod::kCubic;
+  else if (name == "kalman") *method = ResampleMethod::kKalman;
+  else return false;
+  return true;
+}
+
+std::string ResampleMethodName(ResampleMethod method) {
+  switch (method) {
+    case ResampleMethod::kLinear: return "linear";
+    case ResampleMethod::kCubic: return "cubic";
+    case ResampleMethod::kKalman: return "kalman";
+  }
+  return "kalman";
+}
+
+std::string ResampleReasonName(ResampleReason r) {
+  switch (r) {
+    case ResampleReason::kNone: return "";
+    case ResampleReason::kGap: return "gap";
+    case ResampleReason::kOutside: return "outside";
+  }
+  return "";
+}
+
+bool ResampleOptions::Check(std::string* why) const {
+  if (!(max_gap_s >= 0.0) || !std::isfinite(max_gap_s)) {
+    if (why) *why = "--max-gap must be > 0 s";
+    return false;
+  }
+  if (!(margin_s >= 0.0) || !std::isfinite(margin_s)) {
+    if (why) *why = "--margin must be >= 0 s";
+    return false;
+  }
+  return singer.Check(why);
+}
+
+std::vector<double> TimesAtRate(double t0, double t1, double rate_hz) {
+  if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) throw UsageError("--rate must be > 0 Hz");
+  if (!std::isfinite(t0) || !std::isfinite(t1)) throw UsageError("--t0/--t1 must be finite");
+  if (t1 < t0) throw UsageError("--t1 is before --t0");
+  const double count = std::floor((t1 - t0) * rate_hz + 1e-9) + 1.0;
+  if (count > kMaxRateTargets) throw UsageError("--rate gives more than 1e8 target times");
+  std::vector<double> t(static_cast<std::size_t>(count));
+  for (std::size_t i = 0; i < t.size(); ++i) t[i] = t0 + static_cast<double>(i) / rate_hz;
+  return t;
+}
+
+ResampleResult Resample(const Series& series, const std::vector<double>& targets, const ResampleOptions& options) {
+  std::string why;
+  if (!options.Check(&why)) throw UsageError(why);
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    RK_CHECK(std::isfinite(targets[i]) && (i == 0 || targets[i] >= targets[i - 1]),
+             "target times must be finite and non-decreasing");
+  }
+  const std::size_t nc = series.columns.size();
+  const std::size_t n = series.rows();
+  ResampleResult res;
+  res.t_s = targets;
+  res.rows = targets.size();
+  {
+    std::vector<double> dt;
+    for (std::size_t r = 1; r < n; ++r) dt.push_back(series.t_s[r] - series.t_s[r - 1]);
+    std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
+    res.median_interval_s = dt.empty() ? kNaN : dt[dt.size() / 2];
+  }
+  res.max_gap_s = options.max_gap_s > 0.0 ? options.max_gap_s : kDefaultGapFactor * res.median_interval_s;
+  res.values.assign(nc, std::vector<double>(targets.size(), kNaN));
+  res.sigmas.assign(nc, std::vector<double>(targets.size(), kNaN));
+  res.reason.assign(targets.size(), ResampleReason::kNone);
+
+  if (options.method == ResampleMethod::kKalman) res.singer = RunSingerSeries(series, options.singer);
+
+  std::vector<std::size_t> extrapolated(targets.size(), 0);
+  for (std::size_t c = 0; c < nc; ++c) {
+    const bool angle = series.is_angle[c];
+    // Usable samples of this column (angles unwrapped).
+    std::vector<double> tu, vu;
+    for (std::size_t r = 0; r < n; ++r) {
+      double v = series.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
+      if (!std::isfinite(v)) continue;
+      if (angle && !vu.empty()) v = vu.back() + geo::WrapPi(v - vu.back());
+      tu.push_back(series.t_s[r]);
+      vu.push_back(v);
+    }
+    std::vector<ResampleReason> col_reason(targets.size(), ResampleReason::kNone);
+    if (tu.empty()) {
+      std::fill(col_reason.begin(), col_reason.end(), ResampleReason::kOutside);
+    } else {
+      std::optional<track::TimeSeriesInterpolator> interp;
+      if (options.method != ResampleMethod::kKalman) {
+        track::InterpOptions io;
+        io.method = options.method == ResampleMethod::kLinear ? track::InterpMethod::kLinear
+                                                               : track::InterpMethod::kCubic;
+        io.max_gap_s = res.max_gap_s;
+        io.angle = false;  // already unwrapped above
+        interp.emplace(tu, std::vector<std::optional<double>>(vu.begin(), vu.end()), io);
+      }
+      for (std::size_t i = 0; i < targets.size(); ++i) {
+        const double t = targets[i];
+        double value = kNaN, sigma = kNaN;
+        const bool before = t < tu.front(), after = t > tu.back();
+        if (before || after) {
+          const double dist = before ? tu.front() - t : t - tu.back();
+          if (dist > options.margin_s) {
+            col_reason[i] = ResampleReason::kOutside;
+            continue;
+          }
+          extrapolated[i] = 1;
+          if (options.method == ResampleMethod::kKalman) {
+            Eigen::Vector3d x;
+            Eigen::Matrix3d P;
+            EvaluateSinger(res.singer, series, c, t, &x, &P);
+            value = x(0);
+            sigma = std::sqrt(std::max(P(0, 0), 0.0));
+          } else if (tu.size() == 1) {
+            value = vu[0];
+          } else {
+            const std::size_t j = before ? 0 : tu.size() - 2;
+            value = vu[j] + (vu[j + 1] - vu[j]) * (t - tu[j]) / (tu[j + 1] - tu[j]);
+          }
+        } else {
+          // Interval [tu[j], tu[j+1]] containing t (t equal to a sample is always inside).
+          const std::size_t j1 = static_cast<std::size_t>(std::lower_bound(tu.begin(), tu.end(), t) - tu.begin());
+          const bool on_sample = tu[j1] == t;
+          if (!on_sample && tu[j1] - tu[j1 - 1] > res.max_gap_s * (1.0 + kGapSlack)) {
+            col_reason[i] = ResampleReason::kGap;
+            continue;
+          }
+          if (options.method == ResampleMethod::kKalman) {
+            Eigen::Vector3d x;
+            Eigen::Matrix3d P;
+            EvaluateSinger(res.singer, series, c, t, &x, &P);
+            value = x(0);
+            sigma = std::sqrt(std::max(P(0, 0), 0.0));
+          } else {
+            const track::InterpValue v = interp->At(t);
+            RK_CHECK(v.ok(), "interpolator refused a time inside a segment");
+            value = v.value;
+          }
+        }
+        res.values[c][i] = value;
+        res.sigmas[c][i] = sigma;
+      }
+    }
+    for (std::size_t i = 0; i < targets.size(); ++i) {
+      if (res.reason[i] == ResampleReason::kNone) res.reason[i] = col_reason[i];
+    }
+  }
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    switch (res.reason[i]) {
+      case ResampleReason::kNone: ++res.rows_ok; break;
+      case ResampleReason::kGap: ++res.rows_gap; break;
+      case ResampleReason::kOutside: ++res.rows_outside; break;
+    }
+    res.rows_extrapolated += extrapolated[i];
+  }
+  return res;
+}
+
+}  // namespace rk::filter

@@ -1,0 +1,149 @@
+// Singer-model Kalman filter and Rauch–Tung–Striebel smoother over a Series, one
+// independent 3-state filter per value column (rk-smooth singer; seed 001 §2.2,
+// Guan et al. 2014, Singer model: R. A. Singer, IEEE Trans. AES-6(4), 1970).
+//
+// Model per column (lib/track/singer.h): x = [p, p', p'']ᵀ, a = 1/τ_m,
+//   x_{k+1} = Ψ(T_k) x_k + ζ_k,  ζ_k ~ N(0, Q(T_k)),  T_k = t_{k+1} − t_k (irregular),
+//   Q = Singer's exact discrete noise for intensity q = 2 a σ_m² (series form for aT < 1),
+//   z_k = p_k + v_k,  v_k ~ N(0, σ_z²).
+// Forward pass (Kalman filter):
+//   x_{k|k−1} = Ψ x_{k−1|k−1},  P_{k|k−1} = Ψ P_{k−1|k−1} Ψᵀ + Q
+//   ν = z_k − p_{k|k−1} (angles: wrapped to (−π, π], i.e. z unwrapped next to the state),
+//   S = P_{k|k−1}(0,0) + σ_z², K = P_{k|k−1} e₁ / S,  x_{k|k} = x_{k|k−1} + K ν,
+//   P_{k|k} = (I − K e₁ᵀ) P (I − K e₁ᵀ)ᵀ + K σ_z² Kᵀ (Joseph form), symmetrised.
+//   A row without a value for the column (empty field, or masked by a device status)
+//   gets no update: x_{k|k} = x_{k|k−1}.
+// Backward pass (RTS, Rauch, Tung & Striebel 1965):
+//   C_k = P_{k|k} Ψ_kᵀ P_{k+1|k}⁻¹,
+//   x_{k|N} = x_{k|k} + C_k (x_{k+1|N} − x_{k+1|k}),  P_{k|N} = P_{k|k} + C_k (P_{k+1|N} − P_{k+1|k}) C_kᵀ.
+// Estimates between rows (resampling): the smoother is evaluated at any time t in
+// (t_k, t_{k+1}) exactly as if t had been inserted into the forward pass as a step without
+// measurement (the Markov chain splits: Ψ(T) = Ψ(T−τ)Ψ(τ), Q(T) = Ψ(T−τ)Q(τ)Ψ(T−τ)ᵀ + Q(T−τ)),
+// see EvaluateSinger.
+// Initialisation: at a column's first usable sample, p = z, var p = σ_z², p' ~ N(0, σ_v²)
+// with σ_v = 2 × the largest |Δz/Δt| of the column (a diffuse prior on the scale of the
+// data), p'' ~ N(0, σ_m²) (Singer's stationary acceleration variance). The column has no
+// estimate before its first usable sample.
+// Measurement noise σ_z: given, or estimated from the data: the k-th differences of the
+// usable samples of white noise have variance C(2k, k) σ_z²; σ_z = 1.4826 · MAD / √C(2k, k)
+// with k = kNoiseDifferenceOrder (the signal's k-th derivative must be small against the
+// noise at the sample interval: see docs/rk-smooth-singer-resample.md for the measurement).
+// Assumptions: columns are uncorrelated; white Gaussian measurement noise; near-uniform
+// sampling for the σ_z estimate. Angles: radians inside, state kept unwrapped.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "filter/series.h"
+#include "io/csv.h"
+
+namespace rk::filter {
+
+// Order k of the differences used to estimate σ_z.
+inline constexpr int kNoiseDifferenceOrder = 4;
+
+// Default acceleration RMS σ_m by column unit (column units / s²), used when
+// --accel-sigma is not given. Tuned on seed 001's range case (see the doc).
+inline constexpr double kDefaultAccelSigmaMps2 = 0.5;   // `_m` columns
+inline constexpr double kDefaultAccelSigmaDegS2 = 5.0;  // `_deg` columns
+inline constexpr double kDefaultAccelSigmaPxS2 = 50.0;  // `_px` columns
+inline constexpr double kDefaultManeuverTimeS = 2.0;    // τ_m
+
+inline constexpr int kAutoAccelGridLow = -8;  // 1/16 × default
+inline constexpr int kAutoAccelGridHigh = 6;  // 8 × default
+
+struct SingerSeriesOptions {
+  double maneuver_time_s = kDefaultManeuverTimeS;  // τ_m = 1/a (s), > 0
+  // σ_m per column (internal units: m, rad, ... per s²); empty = default by unit
+  // (DefaultAccelSigma), one value = every column, else one per column. ≥ 0.
+  std::vector<double> accel_sigma;
+  // σ_z per column (internal units); empty = estimate from the data; one or one per column. > 0.
+  std::vector<double> meas_sigma;
+  // With accel_sigma empty: choose σ_m per column by maximum likelihood of the forward
+  // pass's innovations, Σ (ln S + ν²/S), over the grid DefaultAccelSigma × 2^(k/2),
+  // k = kAutoAccelGridLow..kAutoAccelGridHigh. false: use the unit default as is.
+  bool auto_accel_sigma = true;
+  bool smooth = true;  // run the RTS backward pass
+  bool Check(std::string* why) const;
+};
+
+// Default σ_m (internal units/s²) for a column name; NaN if the unit is unknown.
+double DefaultAccelSigma(const std::string& column);
+
+struct SingerColumnStats {
+  std::size_t updates = 0;      // rows with a measurement
+  std::size_t missing = 0;      // rows without (after the first usable one)
+  std::size_t first_row = 0;    // row index of the first measurement
+  double meas_sigma = 0.0;      // σ_z used (internal units)
+  bool meas_sigma_estimated = false;
+  double accel_sigma = 0.0;     // σ_m used (internal units/s²)
+  bool accel_sigma_selected = false;  // chosen by maximum likelihood
+  double nis_mean = 0.0;        // mean of ν²/S over updates after the first (expected 1)
+  std::size_t nis_count = 0;
+};
+
+enum class SingerRowStatus { kOk, kPredicted, kLost };
+std::string SingerRowStatusName(SingerRowStatus s);  // "ok", "predicted", "lost"
+
+struct SingerTrack {  // one column; vectors indexed by row, rows < first_row unused
+  std::vector<Eigen::Vector3d> x_pred, x_filt, x_smooth;
+  std::vector<Eigen::Matrix3d> P_pred, P_filt, P_smooth;
+  double a_per_s = 0.0, q = 0.0;  // Singer a and white-noise intensity q = 2 a σ_m²
+};
+
+struct SingerSeriesResult {
+  bool smoothed = false;                 // x_smooth/P_smooth filled
+  std::vector<SingerTrack> tracks;       // per column
+  std::vector<SingerColumnStats> stats;  // per column
+  std::vector<SingerRowStatus> status;   // per row: ok = some column measured, predicted = none but
+                                         // some column has an estimate, lost = no estimate at all
+  std::size_t rows = 0, rows_ok = 0, rows_predicted = 0, rows_lost = 0;
+  // Best estimate at a row (smoothed if available, else filtered); false before first_row.
+  bool At(std::size_t column, std::size_t row, Eigen::Vector3d* x, Eigen::Matrix3d* P) const;
+};
+
+// Robust σ of white noise from the k-th differences of the usable (finite) values; angles
+// are unwrapped first. Returns NaN if fewer than k + 3 usable values.
+double EstimateNoiseSigma(const std::vector<double>& values, bool angle, int order = kNoiseDifferenceOrder);
+
+// Runs filter (+ smoother) on every column. Throws UsageError for option lists of the wrong
+// length or an unknown unit without --accel-sigma.
+SingerSeriesResult RunSingerSeries(const Series& series, const SingerSeriesOptions& options);
+
+// Estimate of column `column` at any time t (s): at a row, that row's; between rows k and
+// k+1, the smoother (or, without smoothing, the filter prediction from row k) evaluated at
+// t as an inserted no-measurement step; after the last row, predicted forward; before the
+// first usable row, predicted backward (Ψ(τ)⁻¹ x, covariance Ψ⁻¹ P Ψ⁻ᵀ + Q(τ)).
+void EvaluateSinger(const SingerSeriesResult& result, const Series& series, std::size_t column, double t_s,
+                    Eigen::Vector3d* x, Eigen::Matrix3d* P);
+
+// SPEC.md §2 status column of the input, if any: a numeric code (range log: 0 ok, else a
+// device error) or a tool status (ok, reacquired = measurement; predicted, lost, invalid = no
+// measurement); an empty field = ok. Rows that are not measurements get NaN in every value
+// column. Other text is a DataError at file:line:col. Returns the number of rows masked
+// that still had a value. Throws DataError if fewer than `min_samples` rows keep a value.
+std::size_t MaskByStatus(const io::CsvTable& table, Series* series, std::size_t min_samples = 3);
+
+// Per-column option values given in column units (degrees for `_deg` columns, as on the
+// command line) → one value per column in internal units (radians). Empty stays empty; one
+// value applies to every column. Throws UsageError (naming `option`) for another count.
+std::vector<double> ColumnUnitsToInternal(const std::vector<double>& values, const Series& series,
+                                          const std::string& option);
+
+// Output naming and angle range (docs/rk-smooth-singer-resample.md):
+//   `<base>_<unit>` → rate `<base>_rate_<unit>_s`, acceleration `<base>_accel_<unit>_s2`,
+//   1σ `<base>_sigma_<unit>` (of the rate `<base>_rate_sigma_<unit>_s`, of the acceleration
+//   `<base>_accel_sigma_<unit>_s2`); a name without '_' gets `_rate_per_s`, `_accel_per_s2`, `_sigma`
+//   (the derivative names are those of aukf_series.h).
+std::string SingerRateColumnName(const std::string& column);
+std::string SingerAccelColumnName(const std::string& column);
+// order 0: `<base>_sigma_<unit>`, 1: `<base>_rate_sigma_<unit>_s`, 2: `<base>_accel_sigma_<unit>_s2`.
+std::string SingerSigmaColumnName(const std::string& column, int order = 0);
+// True if an angle column is written in [0, 360): azimuth-like name (starts with "az" or
+// "yaw", SPEC.md §2), or no input value < 0 and some > 180° (the aukf rule); else (−180, 180].
+bool AngleColumnIs360(const std::string& column, const std::vector<double>& values_rad);
+
+}  // namespace rk::filter
