@@ -1,0 +1,156 @@
+// rk-smooth aukf: adaptive UKF fixed-lead prediction (seed 000) with an optional unscented RTS
+// smoother. Thin CLI over lib/filter/aukf_series.h; see docs/rk-smooth.md.
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "filter/aukf_series.h"
+#include "filter/series.h"
+#include "geo/angles.h"
+#include "io/csv.h"
+#include "io/error.h"
+#include "io/file_util.h"
+#include "smooth_commands.h"
+
+namespace rk::smooth_app {
+
+namespace {
+
+struct AukfArgs {
+  std::string input, output, columns, adapt = "auto", meas_sigma, q;
+  int window = 40;
+  double fading = 0.0;
+  bool fading_set = false;
+  filter::AukfOptions opt;
+  filter::AukfOutputOptions out;
+};
+
+std::vector<double> ParseNumbers(const std::string& list, const std::string& option) {
+  std::vector<double> v;
+  if (list.empty()) return v;
+  for (const auto& item : io::SplitList(list)) {
+    try {
+      std::size_t used = 0;
+      const double x = std::stod(item, &used);
+      if (used != item.size() || !std::isfinite(x)) throw std::invalid_argument(item);
+      v.push_back(x);
+    } catch (const std::exception&) {
+      throw UsageError(option + ": '" + item + "' is not a number");
+    }
+  }
+  return v;
+}
+
+}  // namespace
+
+Command AddAukfCommand(CLI::App& app) {
+  auto args = std::make_shared<AukfArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "aukf",
+      "Adaptive unscented Kalman filter with fixed-lead prediction (seed 000): per column a constant-"
+      "acceleration state [p, p', p''] with white-jerk process noise; for each interval a prediction to "
+      "t(k-1) + lead*tau (kind 'prediction'), a second half step and the measurement update (kind "
+      "'estimate'). Adaptive R/Q from the innovations (Mohamed & Schwarz 1999). Columns ending _deg are "
+      "wrap-safe angles. --smooth adds an unscented RTS pass (kind 'smoothed' at sample and mid-times).");
+  sub->add_option("-i,--input", args->input, "Input CSV with t_s and the value columns ('-' = stdin)")->required();
+  sub->add_option("--columns", args->columns, "Comma-separated value columns, 1 to 12 (e.g. e_m,n_m,u_m,yaw_deg)")
+      ->required();
+  sub->add_option("-o,--output", args->output, "Output CSV ('-' = stdout)")->required();
+  sub->add_option("--lead", args->opt.lead, "Fraction of each interval at which the prediction is output, in (0, 1)")
+      ->capture_default_str();
+  sub->add_flag("--smooth", args->opt.smooth, "Add 'smoothed' rows (unscented RTS) at sample and mid-times");
+  sub->add_option("--adapt", args->adapt,
+                  "Adapt the noise from the innovations: none, r, q, qr, or auto (= none with the data-estimated noise: "
+                  "measured best on the turntable benchmark; r alone can diverge, see docs/rk-smooth.md)")
+      ->check(CLI::IsMember({"auto", "none", "r", "q", "qr"}))
+      ->capture_default_str();
+  sub->add_option("--window", args->window, "Innovation window N in samples (windowed memory, the default)")
+      ->capture_default_str();
+  sub->add_option("--fading", args->fading, "Fading-memory factor lambda in (0, 1) instead of a window");
+  sub->add_option("--meas-sigma", args->meas_sigma,
+                  "Initial measurement noise 1-sigma, one value or one per column, in file units (degrees for "
+                  "_deg); default: estimated from the data's third differences");
+  sub->add_option("--q", args->q,
+                  "White-jerk intensity q, one value or one per column, in file units^2/s^5 (deg^2/s^5 for "
+                  "_deg); default: estimated from the data's third differences");
+  sub->add_option("--kappa", args->opt.kappa, "Sigma-point parameter kappa: W0 = kappa/(n+kappa)")
+      ->capture_default_str();
+  sub->add_flag("--derivatives", args->out.derivatives,
+                "Add <base>_rate_<unit>_s and <base>_accel_<unit>_s2 columns (e.g. yaw_rate_deg_s)");
+  sub->add_flag("--sigmas", args->out.sigmas, "Add <base>_sigma_<unit> columns (1-sigma of each value, file units)");
+
+  Command cmd;
+  cmd.app = sub;
+  cmd.run = [args, sub](const Context& ctx) -> int {
+    AukfArgs& a = *args;
+    filter::AukfOptions opt = a.opt;
+    if (!filter::ParseAdaptMode(a.adapt == "auto" ? "none" : a.adapt, &opt.adapt.mode)) {
+      throw UsageError("--adapt: unknown mode " + a.adapt);
+    }
+    opt.adapt.window = a.window;
+    if (sub->count("--fading") > 0) {
+      opt.adapt.memory = filter::AdaptMemory::kFading;
+      opt.adapt.fading = a.fading;
+      if (sub->count("--window") > 0) throw UsageError("--window and --fading exclude each other");
+    }
+    const std::vector<std::string> columns = io::SplitList(a.columns);
+    if (columns.empty() || columns.size() > static_cast<std::size_t>(filter::ukf::kMaxColumns)) {
+      throw UsageError("--columns: give 1 to 12 columns, got " + std::to_string(columns.size()));
+    }
+    opt.meas_sigma = ParseNumbers(a.meas_sigma, "--meas-sigma");
+    opt.q = ParseNumbers(a.q, "--q");
+    for (const auto* list : {&opt.meas_sigma, &opt.q}) {
+      if (list->size() > 1 && list->size() != columns.size()) {
+        throw UsageError(std::string(list == &opt.q ? "--q" : "--meas-sigma") + ": give one value or one per column (" +
+                         std::to_string(columns.size()) + ")");
+      }
+    }
+    // One value applies to every column; then file units → radians for angle columns.
+    if (opt.meas_sigma.size() == 1) opt.meas_sigma.assign(columns.size(), opt.meas_sigma[0]);
+    if (opt.q.size() == 1) opt.q.assign(columns.size(), opt.q[0]);
+    std::string why;
+    if (!opt.Check(&why)) throw UsageError(why);
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      if (!filter::IsAngleColumn(columns[c])) continue;
+      if (!opt.meas_sigma.empty()) opt.meas_sigma[c] = geo::DegToRad(opt.meas_sigma[c]);
+      if (!opt.q.empty()) opt.q[c] *= geo::DegToRad(1.0) * geo::DegToRad(1.0);
+    }
+    io::CheckOutputNotInput(a.output, {a.input});
+    if (!ctx.common.report_path.empty()) {
+      io::CheckOutputNotInput(ctx.common.report_path, {a.input});
+      if (ctx.common.report_path == a.output && !io::IsStdStream(a.output)) {
+        throw UsageError("--report and -o name the same file " + a.output);
+      }
+      if (io::IsStdStream(ctx.common.report_path) && io::IsStdStream(a.output)) {
+        throw UsageError("--report and -o cannot both be stdout");
+      }
+    }
+
+    const io::CsvTable table = io::CsvTable::Read(a.input);
+    const filter::Series series = filter::ReadSeries(table, columns, 3);
+    const filter::AukfResult result = filter::RunAukf(series, opt);
+    const io::CsvWriter csv = filter::AukfCsv(series, result, a.out);
+
+    io::Json report;
+    if (!ctx.common.report_path.empty()) {
+      report = cli::MakeReport("rk-smooth", ctx.argc, ctx.argv);
+      cli::AddReportInput(&report, "input", a.input);
+      const io::Json body = filter::AukfReportJson(series, opt, result);
+      for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
+      report["subcommand"] = "aukf";
+      report["options"]["adapt_requested"] = a.adapt;
+      report["rows_written"] = csv.rows();
+    }
+    csv.Write(a.output);
+    if (!ctx.common.report_path.empty()) io::WriteJson(ctx.common.report_path, report);
+    if (result.skipped_updates > 0) {
+      cli::Warn("rk-smooth", ctx.common,
+                std::to_string(result.skipped_updates) + " sample rows without any value: no update, status 'predicted'");
+    }
+    return 0;
+  };
+  return cmd;
+}
+
+}  // namespace rk::smooth_app

@@ -1,0 +1,239 @@
+// rk-smooth resample: one series brought to the times of another (--at frames.csv) or to a
+// regular rate (SPEC.md §1.1). Method: lib/filter/resample.h.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "filter/resample.h"
+#include "filter/series.h"
+#include "filter/singer_series.h"
+#include "geo/angles.h"
+#include "io/csv.h"
+#include "io/error.h"
+#include "io/file_util.h"
+#include "smooth_commands.h"
+
+namespace rk::smooth_app {
+namespace {
+
+struct ResampleArgs {
+  std::string input, output, columns, at, method = "kalman";
+  double rate_hz = std::numeric_limits<double>::quiet_NaN();
+  double t0_s = std::numeric_limits<double>::quiet_NaN();
+  double t1_s = std::numeric_limits<double>::quiet_NaN();
+  double max_gap_s = 0.0, margin_s = 0.0;
+  std::vector<double> accel_sigma, meas_sigma;  // column units
+  double maneuver_time_s = filter::kDefaultManeuverTimeS;
+  bool sigmas = false, ignore_status = false;
+  CLI::Option* rate_opt = nullptr;
+  CLI::Option* at_opt = nullptr;
+  CLI::Option* t0_opt = nullptr;
+  CLI::Option* t1_opt = nullptr;
+  CLI::Option* gap_opt = nullptr;
+};
+
+constexpr int kDecimals = 9;
+
+int RunResample(const ResampleArgs& args, const Context& ctx) {
+  const bool have_at = args.at_opt->count() > 0, have_rate = args.rate_opt->count() > 0;
+  if (have_at == have_rate) throw UsageError("give exactly one of --at FILE and --rate HZ");
+  if (have_rate && !(args.rate_hz > 0.0 && std::isfinite(args.rate_hz))) throw UsageError("--rate must be > 0 Hz");
+  if (have_at && (args.t0_opt->count() || args.t1_opt->count())) {
+    throw UsageError("--t0/--t1 go with --rate, not with --at");
+  }
+  std::vector<std::string> inputs = {args.input};
+  if (have_at) inputs.push_back(args.at);
+  if (have_at && io::IsStdStream(args.input) && io::IsStdStream(args.at)) {
+    throw UsageError("only one input can be read from stdin ('-')");
+  }
+  io::CheckOutputNotInput(args.output, inputs);
+  if (!ctx.common.report_path.empty()) {
+    io::CheckOutputNotInput(ctx.common.report_path, inputs);
+    if (io::IsStdStream(ctx.common.report_path) && io::IsStdStream(args.output)) {
+      throw UsageError("--report and -o cannot both be stdout");
+    }
+  }
+  filter::ResampleOptions opt;
+  if (!filter::ParseResampleMethod(args.method, &opt.method)) throw UsageError("unknown --method " + args.method);
+  opt.max_gap_s = args.max_gap_s;
+  opt.margin_s = args.margin_s;
+  if (args.gap_opt->count() && !(args.max_gap_s > 0.0)) throw UsageError("--max-gap must be > 0 s");
+  opt.singer.maneuver_time_s = args.maneuver_time_s;
+  opt.singer.accel_sigma = args.accel_sigma;
+  opt.singer.meas_sigma = args.meas_sigma;
+  std::string why;
+  if (!opt.Check(&why)) throw UsageError(why);
+
+  const std::vector<std::string> columns = io::SplitList(args.columns);
+  const io::CsvTable table = io::CsvTable::Read(args.input);
+  filter::Series series = filter::ReadSeries(table, columns, 3);
+  const std::size_t masked = args.ignore_status ? 0 : filter::MaskByStatus(table, &series, 3);
+  opt.singer.accel_sigma = filter::ColumnUnitsToInternal(opt.singer.accel_sigma, series, "--accel-sigma");
+  opt.singer.meas_sigma = filter::ColumnUnitsToInternal(opt.singer.meas_sigma, series, "--meas-sigma");
+
+  // Target times (+ passthrough columns of --at).
+  std::vector<double> targets;
+  std::vector<std::string> pass_names;
+  std::vector<int> pass_cols;
+  io::CsvTable at_table = io::CsvTable::Parse("t_s\n", "none");
+  if (have_at) {
+    at_table = io::CsvTable::Read(args.at);
+    const int c_t = at_table.RequireColumn("t_s");
+    at_table.RequireNonDecreasing(c_t);
+    for (std::size_t r = 0; r < at_table.rows(); ++r) targets.push_back(at_table.Double(r, c_t));
+    if (targets.empty()) throw DataError(at_table.name(), 0, 0, "no target times");
+    std::vector<std::string> reserved = {"t_s", "kind", "status", "reason"};
+    for (const auto& c : columns) {
+      reserved.push_back(c);
+      reserved.push_back(filter::SingerSigmaColumnName(c));
+    }
+    for (std::size_t c = 0; c < at_table.header().size(); ++c) {
+      const std::string& h = at_table.header()[c];
+      if (std::find(reserved.begin(), reserved.end(), h) != reserved.end()) continue;
+      pass_names.push_back(h);
+      pass_cols.push_back(static_cast<int>(c));
+    }
+  } else {
+    const double t0 = args.t0_opt->count() ? args.t0_s : series.t_s.front();
+    const double t1 = args.t1_opt->count() ? args.t1_s : series.t_s.back();
+    targets = filter::TimesAtRate(t0, t1, args.rate_hz);
+  }
+
+  const filter::ResampleResult res = filter::Resample(series, targets, opt);
+
+  const std::size_t nc = columns.size();
+  const bool with_sigmas = args.sigmas && opt.method == filter::ResampleMethod::kKalman;
+  std::vector<bool> is360(nc, false);
+  for (std::size_t c = 0; c < nc; ++c) {
+    if (!series.is_angle[c]) continue;
+    std::vector<double> v(series.rows());
+    for (std::size_t r = 0; r < series.rows(); ++r) {
+      v[r] = series.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
+    }
+    is360[c] = filter::AngleColumnIs360(columns[c], v);
+  }
+  std::vector<std::string> header = {"t_s"};
+  for (const auto& p : pass_names) header.push_back(p);
+  header.push_back("kind");
+  for (const auto& c : columns) header.push_back(c);
+  header.push_back("status");
+  header.push_back("reason");
+  if (with_sigmas) {
+    for (const auto& c : columns) header.push_back(filter::SingerSigmaColumnName(c));
+  }
+  io::CsvWriter w(header);
+  const std::string kind = opt.method == filter::ResampleMethod::kKalman ? "smoothed" : "estimate";
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    w.Add(targets[i], kDecimals);
+    for (int pc : pass_cols) w.Add(at_table.Cell(i, pc));
+    w.Add(kind);
+    for (std::size_t c = 0; c < nc; ++c) {
+      const double v = res.values[c][i];
+      if (!std::isfinite(v)) {
+        w.AddEmpty();
+      } else if (series.is_angle[c]) {
+        const double deg = geo::RadToDeg(v);
+        w.Add(is360[c] ? geo::WrapDeg360(deg) : geo::WrapDeg180(deg), kDecimals);
+      } else {
+        w.Add(v, kDecimals);
+      }
+    }
+    switch (res.reason[i]) {
+      case filter::ResampleReason::kNone: w.Add("ok"); break;
+      case filter::ResampleReason::kGap: w.Add("lost"); break;
+      case filter::ResampleReason::kOutside: w.Add("invalid"); break;
+    }
+    w.Add(filter::ResampleReasonName(res.reason[i]));
+    if (with_sigmas) {
+      for (std::size_t c = 0; c < nc; ++c) {
+        const double u = series.is_angle[c] ? geo::RadToDeg(1.0) : 1.0;
+        w.Add(res.sigmas[c][i] * u, kDecimals);
+      }
+    }
+    w.EndRow();
+  }
+
+  io::Json report;
+  if (!ctx.common.report_path.empty()) {
+    report = cli::MakeReport("rk-smooth", ctx.argc, ctx.argv);
+    cli::AddReportInput(&report, "input", args.input);
+    if (have_at) cli::AddReportInput(&report, "at", args.at);
+    report["subcommand"] = "resample";
+    report["method"] = filter::ResampleMethodName(opt.method);
+    report["max_gap_s"] = res.max_gap_s;
+    report["margin_s"] = opt.margin_s;
+    report["median_interval_s"] = res.median_interval_s;
+    report["input_rows"] = series.rows();
+    report["rows_masked_by_status"] = masked;
+    report["rows"] = res.rows;
+    report["rows_ok"] = res.rows_ok;
+    report["rows_gap"] = res.rows_gap;
+    report["rows_outside"] = res.rows_outside;
+    report["rows_extrapolated"] = res.rows_extrapolated;
+    if (opt.method == filter::ResampleMethod::kKalman) {
+      report["maneuver_time_s"] = opt.singer.maneuver_time_s;
+      for (std::size_t c = 0; c < nc; ++c) {
+        const filter::SingerColumnStats& st = res.singer.stats[c];
+        const double u = series.is_angle[c] ? geo::RadToDeg(1.0) : 1.0;
+        report["columns"][columns[c]] = {
+            {"updates", st.updates},
+            {"meas_sigma", st.meas_sigma * u},
+            {"meas_sigma_estimated", st.meas_sigma_estimated},
+            {"accel_sigma", st.accel_sigma * u},
+            {"nis_mean", std::isfinite(st.nis_mean) ? io::Json(st.nis_mean) : io::Json(nullptr)},
+        };
+      }
+    }
+  }
+  w.Write(args.output);
+  if (!ctx.common.report_path.empty()) io::WriteJson(ctx.common.report_path, report);
+  return 0;
+}
+
+}  // namespace
+
+Command AddResampleCommand(CLI::App& app) {
+  auto args = std::make_shared<ResampleArgs>();
+  CLI::App* sub = app.add_subcommand(
+      "resample",
+      "Bring value columns to other times (--at FILE with t_s, or --rate HZ): linear, cubic or kalman "
+      "(Singer RTS smoother); gap limit, no extrapolation beyond --margin (docs/rk-smooth-singer-resample.md)");
+  sub->add_option("-i,--input", args->input, "Input CSV with t_s and the value columns ('-' = stdin)")->required();
+  sub->add_option("--columns", args->columns, "Value columns, comma-separated (e.g. range_m)")->required();
+  args->at_opt = sub->add_option("--at", args->at,
+                                 "CSV of target times (column t_s, non-decreasing); its other columns (e.g. "
+                                 "frame) are copied to the output");
+  args->rate_opt = sub->add_option("--rate", args->rate_hz, "Target times at this rate (Hz), > 0");
+  args->t0_opt = sub->add_option("--t0", args->t0_s, "With --rate: first target time (s); default first input t_s");
+  args->t1_opt = sub->add_option("--t1", args->t1_s, "With --rate: last target time (s); default last input t_s");
+  sub->add_option("-o,--output", args->output, "Output CSV ('-' = stdout)")->required();
+  sub->add_option("--method", args->method, "linear, cubic or kalman (Singer RTS smoother)")
+      ->check(CLI::IsMember({"linear", "cubic", "kalman"}))
+      ->capture_default_str();
+  args->gap_opt = sub->add_option("--max-gap", args->max_gap_s,
+                  "Longest interval (s) between usable samples interpolated across; default 2.5 x the median "
+                  "input interval");
+  sub->add_option("--margin", args->margin_s,
+                  "Extrapolation allowed (s) before the first / after the last usable sample; beyond it rows "
+                  "are empty with status invalid, reason outside")
+      ->capture_default_str();
+  sub->add_option("--maneuver-time", args->maneuver_time_s, "kalman: Singer maneuver time constant tau_m (s)")
+      ->capture_default_str();
+  sub->add_option("--accel-sigma", args->accel_sigma,
+                  "kalman: RMS acceleration in column units/s^2, one or one per column; default: chosen by "
+                  "maximum likelihood on a grid 1/16..8 x (_m 0.5, _deg 5, _px 50)")
+      ->delimiter(',');
+  sub->add_option("--meas-sigma", args->meas_sigma,
+                  "kalman: measurement noise std in column units, one or one per column; default estimated "
+                  "from the data")
+      ->delimiter(',');
+  sub->add_flag("--sigmas", args->sigmas, "kalman: add 1-sigma columns <base>_sigma_<unit>");
+  sub->add_flag("--ignore-status", args->ignore_status,
+                "Use values whatever the input's status column says (default: non-zero device codes and "
+                "predicted/lost/invalid rows are missing)");
+  return {sub, [args](const Context& ctx) { return RunResample(*args, ctx); }};
+}
+
+}  // namespace rk::smooth_app

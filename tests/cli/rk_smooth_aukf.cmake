@@ -1,0 +1,82 @@
+# CLI tests of rk-smooth aukf (SPEC.md §1.1, §4). The fixture smooth_aukf_data writes small inputs to
+# ${RK_CLI_DATA}/aukf; every other test here REQUIRES it. Scripts get $1 = RK_CLI_DATA, $2 = expect.sh;
+# rk-smooth is found on PATH (RK_BIN first).
+function(rk_smooth_aukf_script name body)
+  file(WRITE ${CMAKE_CURRENT_BINARY_DIR}/${name}.sh "#!/usr/bin/env bash\nset -eu\ndata=$1; expect=$2\n${body}")
+  rk_cli_test(${name} ${ARGN} COMMAND bash ${CMAKE_CURRENT_BINARY_DIR}/${name}.sh ${RK_CLI_DATA} ${RK_EXPECT})
+endfunction()
+
+rk_smooth_aukf_script(rk_smooth_aukf_data [==[
+d=$data/aukf; rm -rf "$d"; mkdir -p "$d"
+# Turntable-like: yaw 350° + 10°/s through north (deterministic pseudo-noise), x_m with one empty
+# value (partial update), one row with both empty (status predicted), and a comment line.
+awk 'BEGIN { print "t_s,yaw_deg,x_m"; for (k = 0; k < 60; k++) { t = 0.05 * k;
+  a = 350 + 10 * t + 0.05 * sin(7.3 * k); if (a >= 360) a -= 360;
+  if (k == 20) printf "%.6f,,\n", t; else if (k == 30) printf "%.6f,%.6f,\n", t, a;
+  else printf "%.6f,%.6f,%.6f\n", t, a, 2 + 0.5 * t + 0.001 * sin(3.1 * k);
+  if (k == 10) print "# comment" } }' > "$d/in.csv"
+sh -c "printf 't_s,yaw_deg\n0,1\n0.05,2\n'" > "$d/two.csv"
+sh -c "printf 't_s,yaw_deg\n0,1\n0.05,2\n0.05,3\n0.15,4\n'" > "$d/dup.csv"
+sh -c "printf 't_s,yaw_deg\n0,1\n0.1,2\n0.05,3\n0.15,4\n'" > "$d/back.csv"
+sh -c "printf 't_s,yaw_deg\n0,1\n0.05,2\n0.1,abc\n0.15,4\n'" > "$d/text.csv"
+echo ok
+]==] SETUP smooth_aukf_data)
+
+rk_smooth_aukf_script(rk_smooth_aukf_good [==[
+d=$data/aukf; o=$d/out; rm -rf "$o"; mkdir -p "$o"
+rk-smooth aukf -i "$d/in.csv" --columns yaw_deg,x_m --smooth --derivatives --sigmas -o "$o/out.csv" \
+  --report "$o/rep.json" 2> "$o/err.txt"
+head -1 "$o/out.csv" | grep -qx 't_s,kind,yaw_deg,x_m,status,yaw_rate_deg_s,yaw_accel_deg_s2,x_rate_m_s,x_accel_m_s2,yaw_sigma_deg,x_sigma_m'
+grep -q 'warning: 1 sample rows without any value' "$o/err.txt"
+python3 - "$o/out.csv" "$o/rep.json" <<'EOF'
+import csv, json, sys, math
+rows = list(csv.DictReader(open(sys.argv[1])))
+kinds = [r['kind'] for r in rows]
+assert kinds.count('estimate') == 60 and kinds.count('prediction') == 59 and kinds.count('smoothed') == 119, kinds[:6]
+t = [float(r['t_s']) for r in rows]
+assert all(b >= a for a, b in zip(t, t[1:])), 'rows not in time order'
+pred = [r for r in rows if r['kind'] == 'prediction']
+assert abs(float(pred[0]['t_s']) - 0.025) < 1e-9, pred[0]
+est = [r for r in rows if r['kind'] == 'estimate']
+assert est[20]['status'] == 'predicted' and est[30]['status'] == 'ok' and est[21]['status'] == 'ok'
+for r in rows:  # yaw written in [0, 360) (yaw-like name); truth 350 + 10 t through north
+    y = float(r['yaw_deg']); assert 0 <= y < 360, y
+    tr = (350 + 10 * float(r['t_s'])) % 360
+    e = (y - tr + 180) % 360 - 180
+    if float(r['t_s']) > 0.5: assert abs(e) < 0.2, (r, e)
+    if float(r['t_s']) > 0.5: assert abs(float(r['yaw_rate_deg_s']) - 10) < 2, r
+rep = json.load(open(sys.argv[2]))
+for k in ('tool', 'version', 'command_line', 'inputs', 'options', 'counts', 'final_Q', 'final_R', 'nis_mean'):
+    assert k in rep, k
+c = rep['counts']
+assert c['samples'] == 60 and c['updates'] == 58 and c['skipped_updates'] == 1 and c['partial_updates'] == 1, c
+for k in ('repairs_q', 'repairs_r', 'repairs_p'): assert k in c
+assert len(rep['final_Q']) == 6 and len(rep['final_R']) == 2
+EOF
+# stdout, --lead, adaptation with fading memory, explicit noise in file units
+rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --lead 0.25 --adapt qr --fading 0.9 --meas-sigma 0.05 --q 100 -o - \
+  --report "$o/rep2.json" > "$o/stdout.csv" 2>/dev/null
+grep -q '^0.012500000,prediction,' "$o/stdout.csv"
+python3 -c "import json,sys; r=json.load(open('$o/rep2.json')); o=r['options']; assert o['adapt']=='qr' and o['memory']=='fading' and abs(o['columns'][0]['meas_sigma']-0.05)<1e-12 and abs(o['columns'][0]['q']-100)<1e-9, o"
+rk-smooth aukf --help | grep -q -- '--adapt'
+]==] REQUIRES smooth_aukf_data)
+
+rk_smooth_aukf_script(rk_smooth_aukf_bad [==[
+d=$data/aukf; o=$d/bad; rm -rf "$o"; mkdir -p "$o"
+$expect 3 "$o/x.csv" 'two.csv.*at least 3'       -- rk-smooth aukf -i "$d/two.csv" --columns yaw_deg -o "$o/x.csv"
+$expect 3 "$o/x.csv" 'dup.csv:4:[0-9]+: .*repeats' -- rk-smooth aukf -i "$d/dup.csv" --columns yaw_deg -o "$o/x.csv"
+$expect 3 "$o/x.csv" 'back.csv:4:[0-9]+: .*backwards' -- rk-smooth aukf -i "$d/back.csv" --columns yaw_deg -o "$o/x.csv"
+$expect 3 "$o/x.csv" 'text.csv:4:[0-9]+:'        -- rk-smooth aukf -i "$d/text.csv" --columns yaw_deg -o "$o/x.csv"
+$expect 3 "$o/x.csv" 'pitch_deg'                  -- rk-smooth aukf -i "$d/in.csv" --columns pitch_deg -o "$o/x.csv"
+$expect 2 "$o/x.csv" 'columns'                    -- rk-smooth aukf -i "$d/in.csv" --columns '' -o "$o/x.csv"
+$expect 2 "$o/x.csv" '1 to 12'                    -- rk-smooth aukf -i "$d/in.csv" --columns a,b,c,d,e,f,g,h,i,j,k,l,m -o "$o/x.csv"
+$expect 2 "$o/x.csv" 'lead'                       -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --lead 1 -o "$o/x.csv"
+$expect 2 "$o/x.csv" 'lead'                       -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --lead 0 -o "$o/x.csv"
+$expect 2 "$o/x.csv" 'meas-sigma'                 -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --meas-sigma 1,2 -o "$o/x.csv"
+$expect 2 "$o/x.csv" 'adapt'                      -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --adapt both -o "$o/x.csv"
+$expect 2 "$o/x.csv" 'fading'                     -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --fading 1.5 -o "$o/x.csv"
+$expect 4 "$o/x.csv" 'nothere.csv'                -- rk-smooth aukf -i "$d/nothere.csv" --columns yaw_deg -o "$o/x.csv"
+$expect 4 - ''                                    -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg -o "$o/nodir/x.csv"
+cp "$d/in.csv" "$o/same.csv"
+$expect 2 - 'input'                               -- rk-smooth aukf -i "$o/same.csv" --columns yaw_deg -o "$o/same.csv"
+]==] REQUIRES smooth_aukf_data)
