@@ -11,9 +11,9 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "smooth_commands.h"
+#include "subcommand.h"
 
-namespace rk::smooth_app {
+namespace rk::app {
 
 namespace {
 
@@ -53,24 +53,29 @@ Command AddAukfCommand(CLI::App& app) {
       "t(k-1) + lead*tau (kind 'prediction'), a second half step and the measurement update (kind "
       "'estimate'). Adaptive R/Q from the innovations (Mohamed & Schwarz 1999). Columns ending _deg are "
       "wrap-safe angles. --smooth adds an unscented RTS pass (kind 'smoothed' at sample and mid-times).");
-  sub->add_option("-i,--input", args->input, "Input CSV with t_s and the value columns ('-' = stdin)")->required();
-  sub->add_option("--columns", args->columns, "Comma-separated value columns, 1 to 12 (e.g. e_m,n_m,u_m,yaw_deg)")
+  sub->add_option("-i,--input", args->input, "Input CSV with t_s and the value columns ('-' = stdin)")
+      ->required();
+  sub->add_option("--columns", args->columns,
+                  "Comma-separated value columns, 1 to 12 (e.g. e_m,n_m,u_m,yaw_deg)")
       ->required();
   sub->add_option("-o,--output", args->output, "Output CSV ('-' = stdout)")->required();
-  sub->add_option("--lead", args->opt.lead, "Fraction of each interval at which the prediction is output, in (0, 1)")
+  sub->add_option("--lead", args->opt.lead,
+                  "Fraction of each interval at which the prediction is output, in (0, 1)")
       ->capture_default_str();
   sub->add_flag("--smooth", args->opt.smooth, "Add 'smoothed' rows (unscented RTS) at sample and mid-times");
   sub->add_option("--adapt", args->adapt,
-                  "Adapt the noise from the innovations: none, r, q, qr, or auto (= none with the data-estimated noise: "
+                  "Adapt the noise from the innovations: none, r, q, qr, or auto (= none with the "
+                  "data-estimated noise: "
                   "measured best on the turntable benchmark; r alone can diverge, see docs/rk-smooth.md)")
       ->check(CLI::IsMember({"auto", "none", "r", "q", "qr"}))
       ->capture_default_str();
   sub->add_option("--window", args->window, "Innovation window N in samples (windowed memory, the default)")
       ->capture_default_str();
   sub->add_option("--fading", args->fading, "Fading-memory factor lambda in (0, 1) instead of a window");
-  sub->add_option("--meas-sigma", args->meas_sigma,
-                  "Initial measurement noise 1-sigma, one value or one per column, in file units (degrees for "
-                  "_deg); default: estimated from the data's third differences");
+  sub->add_option(
+      "--meas-sigma", args->meas_sigma,
+      "Initial measurement noise 1-sigma, one value or one per column, in file units (degrees for "
+      "_deg); default: estimated from the data's third differences");
   sub->add_option("--q", args->q,
                   "White-jerk intensity q, one value or one per column, in file units^2/s^5 (deg^2/s^5 for "
                   "_deg); default: estimated from the data's third differences");
@@ -78,7 +83,8 @@ Command AddAukfCommand(CLI::App& app) {
       ->capture_default_str();
   sub->add_flag("--derivatives", args->out.derivatives,
                 "Add <base>_rate_<unit>_s and <base>_accel_<unit>_s2 columns (e.g. yaw_rate_deg_s)");
-  sub->add_flag("--sigmas", args->out.sigmas, "Add <base>_sigma_<unit> columns (1-sigma of each value, file units)");
+  sub->add_flag("--sigmas", args->out.sigmas,
+                "Add <base>_sigma_<unit> columns (1-sigma of each value, file units)");
 
   Command cmd;
   cmd.app = sub;
@@ -102,8 +108,8 @@ Command AddAukfCommand(CLI::App& app) {
     opt.q = ParseNumbers(a.q, "--q");
     for (const auto* list : {&opt.meas_sigma, &opt.q}) {
       if (list->size() > 1 && list->size() != columns.size()) {
-        throw UsageError(std::string(list == &opt.q ? "--q" : "--meas-sigma") + ": give one value or one per column (" +
-                         std::to_string(columns.size()) + ")");
+        throw UsageError(std::string(list == &opt.q ? "--q" : "--meas-sigma") +
+                         ": give one value or one per column (" + std::to_string(columns.size()) + ")");
       }
     }
     // One value applies to every column; then file units → radians for angle columns.
@@ -146,11 +152,14 @@ Command AddAukfCommand(CLI::App& app) {
     if (!ctx.common.report_path.empty()) io::WriteJson(ctx.common.report_path, report);
     if (result.skipped_updates > 0) {
       cli::Warn("rk-smooth", ctx.common,
-                std::to_string(result.skipped_updates) + " sample rows without any value: no update, status 'predicted'");
+                std::to_string(result.skipped_updates) +
+                    " sample rows without any value: no update, status 'predicted'");
     }
     return 0;
   };
   return cmd;
 }
 
-}  // namespace rk::smooth_app
+RK_REGISTER_SUBCOMMAND(1, AddAukfCommand);
+
+}  // namespace rk::app

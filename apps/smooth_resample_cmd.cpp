@@ -13,9 +13,9 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "smooth_commands.h"
+#include "subcommand.h"
 
-namespace rk::smooth_app {
+namespace rk::app {
 namespace {
 
 struct ResampleArgs {
@@ -39,7 +39,8 @@ constexpr int kDecimals = 9;
 int RunResample(const ResampleArgs& args, const Context& ctx) {
   const bool have_at = args.at_opt->count() > 0, have_rate = args.rate_opt->count() > 0;
   if (have_at == have_rate) throw UsageError("give exactly one of --at FILE and --rate HZ");
-  if (have_rate && !(args.rate_hz > 0.0 && std::isfinite(args.rate_hz))) throw UsageError("--rate must be > 0 Hz");
+  if (have_rate && !(args.rate_hz > 0.0 && std::isfinite(args.rate_hz)))
+    throw UsageError("--rate must be > 0 Hz");
   if (have_at && (args.t0_opt->count() || args.t1_opt->count())) {
     throw UsageError("--t0/--t1 go with --rate, not with --at");
   }
@@ -56,7 +57,8 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
     }
   }
   filter::ResampleOptions opt;
-  if (!filter::ParseResampleMethod(args.method, &opt.method)) throw UsageError("unknown --method " + args.method);
+  if (!filter::ParseResampleMethod(args.method, &opt.method))
+    throw UsageError("unknown --method " + args.method);
   opt.max_gap_s = args.max_gap_s;
   opt.margin_s = args.margin_s;
   if (args.gap_opt->count() && !(args.max_gap_s > 0.0)) throw UsageError("--max-gap must be > 0 s");
@@ -141,9 +143,15 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
       }
     }
     switch (res.reason[i]) {
-      case filter::ResampleReason::kNone: w.Add("ok"); break;
-      case filter::ResampleReason::kGap: w.Add("lost"); break;
-      case filter::ResampleReason::kOutside: w.Add("invalid"); break;
+      case filter::ResampleReason::kNone:
+        w.Add("ok");
+        break;
+      case filter::ResampleReason::kGap:
+        w.Add("lost");
+        break;
+      case filter::ResampleReason::kOutside:
+        w.Add("invalid");
+        break;
     }
     w.Add(filter::ResampleReasonName(res.reason[i]));
     if (with_sigmas) {
@@ -199,22 +207,27 @@ Command AddResampleCommand(CLI::App& app) {
   CLI::App* sub = app.add_subcommand(
       "resample",
       "Bring value columns to other times (--at FILE with t_s, or --rate HZ): linear, cubic or kalman "
-      "(Singer RTS smoother); gap limit, no extrapolation beyond --margin (docs/rk-smooth-singer-resample.md)");
-  sub->add_option("-i,--input", args->input, "Input CSV with t_s and the value columns ('-' = stdin)")->required();
+      "(Singer RTS smoother); gap limit, no extrapolation beyond --margin "
+      "(docs/rk-smooth-singer-resample.md)");
+  sub->add_option("-i,--input", args->input, "Input CSV with t_s and the value columns ('-' = stdin)")
+      ->required();
   sub->add_option("--columns", args->columns, "Value columns, comma-separated (e.g. range_m)")->required();
   args->at_opt = sub->add_option("--at", args->at,
                                  "CSV of target times (column t_s, non-decreasing); its other columns (e.g. "
                                  "frame) are copied to the output");
   args->rate_opt = sub->add_option("--rate", args->rate_hz, "Target times at this rate (Hz), > 0");
-  args->t0_opt = sub->add_option("--t0", args->t0_s, "With --rate: first target time (s); default first input t_s");
-  args->t1_opt = sub->add_option("--t1", args->t1_s, "With --rate: last target time (s); default last input t_s");
+  args->t0_opt =
+      sub->add_option("--t0", args->t0_s, "With --rate: first target time (s); default first input t_s");
+  args->t1_opt =
+      sub->add_option("--t1", args->t1_s, "With --rate: last target time (s); default last input t_s");
   sub->add_option("-o,--output", args->output, "Output CSV ('-' = stdout)")->required();
   sub->add_option("--method", args->method, "linear, cubic or kalman (Singer RTS smoother)")
       ->check(CLI::IsMember({"linear", "cubic", "kalman"}))
       ->capture_default_str();
-  args->gap_opt = sub->add_option("--max-gap", args->max_gap_s,
-                  "Longest interval (s) between usable samples interpolated across; default 2.5 x the median "
-                  "input interval");
+  args->gap_opt = sub->add_option(
+      "--max-gap", args->max_gap_s,
+      "Longest interval (s) between usable samples interpolated across; default 2.5 x the median "
+      "input interval");
   sub->add_option("--margin", args->margin_s,
                   "Extrapolation allowed (s) before the first / after the last usable sample; beyond it rows "
                   "are empty with status invalid, reason outside")
@@ -236,4 +249,6 @@ Command AddResampleCommand(CLI::App& app) {
   return {sub, [args](const Context& ctx) { return RunResample(*args, ctx); }};
 }
 
-}  // namespace rk::smooth_app
+RK_REGISTER_SUBCOMMAND(3, AddResampleCommand);
+
+}  // namespace rk::app

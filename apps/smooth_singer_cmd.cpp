@@ -10,9 +10,9 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "smooth_commands.h"
+#include "subcommand.h"
 
-namespace rk::smooth_app {
+namespace rk::app {
 namespace {
 
 struct SingerArgs {
@@ -110,8 +110,10 @@ int RunSinger(const SingerArgs& args, const Context& ctx) {
       for (std::size_t c = 0; c < nc; ++c) {
         const int k = args.derivatives ? 3 : 1;
         for (int i = 0; i < k; ++i) {
-          if (!have[c]) w.AddEmpty();
-          else w.Add(std::sqrt(std::max(P[c](i, i), 0.0)) * unit(c), kDecimals);
+          if (!have[c])
+            w.AddEmpty();
+          else
+            w.Add(std::sqrt(std::max(P[c](i, i), 0.0)) * unit(c), kDecimals);
         }
       }
     }
@@ -157,7 +159,8 @@ Command AddSingerCommand(CLI::App& app) {
       "singer",
       "Singer-model Kalman filter + RTS smoother per column, with rate and acceleration columns "
       "(docs/rk-smooth-singer-resample.md)");
-  sub->add_option("-i,--input", args->input, "Input CSV with t_s and the value columns ('-' = stdin)")->required();
+  sub->add_option("-i,--input", args->input, "Input CSV with t_s and the value columns ('-' = stdin)")
+      ->required();
   sub->add_option("--columns", args->columns, "Value columns, comma-separated (e.g. range_m,az_deg,el_deg)")
       ->required();
   sub->add_option("-o,--output", args->output, "Output CSV ('-' = stdout)")->required();
@@ -172,7 +175,8 @@ Command AddSingerCommand(CLI::App& app) {
                   "Measurement noise std in column units, one value or one per column; default: estimated "
                   "from the data (MAD of 4th differences), reported in --report")
       ->delimiter(',');
-  sub->add_flag("--no-smooth", args->no_smooth, "Forward filter only (kind 'estimate'); default: RTS smoother");
+  sub->add_flag("--no-smooth", args->no_smooth,
+                "Forward filter only (kind 'estimate'); default: RTS smoother");
   sub->add_flag("--derivatives,!--no-derivatives", args->derivatives,
                 "Rate and acceleration columns <base>_rate_<unit>_s, <base>_accel_<unit>_s2 (default on)");
   sub->add_flag("--sigmas", args->sigmas, "Add 1-sigma columns <base>_sigma_<unit> (and of the derivatives)");
@@ -182,4 +186,6 @@ Command AddSingerCommand(CLI::App& app) {
   return {sub, [args](const Context& ctx) { return RunSinger(*args, ctx); }};
 }
 
-}  // namespace rk::smooth_app
+RK_REGISTER_SUBCOMMAND(2, AddSingerCommand);
+
+}  // namespace rk::app
