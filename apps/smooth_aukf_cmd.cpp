@@ -18,7 +18,7 @@ namespace rk::app {
 namespace {
 
 struct AukfArgs {
-  std::string input, output, columns, adapt = "auto", meas_sigma, q;
+  std::string input, output, columns, adapt = "auto", meas_sigma, q, noise_estimate = "ml";
   int window = 40;
   double fading = 0.0;
   bool fading_set = false;
@@ -75,10 +75,16 @@ Command AddAukfCommand(CLI::App& app) {
   sub->add_option(
       "--meas-sigma", args->meas_sigma,
       "Initial measurement noise 1-sigma, one value or one per column, in file units (degrees for "
-      "_deg); default: estimated from the data's third differences");
+      "_deg); default: estimated from the data (--noise-estimate)");
   sub->add_option("--q", args->q,
                   "White-jerk intensity q, one value or one per column, in file units^2/s^5 (deg^2/s^5 for "
-                  "_deg); default: estimated from the data's third differences");
+                  "_deg); default: estimated from the data (--noise-estimate)");
+  sub->add_option(
+         "--noise-estimate", args->noise_estimate,
+         "How --meas-sigma/--q not given are estimated per column: ml (sigma from high-order differences, q "
+         "by maximum likelihood of the innovations) or moments (third differences at lags 1-8 only)")
+      ->check(CLI::IsMember({"ml", "moments"}))
+      ->capture_default_str();
   sub->add_option("--kappa", args->opt.kappa, "Sigma-point parameter kappa: W0 = kappa/(n+kappa)")
       ->capture_default_str();
   sub->add_flag("--derivatives", args->out.derivatives,
@@ -93,6 +99,9 @@ Command AddAukfCommand(CLI::App& app) {
     filter::AukfOptions opt = a.opt;
     if (!filter::ParseAdaptMode(a.adapt == "auto" ? "none" : a.adapt, &opt.adapt.mode)) {
       throw UsageError("--adapt: unknown mode " + a.adapt);
+    }
+    if (!filter::ParseNoiseEstimator(a.noise_estimate, &opt.noise_estimator)) {
+      throw UsageError("--noise-estimate: unknown method " + a.noise_estimate);
     }
     opt.adapt.window = a.window;
     if (sub->count("--fading") > 0) {

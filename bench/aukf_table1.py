@@ -268,6 +268,7 @@ def nees(args):
     m = len(columns)
     per_run = []
     all_nees = []
+    by_time = {}  # t -> NEES of every run at t (Bar-Shalom's ANEES test)
     diverged_runs = 0
     for run in args.runs:
         truth = Truth(os.path.join(run, "truth.csv"), columns)
@@ -298,6 +299,7 @@ def nees(args):
                 s += q * q
             if ok:
                 values.append(s)
+                by_time.setdefault(round(t, 6), []).append(s)
         if not values:
             fail("%s: no %s rows with values and sigmas after %.3f s" % (run, args.kind, args.after))
         k = len(values)
@@ -315,12 +317,20 @@ def nees(args):
     grand = sum(all_nees) / total
     glo, ghi = chi2_quantile(0.025, m * total) / total, chi2_quantile(0.975, m * total) / total
     means = sorted(r["mean_nees"] for r in per_run)
+    # Bar-Shalom, Li, Kirubarajan (2001) §5.4.2: at each time the average NEES over the N runs, N·ANEES_k ~
+    # chi2(m N); the filter is consistent when about 95 % of the times lie in the two-sided 95 % band.
+    steps = [v for v in by_time.values() if len(v) == n]
+    alo, ahi = chi2_quantile(0.025, m * n) / n, chi2_quantile(0.975, m * n) / n
+    anees = [sum(v) / n for v in steps]
+    in_band = sum(alo <= a <= ahi for a in anees)
     lines = [
         "#### NEES of the `%s` rows, %d columns (%s), %d Monte Carlo runs, t − t0 ≥ %g s" % (
             args.kind, m, ",".join(columns), n, args.after),
         "",
         "| quantity | value | expected / target |",
         "|---|---|---|",
+        "| times whose ANEES (mean over the %d runs) lies in the 95 %% band %.3f–%.3f (Bar-Shalom) | %d / %d (%.1f %%) | ≈ 95 %% |" % (
+            n, alo, ahi, in_band, len(anees), 100.0 * in_band / max(1, len(anees))),
         "| mean NEES over all runs and steps | %.3f | %d (95 %% band of the grand mean %.3f–%.3f) |" % (
             grand, m, glo, ghi),
         "| median / min / max of the per-run time-averaged NEES | %.3f / %.3f / %.3f | %d |" % (
@@ -341,6 +351,7 @@ def nees(args):
         with open(args.json, "w") as f:
             json.dump({"columns": columns, "kind": args.kind, "after_s": args.after, "runs": per_run,
                        "grand_mean_nees": grand, "grand_band": [glo, ghi], "inside": inside,
+                       "anees_band": [alo, ahi], "anees_steps": len(anees), "anees_in_band": in_band,
                        "diverged_runs": diverged_runs, "failed_runs": nf}, f, indent=2)
 
 

@@ -1,8 +1,11 @@
 // rk-smooth aukf speed (issue 3 target: ≥ 100 000 steps/s for 6 columns = 18 states on one core; a
 // 1-hour 20 Hz 6-column file in ≤ 3 s end to end). One "step" = one sample interval: two half-step
 // sigma-point predictions, the measurement update and the node storage.
-//   BM_AukfStep/<adapt>      forward pass over 20 000 samples (adapt 0 none, 1 r, 2 q, 3 qr)
-//   BM_AukfStepSmooth        forward pass + unscented RTS over the same series
+//   BM_AukfStep/<adapt>      forward pass over 20 000 samples (adapt 0 none, 1 r, 2 q, 3 qr), σ and q given
+//                            (the per-file noise estimation is measured apart: BM_AukfNoiseEstimate)
+//   BM_AukfStepSmooth        forward pass + unscented RTS over the same series, σ and q given
+//   BM_AukfNoiseEstimate     RunAukf with σ, q estimated minus nothing: forward pass + estimation (compare
+//                            with BM_AukfStep/0 for the estimation's cost)
 //   BM_AukfHourEndToEnd      72 000-row CSV text → parse → filter → output CSV text (in memory;
 //                            the CLI adds only file reading/writing)
 #include <benchmark/benchmark.h>
@@ -41,9 +44,18 @@ const rk::filter::Series& BenchSeries() {
   return series;
 }
 
+// The noise of PoseCsv in SI/radians (σ) and a white-jerk intensity that covers its motion (q).
+rk::filter::AukfOptions GivenNoise() {
+  rk::filter::AukfOptions opt;
+  const double deg = 3.14159265358979323846 / 180.0;
+  opt.meas_sigma = {0.001, 0.001, 0.001, 0.05 * deg, 0.05 * deg, 0.05 * deg};
+  opt.q = {1.0, 1.0, 1.0, 1e3 * deg * deg, 1e3 * deg * deg, 1e3 * deg * deg};
+  return opt;
+}
+
 void BM_AukfStep(benchmark::State& state) {
   const auto& s = BenchSeries();
-  rk::filter::AukfOptions opt;
+  rk::filter::AukfOptions opt = GivenNoise();
   const rk::filter::AdaptMode modes[] = {rk::filter::AdaptMode::kNone, rk::filter::AdaptMode::kR,
                                          rk::filter::AdaptMode::kQ, rk::filter::AdaptMode::kQR};
   opt.adapt.mode = modes[state.range(0)];
@@ -56,9 +68,21 @@ void BM_AukfStep(benchmark::State& state) {
 }
 BENCHMARK(BM_AukfStep)->DenseRange(0, 3)->Unit(benchmark::kMillisecond);
 
+void BM_AukfNoiseEstimate(benchmark::State& state) {
+  const auto& s = BenchSeries();
+  rk::filter::AukfOptions opt;  // σ and q estimated (ml): forward pass + estimation
+  for (auto _ : state) {
+    auto r = rk::filter::RunAukf(s, opt);
+    benchmark::DoNotOptimize(r.x_filter.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<int64_t>(s.rows() - 1));
+  state.SetLabel("adapt none, sigma and q estimated (ml), items = steps");
+}
+BENCHMARK(BM_AukfNoiseEstimate)->Unit(benchmark::kMillisecond);
+
 void BM_AukfStepSmooth(benchmark::State& state) {
   const auto& s = BenchSeries();
-  rk::filter::AukfOptions opt;
+  rk::filter::AukfOptions opt = GivenNoise();
   opt.smooth = true;
   for (auto _ : state) {
     auto r = rk::filter::RunAukf(s, opt);

@@ -46,6 +46,19 @@ bool AukfOptions::Check(std::string* why) const {
   return adapt.Check(why);
 }
 
+bool ParseNoiseEstimator(const std::string& s, NoiseEstimator* e) {
+  if (s == "ml") {
+    *e = NoiseEstimator::kMaxLikelihood;
+  } else if (s == "moments") {
+    *e = NoiseEstimator::kDifferences;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+const char* NoiseEstimatorName(NoiseEstimator e) { return e == NoiseEstimator::kMaxLikelihood ? "ml" : "moments"; }
+
 Eigen::Matrix3d WhiteJerkQ(double t, double q) {
   const double t2 = t * t, t3 = t2 * t, t4 = t3 * t, t5 = t4 * t;
   Eigen::Matrix3d Q;
@@ -229,10 +242,34 @@ AukfResult RunAukf(const Series& series, const AukfOptions& options) {
   res.q.assign(static_cast<std::size_t>(m), 0.0);
   res.meas_sigma_estimated = options.meas_sigma.empty();
   res.q_estimated = options.q.empty();
+  if (options.noise_estimator == NoiseEstimator::kMaxLikelihood && (res.meas_sigma_estimated || res.q_estimated)) {
+    res.noise_fit.assign(static_cast<std::size_t>(m), NoiseMlFit{});
+    res.noise_fit_used.assign(static_cast<std::size_t>(m), false);
+  }
   for (int c = 0; c < m; ++c) {
     const std::size_t cu = static_cast<std::size_t>(c);
     double sig = 0, qq = 0;
-    const bool have = (res.meas_sigma_estimated || res.q_estimated) && EstimateColumnNoise(series, c, T, &sig, &qq);
+    bool have = (res.meas_sigma_estimated || res.q_estimated) && EstimateColumnNoise(series, c, T, &sig, &qq);
+    if (have && options.noise_estimator == NoiseEstimator::kMaxLikelihood) {
+      // σ: given, or the least motion-contaminated high-order difference estimate; q: maximum likelihood
+      // of the innovations with that σ, started from the moments (noise_ml.h).
+      double s_ml = res.meas_sigma_estimated ? 0.0 : options.meas_sigma[options.meas_sigma.size() == 1 ? 0 : cu];
+      if (res.meas_sigma_estimated) {
+        const std::vector<double> col(series.values.col(c).data(), series.values.col(c).data() + N);
+        const double s_diff = NoiseSigmaFromDifferences(col, series.is_angle[cu]);
+        if (std::isfinite(s_diff) && s_diff > 0) sig = s_diff;
+        s_ml = std::max(sig, 1e-12);
+      }
+      if (res.q_estimated) {
+        const double q0 = std::max(qq, 1e-6 * s_ml * s_ml / std::pow(T, 5));
+        NoiseMlFit fit;
+        const bool ok = FitWhiteJerkQMl(series.t_s.data(), series.values.col(c).data(), N, series.is_angle[cu], s_ml,
+                                        q0, options.noise_ml, &fit);
+        res.noise_fit[cu] = fit;
+        res.noise_fit_used[cu] = ok;
+        if (ok) qq = fit.q;
+      }
+    }
     if (res.meas_sigma_estimated && !have) {
       throw DataError(series.source, 0, 0,
                       "column '" + series.columns[cu] +
@@ -592,11 +629,20 @@ io::Json AukfReportJson(const Series& series, const AukfOptions& options, const 
     const std::size_t cu = static_cast<std::size_t>(c);
     const bool angle = series.is_angle[cu];
     const double f = angle ? geo::RadToDeg(1.0) : 1.0;
-    cols.push_back({{"name", series.columns[cu]},
+    io::Json col = {{"name", series.columns[cu]},
                     {"angle", angle},
                     {"meas_sigma", f * result.meas_sigma[cu]},
                     {"q", f * f * result.q[cu]},
-                    {"unit", angle ? "deg" : "file unit"}});
+                    {"unit", angle ? "deg" : "file unit"}};
+    if (cu < result.noise_fit.size() && result.noise_fit[cu].evaluations > 0) {
+      const NoiseMlFit& fit = result.noise_fit[cu];
+      col["noise_ml"] = {{"used", static_cast<bool>(result.noise_fit_used[cu])},
+                         {"nll_per_innovation", fit.nll},
+                         {"innovations", fit.innovations},
+                         {"evaluations", fit.evaluations},
+                         {"on_search_bound", fit.on_bound}};
+    }
+    cols.push_back(col);
   }
   io::Json j;
   j["options"] = {{"lead", options.lead},
@@ -612,6 +658,7 @@ io::Json AukfReportJson(const Series& series, const AukfOptions& options, const 
                   {"smooth", options.smooth},
                   {"meas_sigma_estimated", result.meas_sigma_estimated},
                   {"q_estimated", result.q_estimated},
+                  {"noise_estimate", NoiseEstimatorName(options.noise_estimator)},
                   {"process_model", "white jerk, Q(tau) = q [[tau^5/20, tau^4/8, tau^3/6], [tau^4/8, tau^3/3, "
                                     "tau^2/2], [tau^3/6, tau^2/2, tau]] per column"},
                   {"columns", cols}};

@@ -33,10 +33,13 @@
 //   z_i, z_j: p = z_i − v (t_i − t_0), v = (z_j − z_i)/(t_j − t_i), p'' = 0, with
 //   P = [[σ², −σ²/Δ, 0], [−σ²/Δ, 2σ²/Δ², 0], [0, 0, 600 σ²/Δ⁴ + a₃²]] (Δ = t_j − t_i, a₃ = second
 //   difference of the first three values / Δ²: deliberately loose).
-// Default noise (when not given): per column from third differences of the measurements at lags
-//   h = 1, 2, 4, 8 samples, v_h = mean (Δ³_h z)², with E v_h = 20σ² + 0.55 q (hT)⁵ for white jerk
-//   (0.55 = ∫B₂², B₂ the quadratic B-spline): weighted least-squares fit of a + b h⁵ (weights 1/v_h²),
-//   q̂ = b/(0.55 T⁵) ≥ 0, σ̂² = (v₁ − b)/20 (T = median interval; assumes near-regular sampling).
+// Default noise (when not given), per column (NoiseEstimator::kMaxLikelihood):
+//   σ̂ from high-order differences (NoiseSigmaFromDifferences, singer_series.h), q̂ by maximum likelihood of
+//   the innovations with that σ̂ (FitWhiteJerkQMl, noise_ml.h), started from the moments below.
+//   Moments (NoiseEstimator::kDifferences alone): third differences at lags h = 1, 2, 4, 8 samples,
+//   v_h = mean (Δ³_h z)², with E v_h = 20σ² + 0.55 q (hT)⁵ for white jerk (0.55 = ∫B₂², B₂ the quadratic
+//   B-spline): weighted least-squares fit of a + b h⁵ (weights 1/v_h²), q̂ = b/(0.55 T⁵) ≥ 0,
+//   σ̂² = (v₁ − b)/20 (T = median interval; assumes near-regular sampling).
 // Smoother: unscented RTS over the sequence of half steps (sample and mid-times alike): from the
 //   stored filtered (x_j, P_j) of every node, sigma points are propagated to node j+1,
 //   x⁻ = Σ W ΦX, P⁻ = Σ W (ΦX − x⁻)(·)ᵀ + Q_j, C = Σ W (X − x_j)(ΦX − x⁻)ᵀ, G = C (P⁻)⁻¹,
@@ -48,12 +51,17 @@
 #include <vector>
 
 #include "filter/adaptive_noise.h"
+#include "filter/noise_ml.h"
 #include "filter/series.h"
 #include "filter/ukf.h"
 #include "io/csv.h"
 #include "io/json_util.h"
 
 namespace rk::filter {
+
+enum class NoiseEstimator { kMaxLikelihood, kDifferences };
+bool ParseNoiseEstimator(const std::string& s, NoiseEstimator* e);
+const char* NoiseEstimatorName(NoiseEstimator e);
 
 struct AukfOptions {
   double lead = 0.5;   // fraction ℓ of each interval at which the prediction is output, in (0, 1)
@@ -62,6 +70,11 @@ struct AukfOptions {
   std::vector<double> meas_sigma;
   // White-jerk intensity q per column, SI/radians: unit²/s⁵ (one value = all columns); empty → estimated.
   std::vector<double> q;
+  // How σ and q are estimated when not given: σ from high-order differences and q by maximum likelihood of
+  // the innovations (noise_ml.h), started from the third-difference moments (EstimateColumnNoise); or those
+  // moments alone.
+  NoiseEstimator noise_estimator = NoiseEstimator::kMaxLikelihood;
+  NoiseMlOptions noise_ml;
   AdaptiveNoiseOptions adapt;
   bool smooth = false;           // run the unscented RTS smoother
   bool keep_covariance = false;  // keep every node's filtered covariance (tests, NEES)
@@ -87,6 +100,8 @@ struct AukfResult {
   std::vector<double> meas_sigma;   // initial σ per column (SI/radians)
   std::vector<double> q;            // white-jerk intensity per column (SI/radians)
   bool meas_sigma_estimated = false, q_estimated = false;
+  std::vector<NoiseMlFit> noise_fit;  // per column, when σ or q came from maximum likelihood
+  std::vector<bool> noise_fit_used;   // per column: the ML fit was used (false: moments only)
   ukf::MeasMat final_R;             // R at the end (SI/radians²)
   ukf::StateMat final_Q;            // process noise of one interval T at the end
   bool final_Q_adapted = false;

@@ -198,6 +198,44 @@ double EstimateNoiseSigma(const std::vector<double>& values, bool angle, int ord
   return 1.482602218505602 * mad / std::sqrt(Binomial(2 * order, order));
 }
 
+double NoiseSigmaFromDifferences(const std::vector<double>& values, bool angle, int min_order, int max_order,
+                                 int* order_used) {
+  std::vector<double> v;
+  for (double x : values) {
+    if (!std::isfinite(x)) continue;
+    if (angle && !v.empty()) x = v.back() + geo::WrapPi(x - v.back());
+    v.push_back(x);
+  }
+  double best = kNaN;
+  std::vector<double> dev;
+  for (int k = 1; k <= max_order && static_cast<int>(v.size()) >= k + 3; ++k) {
+    for (std::size_t i = 0; i + 1 < v.size() - static_cast<std::size_t>(k - 1); ++i) v[i] = v[i + 1] - v[i];
+    if (k < min_order) continue;
+    const std::size_t count = v.size() - static_cast<std::size_t>(k);
+    std::vector<double> d(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(count));
+    const double med = Median(d);
+    dev.resize(count);
+    for (std::size_t i = 0; i < count; ++i) dev[i] = std::abs(d[i] - med);
+    const double mad = 1.482602218505602 * Median(dev);
+    // RMS of the differences within 4 robust σ of their median: efficient like an RMS, robust like the MAD.
+    double sum = 0.0;
+    std::size_t used = 0;
+    for (double x : d) {
+      if (std::abs(x - med) <= 4.0 * mad) {
+        sum += x * x;
+        ++used;
+      }
+    }
+    if (used == 0) continue;
+    const double s = std::sqrt(sum / static_cast<double>(used) / Binomial(2 * k, k));
+    if (!(s >= best)) {
+      best = s;
+      if (order_used) *order_used = k;
+    }
+  }
+  return best;
+}
+
 SingerSeriesResult RunSingerSeries(const Series& series, const SingerSeriesOptions& options) {
   std::string why;
   if (!options.Check(&why)) throw UsageError(why);

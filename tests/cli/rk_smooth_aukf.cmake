@@ -52,7 +52,14 @@ c = rep['counts']
 assert c['samples'] == 60 and c['updates'] == 58 and c['skipped_updates'] == 1 and c['partial_updates'] == 1, c
 for k in ('repairs_q', 'repairs_r', 'repairs_p'): assert k in c
 assert len(rep['final_Q']) == 6 and len(rep['final_R']) == 2
+o = rep['options']
+assert o['noise_estimate'] == 'ml', o
+for col in o['columns']:  # σ and q estimated: q by maximum likelihood, reported with its search
+    ml = col['noise_ml']; assert ml['used'] and ml['evaluations'] > 30 and ml['innovations'] > 30, col
 EOF
+# --noise-estimate moments: no likelihood search
+rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --noise-estimate moments -o "$o/mom.csv" --report "$o/mom.json" 2>/dev/null
+python3 -c "import json; o=json.load(open('$o/mom.json'))['options']; assert o['noise_estimate']=='moments' and 'noise_ml' not in o['columns'][0], o"
 # stdout, --lead, adaptation with fading memory, explicit noise in file units
 rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --lead 0.25 --adapt qr --fading 0.9 --meas-sigma 0.05 --q 100 -o - \
   --report "$o/rep2.json" > "$o/stdout.csv" 2>/dev/null
@@ -75,6 +82,7 @@ $expect 2 "$o/x.csv" 'lead'                       -- rk-smooth aukf -i "$d/in.cs
 $expect 2 "$o/x.csv" 'meas-sigma'                 -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --meas-sigma 1,2 -o "$o/x.csv"
 $expect 2 "$o/x.csv" 'adapt'                      -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --adapt both -o "$o/x.csv"
 $expect 2 "$o/x.csv" 'fading'                     -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --fading 1.5 -o "$o/x.csv"
+$expect 2 "$o/x.csv" 'noise-estimate'             -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --noise-estimate mad -o "$o/x.csv"
 $expect 4 "$o/x.csv" 'nothere.csv'                -- rk-smooth aukf -i "$d/nothere.csv" --columns yaw_deg -o "$o/x.csv"
 $expect 4 - ''                                    -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg -o "$o/nodir/x.csv"
 cp "$d/in.csv" "$o/same.csv"
