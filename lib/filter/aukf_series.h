@@ -78,6 +78,9 @@ struct AukfOptions {
   AdaptiveNoiseOptions adapt;
   bool smooth = false;           // run the unscented RTS smoother
   bool keep_covariance = false;  // keep every node's filtered covariance (tests, NEES)
+  // Run the unscented transform on the joint state even when the columns are independent (no adaptation),
+  // instead of per column block; same results to rounding, slower (tests, benchmarks).
+  bool joint_transform = false;
   bool Check(std::string* why) const;
 };
 

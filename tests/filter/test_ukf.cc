@@ -146,8 +146,9 @@ TEST(AdaptiveNoise, WindowAndFadingMatchDirectSums) {
   EXPECT_EQ(fo.Warmup(), 5);
 }
 
-// Linear Kalman filter on the same model (Φ, white-jerk Q, partial H), started from the AUKF's node 0.
-TEST(Aukf, GoldenEqualsLinearKalmanFilterAtBothHalfSteps) {
+// Linear Kalman filter on the same model (Φ, white-jerk Q, partial H), started from the AUKF's node 0; for the
+// per-column-block unscented transform (the default without adaptation) and the joint 9-state one.
+void GoldenEqualsLinearKalmanFilter(bool joint_transform) {
   std::mt19937 rng(11);
   std::normal_distribution<double> g;
   std::uniform_real_distribution<double> u(0.03, 0.07);
@@ -173,6 +174,7 @@ TEST(Aukf, GoldenEqualsLinearKalmanFilterAtBothHalfSteps) {
   opt.lead = 0.4;
   opt.kappa = 2.0;
   opt.keep_covariance = true;
+  opt.joint_transform = joint_transform;
   const AukfResult r = RunAukf(s, opt);
   ASSERT_EQ(r.t_s.size(), static_cast<std::size_t>(2 * N - 1));
   EXPECT_EQ(r.partial_updates, 1u);
@@ -227,6 +229,61 @@ TEST(Aukf, GoldenEqualsLinearKalmanFilterAtBothHalfSteps) {
     expect_near(static_cast<std::size_t>(2 * k));
   }
   EXPECT_EQ(r.p_repairs, 0u);
+}
+
+TEST(Aukf, GoldenEqualsLinearKalmanFilterAtBothHalfSteps) {
+  {
+    SCOPED_TRACE("per-column blocks");
+    GoldenEqualsLinearKalmanFilter(false);
+  }
+  {
+    SCOPED_TRACE("joint transform");
+    GoldenEqualsLinearKalmanFilter(true);
+  }
+}
+
+// The per-column-block transform and the joint one give the same filter and smoother, with angles through
+// ±180°, a partial and an empty row, irregular sampling.
+TEST(Aukf, BlockTransformEqualsJointTransform) {
+  std::mt19937 rng(4);
+  std::normal_distribution<double> g;
+  Series s;
+  s.source = "blocks";
+  s.columns = {"yaw_deg", "x_m"};
+  s.is_angle = {true, false};
+  const int N = 150;
+  s.values.resize(N, 2);
+  double t = 0;
+  for (int k = 0; k < N; ++k) {
+    s.t_s.push_back(t);
+    s.line.push_back(static_cast<std::size_t>(k + 2));
+    s.values(k, 0) = geo::WrapPi(3.0 + 0.4 * t + 0.3 * std::sin(2 * t) + 0.002 * g(rng));  // crosses ±π
+    s.values(k, 1) = std::cos(t) + 0.01 * g(rng);
+    t += 0.04 + 0.02 * (k % 3);
+  }
+  s.values(50, 1) = std::numeric_limits<double>::quiet_NaN();
+  s.values(90, 0) = s.values(90, 1) = std::numeric_limits<double>::quiet_NaN();
+  AukfOptions opt;
+  opt.smooth = true;
+  opt.keep_covariance = true;
+  const AukfResult a = RunAukf(s, opt);
+  opt.joint_transform = true;
+  const AukfResult b = RunAukf(s, opt);
+  ASSERT_EQ(a.t_s.size(), b.t_s.size());
+  constexpr double kSameTolerance = 1e-9;  // rounding only
+  for (std::size_t j = 0; j < a.t_s.size(); ++j) {
+    const Eigen::Index jc = static_cast<Eigen::Index>(j);
+    for (int i = 0; i < 6; ++i) {
+      const double sc = std::max(1.0, std::abs(b.x_filter(i, jc)));
+      EXPECT_NEAR(i == 0 ? geo::AngleDiff(a.x_filter(i, jc), b.x_filter(i, jc)) : a.x_filter(i, jc) - b.x_filter(i, jc),
+                  0.0, kSameTolerance * sc);
+      EXPECT_NEAR(i == 0 ? geo::AngleDiff(a.x_smooth(i, jc), b.x_smooth(i, jc)) : a.x_smooth(i, jc) - b.x_smooth(i, jc),
+                  0.0, kSameTolerance * std::max(1.0, std::abs(b.x_smooth(i, jc))));
+      EXPECT_NEAR(a.sd_smooth(i, jc), b.sd_smooth(i, jc), kSameTolerance * std::max(1.0, b.sd_smooth(i, jc)));
+    }
+    const ukf::StateMat Pa = a.FilterCovariance(j), Pb = b.FilterCovariance(j);
+    EXPECT_LT((Pa - Pb).norm(), kSameTolerance * std::max(1.0, Pb.norm())) << "node " << j;
+  }
 }
 
 }  // namespace
