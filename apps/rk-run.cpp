@@ -67,7 +67,9 @@ int main(int argc, char** argv) {
     if (s.result == rk::run::TrialResult::kFailed || s.result == rk::run::TrialResult::kLocked) {
       throw rk::Error(s.exit_code, s.error);
     }
-    if (opt.dry_run || !common.quiet) std::cout << rk::run::SummaryTable(s) << std::flush;
+    // The table goes to stdout unless --quiet, or unless --report - already writes JSON there.
+    const bool report_on_stdout = rk::io::IsStdStream(common.report_path);
+    if ((opt.dry_run || !common.quiet) && !report_on_stdout) std::cout << rk::run::SummaryTable(s) << std::flush;
     if (s.steps_warned > 0 && !common.quiet) {
       for (const auto& l : s.steps) {
         if (l.status == "warning") rk::cli::Warn(kTool, common, l.id + ": " + l.reason);

@@ -183,10 +183,8 @@ TrialManifest ParseManifest(const std::string& text, const std::string& manifest
   if (!m.station.is_null()) {
     if (!m.station.is_object()) c.Fail("/station", "must be an object {lat_deg, lon_deg, h_m}");
     for (const char* k : {"lat_deg", "lon_deg", "h_m"}) {
-      if (!m.station.contains(k) || !m.station.at(k).is_number()) {
-        c.Fail("/station" + std::string(m.station.contains(k) ? "/" : "") + (m.station.contains(k) ? k : ""),
-               std::string("'") + k + "' must be a number");
-      }
+      if (!m.station.contains(k)) c.Fail("/station", std::string("missing field '") + k + "'");
+      if (!m.station.at(k).is_number()) c.Fail(std::string("/station/") + k, "must be a number");
     }
     const double lat = m.station.at("lat_deg").get<double>(), lon = m.station.at("lon_deg").get<double>();
     if (!(lat >= -90 && lat <= 90)) c.Fail("/station/lat_deg", "latitude must be in [-90, 90] degrees");
