@@ -12,8 +12,9 @@ import tempfile
 VERSION = "0.1.0"
 
 # Results of one trial, as rk-run's --report says them, and how a summary counts them.
-DONE, UP_TO_DATE, LOCKED, FAILED = "done", "up-to-date", "locked", "failed"
-COUNT_KEYS = {DONE: "done", UP_TO_DATE: "up_to_date", LOCKED: "skipped_locked", FAILED: "failed"}
+DONE, UP_TO_DATE, LOCKED, FAILED, PLANNED = "done", "up-to-date", "locked", "failed", "planned"
+COUNT_KEYS = {DONE: "done", UP_TO_DATE: "up_to_date", LOCKED: "skipped_locked", FAILED: "failed",
+              PLANNED: "planned"}
 
 
 def utc_now():
@@ -118,6 +119,8 @@ def trial_record(manifest, report_path, exit_code, wall_s, extra_reason=None, ro
             rec["reason"] = rep.get("error") or "locked by another run"
         elif rec["result"] == UP_TO_DATE:
             rec["reason"] = "up to date"
+        elif rec["result"] == PLANNED:
+            rec["reason"] = "would run %d step(s)" % rec["steps_run"] if rec["steps_run"] else "up to date"
         elif rec.get("warnings"):
             rec["reason"] = "%d warning(s): see the trial's last-run.json" % rec["warnings"]
         if exit_code not in (None, 0) and rec["result"] not in (FAILED, LOCKED):
@@ -136,7 +139,9 @@ def trial_record(manifest, report_path, exit_code, wall_s, extra_reason=None, ro
 def summarize(records, meta):
     """The summary JSON: meta (tool, root, times, cores...) + counts + per-trial rows + timing figures."""
     s = dict(meta)
-    counts = {v: 0 for v in COUNT_KEYS.values()}
+    counts = {v: 0 for v in COUNT_KEYS.values() if v != "planned"}
+    if any(r["result"] == PLANNED for r in records):
+        counts["planned"] = 0
     for r in records:
         counts[COUNT_KEYS.get(r["result"], "failed")] += 1
     s["counts"] = counts
@@ -160,6 +165,9 @@ def text_table(summary):
     head = "%s %s: %d trials: %d done, %d up to date, %d skipped (locked), %d failed" % (
         summary.get("tool", "rk-batch"), summary.get("root", ""), summary["trials_total"], c["done"],
         c["up_to_date"], c["skipped_locked"], c["failed"])
+    if "planned" in c:
+        head += " (dry run: %d with steps to run; steps column = would run/up to date)" % sum(
+            1 for r in summary["trials"] if r["result"] == PLANNED and r.get("steps_run"))
     lines.append(head)
     if summary.get("wall_s") is not None:
         extra = ""
