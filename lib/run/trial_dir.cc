@@ -144,6 +144,9 @@ void LinkOrCopy(const std::string& src, const std::string& dst) {
   if (::link(src.c_str(), dst.c_str()) == 0) return;
   fs::copy_file(src, dst, fs::copy_options::overwrite_existing, ec);
   if (ec) throw IoError(dst, "cannot copy " + src + ": " + ec.message());
+  // Keep the modification time: the next run recognises an intact product by size and mtime.
+  const auto t = fs::last_write_time(src, ec);
+  if (!ec) fs::last_write_time(dst, t, ec);
 }
 
 void SyncPath(const std::string& path) {

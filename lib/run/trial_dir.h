@@ -42,7 +42,8 @@ std::vector<std::string> RecoverAndClean(const std::string& trial_dir);
 // Creates TRIAL/out.tmp.XXXXXX and returns its absolute path.
 std::string MakeWorkDir(const std::string& trial_dir);
 
-// Hard-links src to dst (copies where links are impossible); dst's folder is created.
+// Hard-links src to dst (copies, keeping the modification time, where links are impossible); dst's
+// folder is created.
 void LinkOrCopy(const std::string& src, const std::string& dst);
 
 // fsync of a file or folder (errors ignored where the file system does not support it).
