@@ -199,27 +199,27 @@ echo ok
 ]==] REQUIRES sim_small)
 
 # Target "kill -9 of a nightly run in the middle": the next run finishes every trial, and no trial's out/
-# is ever half-written. Four trials that already have a good out/ are all forced to rebuild; rk-nightly is
+# is ever half-written. Three trials that already have a good out/ are all forced to rebuild; rk-nightly is
 # killed with SIGKILL while they run (twice, at two moments) (its rk-runs and their tools die with it through PDEATHSIG). Then
 # every out/ must be complete (old or new), the next run must bring every trial to done/up-to-date, and
 # no temporary may be left.
 rk_run_script(rk_nightly_kill9 [==[
 r=$data/run/kill; rm -rf "$r"; mkdir -p "$r"
-for k in 1 2 3 4; do fresh "$r/t$k"; done
+for k in 1 2 3; do fresh "$r/t$k"; done
 rk-nightly "$r" --no-plots -q
-for delay in 0.7 1.9; do
+for delay in 0.5 1.5; do
   rk-nightly "$r" --no-plots --force -q > /dev/null 2>&1 &
   pid=$!
   sleep "$delay"
   kill -9 "$pid"; wait "$pid" 2>/dev/null || true
-  for k in 1 2 3 4; do flock -w 20 "$r/t$k/.rk-run.lock" true; done   # the killed tree is gone
+  for k in 1 2 3; do flock -w 20 "$r/t$k/.rk-run.lock" true; done   # the killed tree is gone
   check_out "$r"/t*          # complete out/ everywhere (temporaries may remain until the next run)
 done
 set +e; rk-nightly "$r" --no-plots > "$data/run/kill.out" 2>&1; rc=$?; set -e
 cat "$data/run/kill.out"
 test "$rc" = 0
 test "$(json "$r/rk-nightly-summary.json" 'd["counts"]["failed"]')" = 0
-test "$(json "$r/rk-nightly-summary.json" 'd["counts"]["done"] + d["counts"]["up_to_date"]')" = 4
+test "$(json "$r/rk-nightly-summary.json" 'd["counts"]["done"] + d["counts"]["up_to_date"]')" = 3
 check_out --no-temporaries "$r"/t*
 echo ok
 ]==] REQUIRES sim_small)
