@@ -459,6 +459,8 @@ void TrialRun::Decide() {
       why = "--force";
     } else if (!p) {
       why = "new step";
+    } else if (!p->contains("key")) {
+      why = "new step (was " + p->value("status", std::string("?")) + ")";
     } else if (p->value("key", "") != r.key) {
       const Json pk = p->value("key_parts", Json::object());
       if (pk.value("tool", Json()) != r.key_parts["tool"]) {

@@ -95,6 +95,12 @@ json.dump(j, open(sys.argv[1], "w"), indent=1)
 PY
 rk-run "$t" --no-plots -q; test ! -e "$t/out/az/range_at_frames.csv"; test -s "$t/out/az/located.csv"
 rk-run "$t" --no-plots --dry-run | grep -Eq '^az/resample-range +off'
+python3 - "$t/trial.json" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1])); del j["steps"]["resample-range"]
+json.dump(j, open(sys.argv[1], "w"), indent=1)
+PY
+rk-run "$t" --no-plots | grep -Eq '^az/resample-range +ok .*new step \(was off\)'
 check_out --no-temporaries "$t"
 echo ok
 ]==] REQUIRES sim_small)
