@@ -25,6 +25,7 @@
 #include "io/file_util.h"
 #include "io/version.h"
 #include "run/digest.h"
+#include "run/elf_build_id.h"
 #include "run/manifest.h"
 #include "run/plan.h"
 #include "run/process.h"
@@ -161,16 +162,17 @@ ExitCode ExitCodeOfStep(const ChildResult& r) {
 }
 
 struct ToolIdentity {
-  std::string name, path, version, sha256;
+  std::string name, path, version;
+  std::string id;  // "build-id:<hex>" (ELF GNU build ID) or "sha256:<hex>" (scripts)
   std::uintmax_t bytes = 0;
   std::int64_t mtime_ns = 0;
   Json ToJson() const {
-    return {{"path", path}, {"version", version}, {"sha256", sha256}, {"bytes", bytes}, {"mtime_ns", mtime_ns}};
+    return {{"path", path}, {"version", version}, {"id", id}, {"bytes", bytes}, {"mtime_ns", mtime_ns}};
   }
 };
 
-// Finds and identifies the tools (--version output and the executable's SHA-256, with the same
-// size+mtime shortcut as the inputs).
+// Finds and identifies the tools (--version output and the executable's GNU build ID, or SHA-256 for
+// scripts, with the same size+mtime shortcut as the inputs).
 class Tools {
  public:
   // `previous`: the "tools" of the last good report; `shared`: the --tool-cache file's content (the
@@ -197,16 +199,17 @@ class Tools {
     const auto matches = [&](const Json* prev) {
       return prev && prev->is_object() && prev->value("path", "") == path &&
              prev->value("bytes", std::uintmax_t{0}) == id.bytes &&
-             prev->value("mtime_ns", std::int64_t{0}) == id.mtime_ns && prev->contains("sha256") &&
+             prev->value("mtime_ns", std::int64_t{0}) == id.mtime_ns && prev->contains("id") &&
              prev->contains("version");
     };
     const Json* prev = previous_.contains(name) ? &previous_.at(name) : nullptr;
     if (!matches(prev)) prev = shared_.contains(path) ? &shared_.at(path) : nullptr;
     if (trust_ && matches(prev)) {
-      id.sha256 = prev->at("sha256").get<std::string>();
+      id.id = prev->at("id").get<std::string>();
       id.version = prev->at("version").get<std::string>();
     } else {
-      id.sha256 = Sha256File(path);
+      const std::string build_id = ElfBuildId(path);
+      id.id = build_id.empty() ? "sha256:" + Sha256File(path) : "build-id:" + build_id;
       std::string out;
       const int rc = RunAndCapture({path, "--version"}, &out);
       const auto nl = out.find('\n');
@@ -445,7 +448,7 @@ void TrialRun::Decide() {
     for (const auto& d : st.depends_on) upstream[d] = by_id.at(d)->key;
     std::vector<std::string> args;
     for (const auto& a : st.args) args.push_back(a.out_path ? std::string(kOutDir) + "/" + a.text : a.text);
-    r.key_parts = {{"tool", {{"name", st.tool}, {"version", r.tool->version}, {"sha256", r.tool->sha256}}},
+    r.key_parts = {{"tool", {{"name", st.tool}, {"version", r.tool->version}, {"id", r.tool->id}}},
                    {"args", args},
                    {"inputs", inputs},
                    {"upstream", upstream}};

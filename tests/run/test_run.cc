@@ -13,6 +13,8 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "run/digest.h"
+#include "run/elf_build_id.h"
+#include "run/process.h"
 #include "run/json_positions.h"
 #include "run/manifest.h"
 #include "run/plan.h"
@@ -310,6 +312,23 @@ TEST(Digest, ImageSequencePattern) {
   DigestCache c2(d.path(), io::Json(), true);
   EXPECT_NE(c2.Digest("seq/%06d.png").sha256, s.sha256);
   EXPECT_THROW(c2.Digest("seq/%04d.jpg"), Error);
+}
+
+// ------------------------------------------------------------------------------------------- build ID
+TEST(ElfBuildId, MatchesReadelf) {
+  const std::string self = SelfDir() + "/test_run";
+  const std::string id = ElfBuildId(self);
+  ASSERT_FALSE(id.empty()) << "Debian's toolchain links a GNU build ID into every executable";
+  EXPECT_EQ(id.size() % 2, 0u);
+  std::string out;
+  if (::access("/usr/bin/readelf", X_OK) == 0) {
+    ASSERT_EQ(RunAndCapture({"/usr/bin/readelf", "-n", self}, &out), 0);
+    EXPECT_NE(out.find("Build ID: " + id), std::string::npos) << out;
+  }
+  TempDir d;
+  Write(d / "script", "#!/bin/sh\necho hi\n");
+  EXPECT_EQ(ElfBuildId(d / "script"), "");
+  EXPECT_EQ(ElfBuildId(d / "missing"), "");
 }
 
 // ------------------------------------------------------------------------------------ lock and out/
