@@ -3,12 +3,15 @@
 # installs the Debian packages that are missing, then configures and builds with CMake.
 #   scripts/setup.sh            Release build in build/
 #   scripts/setup.sh --asan     also an ASan+UBSan build in build-asan/
+#   scripts/setup.sh --slurm    also Slurm and munge (for the rk-slurm test, tests/run/slurm_array_test.sh)
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 ASAN=0
+SLURM=0
 for arg in "$@"; do
   case "$arg" in
     --asan) ASAN=1 ;;
+    --slurm) SLURM=1 ;;
     *) echo "setup.sh: error: unknown option $arg" >&2; exit 2 ;;
   esac
 done
@@ -19,6 +22,9 @@ PACKAGES=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   python3 python3-matplotlib ffmpeg
 )
+# Slurm daemons only on request: nobody needs them to use rangekit on one machine (rk-nightly); the
+# test that starts a one-node cluster installs them through --slurm.
+if [ "$SLURM" = 1 ]; then PACKAGES+=(slurmctld slurmd slurm-client munge); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

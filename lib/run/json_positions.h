@@ -1,0 +1,37 @@
+// Where each value of a JSON text sits (line and column), so that errors about a manifest's
+// fields can say "trial.json:7:22: ..." like every other input error (SPEC.md §4). nlohmann-json
+// keeps no positions, so this is a small scanner over the text that nlohmann already accepted
+// (it understands the same // and /* */ comments that io::ParseJson allows).
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <string>
+
+namespace rk::run {
+
+struct TextPosition {
+  std::size_t line = 0;    // 1-based; 0 = unknown
+  std::size_t column = 0;  // 1-based
+};
+
+class JsonPositions {
+ public:
+  JsonPositions() = default;
+  // Indexes every value by its JSON pointer ("" = root, "/cameras/az/role", "/cameras/az/video/0").
+  // Text that is not valid JSON leaves the index partial (positions are a convenience).
+  explicit JsonPositions(const std::string& text);
+  // Position of the value at `pointer`, or of its nearest indexed ancestor.
+  TextPosition At(const std::string& pointer) const;
+  // Position of the key naming the value at `pointer` (e.g. an unknown key), else At(pointer).
+  TextPosition KeyAt(const std::string& pointer) const;
+
+ private:
+  std::map<std::string, TextPosition> values_;
+  std::map<std::string, TextPosition> keys_;
+};
+
+// JSON pointer escaping of one reference token (~ → ~0, / → ~1).
+std::string PointerToken(const std::string& key);
+
+}  // namespace rk::run

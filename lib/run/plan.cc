@@ -1,0 +1,318 @@
+#include "run/plan.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+
+namespace rk::run {
+using io::Json;
+
+const char* PlanStateName(PlanState s) {
+  switch (s) {
+    case PlanState::kActive: return "active";
+    case PlanState::kOff: return "off";
+    case PlanState::kNotApplicable: return "not-applicable";
+  }
+  return "?";
+}
+
+std::string Step::FileStem() const {
+  std::string s = id;
+  std::replace(s.begin(), s.end(), '/', '.');
+  return s;
+}
+
+namespace {
+
+std::string NumberText(const Json& v) {
+  if (v.is_number_integer() || v.is_number_unsigned()) return v.dump();
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v.get<double>());
+  // Shortest form that reads back the same.
+  for (int prec = 1; prec <= 17; ++prec) {
+    char b[64];
+    std::snprintf(b, sizeof b, "%.*g", prec, v.get<double>());
+    if (std::strtod(b, nullptr) == v.get<double>()) return b;
+  }
+  return buf;
+}
+
+std::string ValueText(const Json& v) {
+  if (v.is_string()) return v.get<std::string>();
+  if (v.is_number()) return NumberText(v);
+  return v.dump();
+}
+
+class PlanBuilder {
+ public:
+  PlanBuilder(const TrialManifest& m, const PlanOptions& o) : m_(m), o_(o) {}
+
+  std::vector<Step> Build() {
+    for (const auto& cam : m_.cameras) {
+      switch (cam.role) {
+        case CameraRole::kBeacon: Beacon(cam); break;
+        case CameraRole::kFeatures: Features(cam); break;
+        case CameraRole::kSilhouette: Silhouette(cam); break;
+      }
+    }
+    if (m_.radar) Radar(*m_.radar);
+    return steps_;
+  }
+
+ private:
+  Step Make(const std::string& unit, const std::string& kind) {
+    const StepKindInfo* info = FindStepKind(kind);
+    Step s;
+    s.id = unit + "/" + kind;
+    s.unit = unit;
+    s.kind = kind;
+    s.tool = info->tool;
+    s.subcommand = info->subcommand;
+    if (!s.subcommand.empty()) s.args.push_back({s.subcommand});
+    s.settings = m_.Settings(unit, kind);
+    if (!s.settings.enabled) {
+      s.state = PlanState::kOff;
+      s.note = "switched off in trial.json \"steps\"";
+    }
+    return s;
+  }
+  static void In(Step* s, const std::string& option, const std::string& path) {
+    s->args.push_back({"--" + option});
+    s->args.push_back({path});
+    s->inputs.push_back({option, path});
+  }
+  static void Out(Step* s, const std::string& option, const std::string& rel) {
+    s->args.push_back({option});
+    s->args.push_back({rel, true});
+    s->outputs.push_back(rel);
+  }
+  // An input that is another step's product.
+  void Upstream(Step* s, const std::string& option, const Step& from, const std::string& rel) {
+    s->args.push_back({option});
+    s->args.push_back({rel, true});
+    Depend(s, from);
+  }
+  void Depend(Step* s, const Step& from) {
+    s->depends_on.push_back(from.id);
+    if (s->state == PlanState::kActive && from.state != PlanState::kActive) {
+      s->state = PlanState::kNotApplicable;
+      s->note = "needs " + from.id + ", which is " + PlanStateName(from.state);
+    }
+  }
+  void NotApplicable(Step* s, const std::string& why) {
+    if (s->state == PlanState::kActive) {
+      s->state = PlanState::kNotApplicable;
+      s->note = why;
+    }
+  }
+  void Finish(Step* s) {
+    for (const auto& a : OverrideArgs(s->settings)) s->args.push_back({a});
+    steps_.push_back(*s);
+  }
+  void Video(Step* s, const CameraEntry& cam) {
+    for (const auto& v : cam.video) In(s, "video", v);
+    if (!cam.frames.empty()) {
+      In(s, "frames", cam.frames);
+    } else {
+      s->args.push_back({"--fps"});
+      s->args.push_back({NumberText(Json(*cam.fps))});
+      if (cam.t0_s) {
+        s->args.push_back({"--t0"});
+        s->args.push_back({NumberText(Json(*cam.t0_s))});
+      }
+    }
+  }
+  void Plot(const Step& of, const std::string& series, const std::string& table, const std::string& columns,
+            const std::string& title) {
+    if (!o_.plots) return;
+    Step s;
+    s.id = of.unit + "/plot-" + series;
+    s.unit = of.unit;
+    s.kind = "plot";
+    s.tool = "rk-plot";
+    s.settings = m_.Settings(of.unit, "plot");
+    s.warn_only = true;
+    s.tool_report = false;
+    if (!s.settings.enabled) {
+      s.state = PlanState::kOff;
+      s.note = "switched off in trial.json \"steps\"";
+    }
+    Upstream(&s, "-i", of, table);
+    const bool user_columns = std::any_of(s.settings.options.begin(), s.settings.options.end(),
+                                          [](const auto& o) { return o.first == "columns"; });
+    if (!user_columns) {
+      s.args.push_back({"--columns"});
+      if (columns.empty()) {
+        s.args.push_back({"@columns"});  // chosen from the table's header when the step starts
+        s.plot_columns_from = table;
+      } else {
+        s.args.push_back({columns});
+      }
+    }
+    const bool user_title = std::any_of(s.settings.options.begin(), s.settings.options.end(),
+                                        [](const auto& o) { return o.first == "title"; });
+    if (!user_title) {
+      s.args.push_back({"--title"});
+      s.args.push_back({m_.name + " " + of.unit + ": " + title});
+    }
+    Out(&s, "-o", "plots/" + of.unit + "_" + series + ".png");
+    Finish(&s);
+  }
+
+  void Beacon(const CameraEntry& cam) {
+    const std::string dir = cam.name + "/";
+    Step ex = Make(cam.name, "extract-beacon");
+    Video(&ex, cam);
+    Out(&ex, "-o", dir + "track.csv");
+    ex.table = dir + "track.csv";
+    Finish(&ex);
+
+    const std::string angles = !m_.turret.empty() ? m_.turret : m_.theodolite;
+    Step lo = Make(cam.name, "locate");
+    Upstream(&lo, "--track", ex, dir + "track.csv");
+    In(&lo, "camera", cam.model);
+    if (angles.empty()) {
+      NotApplicable(&lo, "the manifest has no turret or theodolite log");
+    } else {
+      In(&lo, "turret", angles);
+    }
+    if (!m_.range.empty()) In(&lo, "range", m_.range);
+    Out(&lo, "-o", dir + "located.csv");
+    lo.table = dir + "located.csv";
+    Finish(&lo);
+    Plot(lo, "located", dir + "located.csv", m_.range.empty() ? "az_deg,el_deg" : "az_deg,el_deg,range_m",
+         "located target");
+
+    Step sm = Make(cam.name, "smooth");
+    Upstream(&sm, "-i", lo, dir + "located.csv");
+    const bool user_columns = std::any_of(sm.settings.options.begin(), sm.settings.options.end(),
+                                          [](const auto& o) { return o.first == "columns"; });
+    if (!user_columns) {
+      sm.args.push_back({"--columns"});
+      sm.args.push_back({m_.range.empty() ? "az_deg,el_deg" : "az_deg,el_deg,range_m,e_m,n_m,u_m"});
+    }
+    Out(&sm, "-o", dir + "smoothed.csv");
+    sm.table = dir + "smoothed.csv";
+    Finish(&sm);
+    Plot(sm, "rates", dir + "smoothed.csv",
+         m_.range.empty() ? "az_rate_deg_s,el_rate_deg_s" : "e_rate_m_s,n_rate_m_s,u_rate_m_s",
+         "smoothed rates");
+
+    Step rs = Make(cam.name, "resample-range");
+    if (m_.range.empty()) {
+      NotApplicable(&rs, "the manifest has no range log");
+    } else if (cam.frames.empty()) {
+      NotApplicable(&rs, "the camera has no frame-times CSV");
+    } else {
+      rs.args.push_back({"-i"});
+      rs.args.push_back({m_.range});
+      rs.inputs.push_back({"input", m_.range});
+      const bool user_columns_rs = std::any_of(rs.settings.options.begin(), rs.settings.options.end(),
+                                               [](const auto& o) { return o.first == "columns"; });
+      if (!user_columns_rs) {
+        rs.args.push_back({"--columns"});
+        rs.args.push_back({"range_m"});
+      }
+      In(&rs, "at", cam.frames);
+    }
+    Out(&rs, "-o", dir + "range_at_frames.csv");
+    rs.table = dir + "range_at_frames.csv";
+    Finish(&rs);
+  }
+
+  void Features(const CameraEntry& cam) {
+    const std::string dir = cam.name + "/";
+    Step ex = Make(cam.name, "extract-features");
+    Video(&ex, cam);
+    In(&ex, "target", cam.target);
+    Out(&ex, "-o", dir + "points.csv");
+    ex.table = dir + "points.csv";
+    Finish(&ex);
+
+    Step at = Make(cam.name, "attitude-oi");
+    Upstream(&at, "--points", ex, dir + "points.csv");
+    In(&at, "camera", cam.model);
+    In(&at, "target", cam.target);
+    if (!m_.turret.empty()) {
+      In(&at, "turret", m_.turret);
+    } else if (cam.boresight_deg) {
+      at.args.push_back({"--boresight"});
+      at.args.push_back({NumberText(Json(cam.boresight_deg->first)) + "," + NumberText(Json(cam.boresight_deg->second))});
+    } else {
+      NotApplicable(&at, "the manifest has no turret log and the camera no boresight_deg");
+    }
+    Out(&at, "-o", dir + "pose.csv");
+    at.table = dir + "pose.csv";
+    Finish(&at);
+    Plot(at, "pose", dir + "pose.csv", "yaw_deg,pitch_deg,roll_deg", "attitude (oi)");
+  }
+
+  void Silhouette(const CameraEntry& cam) {
+    const std::string dir = cam.name + "/";
+    Step ex = Make(cam.name, "extract-silhouette");
+    Video(&ex, cam);
+    Out(&ex, "-o", dir + "points.csv");
+    ex.table = dir + "points.csv";
+    Finish(&ex);
+
+    const std::string angles = !m_.theodolite.empty() ? m_.theodolite : m_.turret;
+    Step at = Make(cam.name, "attitude-cylinder");
+    Upstream(&at, "--points", ex, dir + "points.csv");
+    if (angles.empty()) {
+      NotApplicable(&at, "the manifest has no theodolite or turret log");
+    } else {
+      In(&at, "theodolite", angles);
+    }
+    In(&at, "camera", cam.model);
+    In(&at, "target", cam.target);
+    Out(&at, "-o", dir + "axis.csv");
+    at.table = dir + "axis.csv";
+    Finish(&at);
+    Plot(at, "axis", dir + "axis.csv", "yaw_deg,pitch_deg", "cylinder axis attitude");
+  }
+
+  void Radar(const RadarEntry& r) {
+    for (const char* kind : {"register", "register-batch"}) {
+      Step s = Make("radar", kind);
+      In(&s, "plots", r.plots);
+      In(&s, "nav", r.nav);
+      const std::string file = std::string("radar/") + (std::string(kind) == "register" ? "biases.csv" : "biases_batch.csv");
+      Out(&s, "-o", file);
+      s.table = file;
+      Finish(&s);
+      Plot(s, std::string(kind) == "register" ? "biases" : "biases_batch", file, "", "radar biases");
+    }
+  }
+
+  const TrialManifest& m_;
+  const PlanOptions& o_;
+  std::vector<Step> steps_;
+};
+
+}  // namespace
+
+std::vector<std::string> OverrideArgs(const StepSettings& settings) {
+  std::vector<std::string> out;
+  for (const auto& [name, value] : settings.options) {
+    if (value.is_boolean()) {
+      if (value.get<bool>()) out.push_back("--" + name);
+      continue;
+    }
+    out.push_back("--" + name);
+    if (value.is_array()) {
+      std::string joined;
+      for (const auto& v : value) joined += (joined.empty() ? "" : ",") + ValueText(v);
+      out.push_back(joined);
+    } else {
+      out.push_back(ValueText(value));
+    }
+  }
+  return out;
+}
+
+std::vector<Step> BuildPlan(const TrialManifest& manifest, const PlanOptions& options) {
+  return PlanBuilder(manifest, options).Build();
+}
+
+}  // namespace rk::run

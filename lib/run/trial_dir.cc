@@ -1,0 +1,197 @@
+#include "run/trial_dir.h"
+
+#include <fcntl.h>
+#include <stdio.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <filesystem>
+#include <thread>
+
+#include "io/error.h"
+
+namespace rk::run {
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string NowUtc() {
+  const std::time_t t = std::time(nullptr);
+  std::tm tm{};
+  ::gmtime_r(&t, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+bool StartsWith(const std::string& s, const std::string& p) { return s.compare(0, p.size(), p) == 0; }
+
+}  // namespace
+
+std::unique_ptr<TrialLock> TrialLock::Acquire(const std::string& trial_dir, double wait_s, std::string* holder) {
+  const std::string path = (fs::path(trial_dir) / kLockFile).string();
+  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd < 0) throw IoError(path, std::string("cannot create the lock file: ") + std::strerror(errno));
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(0.0, wait_s));
+  for (;;) {
+    if (::flock(fd, LOCK_EX | LOCK_NB) == 0) break;
+    if (errno != EWOULDBLOCK && errno != EINTR) {
+      const int e = errno;
+      ::close(fd);
+      throw IoError(path, std::string("cannot lock: ") + std::strerror(e));
+    }
+    if (std::chrono::steady_clock::now() >= deadline) {
+      char buf[256] = {0};
+      const ssize_t n = ::pread(fd, buf, sizeof buf - 1, 0);
+      std::string who = n > 0 ? std::string(buf, static_cast<std::size_t>(n)) : std::string();
+      while (!who.empty() && (who.back() == '\n' || who.back() == ' ')) who.pop_back();
+      if (holder) *holder = who.empty() ? "another process" : who;
+      ::close(fd);
+      return nullptr;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  const std::string me = "pid " + std::to_string(::getpid()) + " since " + NowUtc() + "\n";
+  if (::ftruncate(fd, 0) == 0) {
+    [[maybe_unused]] const ssize_t w = ::pwrite(fd, me.data(), me.size(), 0);
+  }
+  return std::unique_ptr<TrialLock>(new TrialLock(fd));
+}
+
+TrialLock::~TrialLock() {
+  if (::ftruncate(fd_, 0) != 0) {
+    // The holder text is informative only.
+  }
+  ::close(fd_);  // releases the flock
+}
+
+void RemoveOutTree(const std::string& path) {
+  std::error_code ec;
+  fs::remove(fs::path(path) / kReportFile, ec);
+  fs::remove_all(path, ec);
+}
+
+std::vector<std::string> RecoverAndClean(const std::string& trial_dir) {
+  std::vector<std::string> notes;
+  const fs::path dir(trial_dir);
+  const fs::path out = dir / kOutDir;
+  std::vector<fs::path> tmps, olds;
+  std::error_code ec;
+  for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (!it->is_directory(ec)) continue;
+    if (StartsWith(name, "out.tmp.")) tmps.push_back(it->path());
+    if (StartsWith(name, "out.old.")) olds.push_back(it->path());
+  }
+  if (ec) throw IoError(trial_dir, "cannot list the trial folder: " + ec.message());
+  std::error_code ec2;
+  if (!fs::exists(out, ec2)) {
+    // An interrupted two-rename swap: prefer the new complete folder, else the old one.
+    const auto newest_complete = [](const std::vector<fs::path>& dirs) {
+      fs::path best;
+      fs::file_time_type best_t{};
+      for (const auto& d : dirs) {
+        std::error_code e;
+        const fs::path r = d / kReportFile;
+        if (!fs::is_regular_file(r, e)) continue;
+        const auto t = fs::last_write_time(r, e);
+        if (best.empty() || t > best_t) {
+          best = d;
+          best_t = t;
+        }
+      }
+      return best;
+    };
+    fs::path pick = newest_complete(tmps);
+    if (pick.empty()) pick = newest_complete(olds);
+    if (!pick.empty()) {
+      if (::rename(pick.c_str(), out.c_str()) != 0) {
+        throw IoError(out.string(), std::string("cannot restore from ") + pick.filename().string() + ": " +
+                                        std::strerror(errno));
+      }
+      notes.push_back("restored out/ from " + pick.filename().string() + " (a swap had been interrupted)");
+    }
+  }
+  for (const auto* list : {&tmps, &olds}) {
+    for (const auto& d : *list) {
+      if (!fs::exists(d, ec2)) continue;  // the one restored above
+      RemoveOutTree(d.string());
+      notes.push_back("removed stale " + d.filename().string());
+    }
+  }
+  return notes;
+}
+
+std::string MakeWorkDir(const std::string& trial_dir) {
+  std::string templ = (fs::path(trial_dir) / "out.tmp.XXXXXX").string();
+  std::vector<char> buf(templ.begin(), templ.end());
+  buf.push_back('\0');
+  if (!::mkdtemp(buf.data())) {
+    throw IoError(trial_dir, std::string("cannot create a working folder: ") + std::strerror(errno));
+  }
+  return std::string(buf.data());
+}
+
+void LinkOrCopy(const std::string& src, const std::string& dst) {
+  std::error_code ec;
+  fs::create_directories(fs::path(dst).parent_path(), ec);
+  if (ec) throw IoError(dst, "cannot create its folder: " + ec.message());
+  if (::link(src.c_str(), dst.c_str()) == 0) return;
+  fs::copy_file(src, dst, fs::copy_options::overwrite_existing, ec);
+  if (ec) throw IoError(dst, "cannot copy " + src + ": " + ec.message());
+  // Keep the modification time: the next run recognises an intact product by size and mtime.
+  const auto t = fs::last_write_time(src, ec);
+  if (!ec) fs::last_write_time(dst, t, ec);
+}
+
+void SyncPath(const std::string& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+std::string CommitOut(const std::string& trial_dir, const std::string& work_dir) {
+  const fs::path out = fs::path(trial_dir) / kOutDir;
+  SyncPath(work_dir);
+  std::error_code ec;
+  std::string how;
+  if (!fs::exists(out, ec)) {
+    if (::rename(work_dir.c_str(), out.c_str()) != 0) {
+      throw IoError(out.string(), std::string("cannot move the new out/ into place: ") + std::strerror(errno));
+    }
+    how = "rename";
+  } else if (::renameat2(AT_FDCWD, work_dir.c_str(), AT_FDCWD, out.c_str(), RENAME_EXCHANGE) == 0) {
+    // work_dir now holds the previous out/.
+    RemoveOutTree(work_dir);
+    how = "exchange";
+  } else if (errno == EINVAL || errno == ENOSYS || errno == ENOTSUP || errno == EOPNOTSUPP) {
+    std::string old_templ = (fs::path(trial_dir) / "out.old.XXXXXX").string();
+    std::vector<char> buf(old_templ.begin(), old_templ.end());
+    buf.push_back('\0');
+    if (!::mkdtemp(buf.data())) throw IoError(trial_dir, std::string("cannot create out.old: ") + std::strerror(errno));
+    const std::string old(buf.data());
+    // rename(2) onto an empty folder replaces it.
+    if (::rename(out.c_str(), old.c_str()) != 0) {
+      throw IoError(out.string(), std::string("cannot move the previous out/ aside: ") + std::strerror(errno));
+    }
+    if (::rename(work_dir.c_str(), out.c_str()) != 0) {
+      const int e = errno;
+      ::rename(old.c_str(), out.c_str());
+      throw IoError(out.string(), std::string("cannot move the new out/ into place: ") + std::strerror(e));
+    }
+    RemoveOutTree(old);
+    how = "two-renames";
+  } else {
+    throw IoError(out.string(), std::string("cannot swap in the new out/: ") + std::strerror(errno));
+  }
+  SyncPath(trial_dir);
+  return how;
+}
+
+}  // namespace rk::run

@@ -1,0 +1,59 @@
+// The trial folder's safety mechanisms (docs/rk-run.md, "Safety"):
+// - TrialLock: flock(2) on TRIAL/.rk-run.lock, so two runs of one trial never overlap. The kernel
+//   releases it when the process dies (kill -9 included); the descriptor is close-on-exec so the
+//   tools never inherit it.
+// - The new out/ is built in TRIAL/out.tmp.XXXXXX and swapped in with one renameat2(RENAME_EXCHANGE)
+//   (old and new exchanged atomically), then the old one is removed. Where the file system cannot
+//   exchange (EINVAL/ENOTSUP, e.g. NFS), two renames are used (out → out.old.XXXXXX, tmp → out) and
+//   RecoverAndClean() completes an interrupted swap. A folder counts as complete when it holds
+//   report.json, which is written last.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rk::run {
+
+inline constexpr const char* kOutDir = "out";
+inline constexpr const char* kLockFile = ".rk-run.lock";
+inline constexpr const char* kReportFile = "report.json";  // written last: marks a complete out/
+
+class TrialLock {
+ public:
+  // Takes the lock of `trial_dir`, waiting up to `wait_s` seconds (0 = try once). Returns null when
+  // another process holds it; *holder then says who ("pid 123 since 2026-...Z"). Throws IoError if
+  // the lock file cannot be created.
+  static std::unique_ptr<TrialLock> Acquire(const std::string& trial_dir, double wait_s, std::string* holder);
+  ~TrialLock();
+  TrialLock(const TrialLock&) = delete;
+  TrialLock& operator=(const TrialLock&) = delete;
+
+ private:
+  explicit TrialLock(int fd) : fd_(fd) {}
+  int fd_;
+};
+
+// With the lock held: finishes a swap that a kill interrupted (no out/ but a complete out.tmp.* or
+// out.old.*: the newest complete one becomes out/), then removes every other out.tmp.* / out.old.*.
+// Returns one line per action, for the log.
+std::vector<std::string> RecoverAndClean(const std::string& trial_dir);
+
+// Creates TRIAL/out.tmp.XXXXXX and returns its absolute path.
+std::string MakeWorkDir(const std::string& trial_dir);
+
+// Hard-links src to dst (copies, keeping the modification time, where links are impossible); dst's
+// folder is created.
+void LinkOrCopy(const std::string& src, const std::string& dst);
+
+// fsync of a file or folder (errors ignored where the file system does not support it).
+void SyncPath(const std::string& path);
+
+// Makes `work_dir` (complete, with report.json) the trial's out/, atomically; the previous out/
+// is removed afterwards. Returns "exchange", "rename" (no previous out/) or "two-renames".
+std::string CommitOut(const std::string& trial_dir, const std::string& work_dir);
+
+// Removes a folder tree, its report.json first (so that a removal cut short never looks complete).
+void RemoveOutTree(const std::string& path);
+
+}  // namespace rk::run
