@@ -1,0 +1,59 @@
+// Shared helpers of the registration tests: a seed 002 trial simulated in memory and read through
+// the real CSV path (ReadRegistrationInput), and the truth bias vector.
+#pragma once
+
+#include <string>
+
+#include "geo/angles.h"
+#include "io/csv.h"
+#include "registration/input.h"
+#include "sim/radar_scenario.h"
+
+namespace rk::registration::testing {
+
+// Files as rk-sim radar writes them (same columns and decimals), parsed from memory.
+inline RegistrationInput ReadSimulated(const sim::RadarSimulator& sim, const InputOptions& opt = {},
+                                       bool with_track_id = true) {
+  const auto& so = sim.options();
+  std::vector<std::string> cols{"t_s", "radar", "range_m", "az_deg", "el_deg"};
+  if (with_track_id) cols.push_back("track_id");
+  io::CsvWriter plots(cols);
+  for (const sim::SimRadarPlot& p : sim.plots()) {
+    plots.Add(p.t_s, 9).Add(so.names[p.radar]).Add(p.range_m, 3);
+    plots.Add(geo::WrapDeg360(geo::RadToDeg(p.az_rad)), 9).Add(geo::RadToDeg(p.el_rad), 9);
+    if (with_track_id) {
+      if (p.target >= 0) {
+        plots.Add(p.target + 1);
+      } else {
+        plots.AddEmpty();
+      }
+    }
+    plots.EndRow();
+  }
+  io::CsvWriter nav({"t_s", "radar", "lat_deg", "lon_deg", "h_m", "yaw_deg", "pitch_deg", "roll_deg"});
+  for (const sim::SimNavRow& n : sim.nav()) {
+    nav.Add(n.t_s, 9).Add(so.names[n.radar]).Add(n.lat_deg, 10).Add(n.lon_deg, 10).Add(n.h_m, 4);
+    nav.Add(geo::WrapDeg360(geo::RadToDeg(n.yaw_rad)), 9).Add(geo::WrapDeg180(geo::RadToDeg(n.pitch_rad)), 9);
+    nav.Add(geo::WrapDeg180(geo::RadToDeg(n.roll_rad)), 9).EndRow();
+  }
+  return ReadRegistrationInput(io::CsvTable::Parse(plots.str(), "plots.csv"), io::CsvTable::Parse(nav.str(), "nav.csv"),
+                               opt);
+}
+
+inline BiasVector TruthBiases(const sim::RadarSimulator& sim) {
+  BiasVector x;
+  for (int r = 0; r < 2; ++r) {
+    for (int i = 0; i < kRadarBiasDim; ++i) x[r * kRadarBiasDim + i] = sim.platforms()[r].bias[i];
+  }
+  return x;
+}
+
+inline sim::RadarSimOptions Scenario(int scenario, int steps, std::uint64_t seed) {
+  sim::RadarSimOptions o;
+  o.scenario = scenario;
+  o.steps = steps;
+  o.seed = seed;
+  return o;
+}
+
+}  // namespace rk::registration::testing
