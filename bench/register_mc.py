@@ -16,7 +16,8 @@ Definitions (docs/rk-register.md, "Accuracy and convergence"):
   also reported: acc_rmse = 100 (1 - RMSE_K/|truth|); acc_post = 100 (1 - mean over runs and over the
   steps from convergence to K of |e_k|/|truth|); acc_mean = 100 (1 - |mean over runs of e_K|/|truth|).
 Methods: after (bernoulli, defaults), before (bernoulli -L 1), kf1..kfN (kf --track i), kfall
-(kf --track all), batch (batch, defaults). Extra rk-register options: --extra 'after=-K 5 -L 5'.
+(kf --track all), batch (batch, defaults), and any --variant NAME='bernoulli -K 1 -L 5'. Extra
+rk-register options of a method: --extra 'after=--q 0.1,1e-5,1e-5,1e-5,1e-5,1e-5'.
 Python standard library + matplotlib only.
 """
 import argparse
@@ -45,7 +46,12 @@ def to_si(index, value):
     return value if index == 0 else math.radians(value)
 
 
+VARIANTS = {}  # NAME -> rk-register arguments (--variant NAME='bernoulli -K 1 -L 5')
+
+
 def method_args(method):
+    if method in VARIANTS:
+        return VARIANTS[method]
     if method == "after":
         return ["bernoulli"]
     if method == "before":
@@ -200,10 +206,15 @@ def main():
     ap.add_argument("--tmp", default="/dev/shm" if os.access("/dev/shm", os.W_OK) else None,
                     help="scratch folder for the trials (default /dev/shm: no disk syncs)")
     ap.add_argument("--extra", action="append", default=[], help="METHOD=options for rk-register")
+    ap.add_argument("--variant", action="append", default=[],
+                    help="NAME=ARGS: a method NAME running 'rk-register ARGS', e.g. k1l5='bernoulli -K 1 -L 5'")
     ap.add_argument("--sim-args", default="", help="extra rk-sim radar options, e.g. '--index-unit step'")
     ap.add_argument("--no-plot", action="store_true")
     args = ap.parse_args()
     args.sim_args = args.sim_args.split()
+    for v in args.variant:
+        k, _, a = v.partition("=")
+        VARIANTS[k] = a.split()
     extra = {}
     for e in args.extra:
         k, _, v = e.partition("=")
