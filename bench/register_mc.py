@@ -210,7 +210,21 @@ def main():
                     help="NAME=ARGS: a method NAME running 'rk-register ARGS', e.g. k1l5='bernoulli -K 1 -L 5'")
     ap.add_argument("--sim-args", default="", help="extra rk-sim radar options, e.g. '--index-unit step'")
     ap.add_argument("--no-plot", action="store_true")
+    ap.add_argument("--replot", action="store_true",
+                    help="only redraw fig_s<S>.png from the rmse_s<S>_<method>.csv files already in --out")
     args = ap.parse_args()
+    if args.replot:
+        import glob
+        for scenario in [int(s) for s in args.scenarios.split(",")]:
+            curves = {}
+            for path in sorted(glob.glob(os.path.join(args.out, f"rmse_s{scenario}_*.csv"))):
+                m = os.path.basename(path)[len(f"rmse_s{scenario}_"):-4]
+                with open(path) as f:
+                    curves[m] = [[float(v) for v in row[1:]] for row in list(csv.reader(f))[1:]]
+            order = [m for m in ("after", "before", "batch") if m in curves] + sorted(
+                m for m in curves if m not in ("after", "before", "batch"))
+            plot(os.path.join(args.out, f"fig_s{scenario}.png"), scenario, {m: curves[m] for m in order}, "a")
+        return
     args.sim_args = args.sim_args.split()
     for v in args.variant:
         k, _, a = v.partition("=")
