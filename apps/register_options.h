@@ -162,6 +162,13 @@ inline void WriteOutputs(const InputArgs& a, const Context& ctx, const std::stri
   }
   csv.Write(a.output);
   if (!ctx.common.report_path.empty()) io::WriteJson(ctx.common.report_path, report);
+  for (int r = 0; r < 2; ++r) {
+    if (in.summary.nav_unfolded_rows[r] > 0) {
+      cli::Warn(ctx.tool, ctx.common,
+                "nav of radar '" + in.radars[r] + "': " + std::to_string(in.summary.nav_unfolded_rows[r]) +
+                    " rows had the pitch folded into [-90, 90] (yaw and roll +180); read as the continuous angles");
+    }
+  }
 }
 
 }  // namespace rk::app::reg

@@ -35,6 +35,29 @@ struct NavSeries {
   std::vector<std::optional<double>> lat, lon, h, yaw, pitch, roll;
   std::unique_ptr<track::TimeSeriesInterpolator> i_lat, i_lon, i_h, i_yaw, i_pitch, i_roll;
 
+  // Makes the attitude sequence continuous across a folded pitch: (ϑ, ϕ, α) and (ϑ + π, π − ϕ,
+  // α + π) are the same eq. 6 rotation; a writer that keeps pitch within ±90° switches between
+  // them. Each row keeps the triple closest to the previous row's; returns the rows converted.
+  std::size_t Unfold() {
+    std::size_t converted = 0;
+    for (std::size_t k = 1; k < t.size(); ++k) {
+      const double y = *yaw[k], p = *pitch[k], r = *roll[k];
+      const double dy = geo::AngleDiff(y, *yaw[k - 1]), dp = geo::AngleDiff(p, *pitch[k - 1]),
+                   dr = geo::AngleDiff(r, *roll[k - 1]);
+      const double ey = geo::AngleDiff(y + geo::kPi, *yaw[k - 1]), ep = geo::AngleDiff(geo::kPi - p, *pitch[k - 1]),
+                   er = geo::AngleDiff(r + geo::kPi, *roll[k - 1]);
+      const double keep = std::max({std::abs(dy), std::abs(dp), std::abs(dr)});
+      const double flip = std::max({std::abs(ey), std::abs(ep), std::abs(er)});
+      if (flip < keep) {
+        yaw[k] = y + geo::kPi;
+        pitch[k] = geo::kPi - p;
+        roll[k] = r + geo::kPi;
+        ++converted;
+      }
+    }
+    return converted;
+  }
+
   void Build() {
     track::InterpOptions lin;
     track::InterpOptions ang;
@@ -70,6 +93,7 @@ io::Json InputSummary::ToJson(const std::array<std::string, 2>& radars) const {
   for (int r = 0; r < 2; ++r) {
     j["plots"][radars[r]] = plots[r];
     j["nav_rows"][radars[r]] = nav_rows[r];
+    j["nav_unfolded_rows"][radars[r]] = nav_unfolded_rows[r];
   }
   j["steps"] = steps;
   j["steps_one_radar"] = steps_one_radar;
@@ -132,6 +156,7 @@ RegistrationInput ReadRegistrationInput(const io::CsvTable& plots, const io::Csv
   for (int k = 0; k < 2; ++k) {
     NavSeries& s = series.at(in.radars[k]);
     in.summary.nav_rows[k] = s.t.size();
+    in.summary.nav_unfolded_rows[k] = s.Unfold();
     s.Build();
   }
 

@@ -56,6 +56,7 @@ struct InputOptions {
 struct InputSummary {
   std::array<std::size_t, 2> plots{0, 0};     // per radar
   std::array<std::size_t, 2> nav_rows{0, 0};  // per radar
+  std::array<std::size_t, 2> nav_unfolded_rows{0, 0};  // attitude rows converted to the continuous triple
   std::size_t steps = 0;
   std::size_t steps_one_radar = 0;  // steps with plots of one radar only (no update possible)
   std::size_t clutter_plots = 0;    // plots with an empty track_id (when the column exists)

@@ -93,6 +93,18 @@ TEST(Bernoulli, EqualsKalmanWithOneTargetAndNoClutter) {
   }
 }
 
+// Scenario 1 drives radar a's pitch past 90° at t ≈ 780 s: a nav folded into ±90° must give the
+// same estimates as the continuous one.
+TEST(Bernoulli, FoldedPitchNavGivesTheSameEstimates) {
+  const sim::RadarSimulator sim(Scenario(1, kSteps, 28));
+  const RegistrationInput plain = ReadSimulated(sim), folded = ReadSimulated(sim, {}, true, true);
+  EXPECT_EQ(plain.summary.nav_unfolded_rows[0], 0u);
+  EXPECT_GT(folded.summary.nav_unfolded_rows[0], 50u);
+  const BernoulliResult a = RunBernoulli(plain, BernoulliOptions{}), b = RunBernoulli(folded, BernoulliOptions{});
+  // Same rotations up to the 1e-9° rounding of the files.
+  EXPECT_LT((a.result.x - b.result.x).cwiseAbs().maxCoeff(), 1e-6);
+}
+
 TEST(Bernoulli, MissedDetectionsAndLessTargetsThanL) {
   sim::RadarSimOptions o = Scenario(3, kSteps, 24);
   o.detection_probability = 0.8;

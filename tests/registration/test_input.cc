@@ -13,6 +13,7 @@ namespace rk::registration {
 namespace {
 
 constexpr double kInterpTol = 1e-9;  // linear interpolation of exactly linear nav
+double DegToRadForTest(double d) { return geo::DegToRad(d); }
 
 const char* kNav =
     "t_s,radar,lat_deg,lon_deg,h_m,yaw_deg,pitch_deg,roll_deg\n"
@@ -72,6 +73,31 @@ TEST(RegistrationInput, PairsScansByTimeAndInterpolatesNav) {
   const PlatformPose& pb = in.steps[0].plots[1][0].pose;
   EXPECT_NEAR(geo::WrapDeg360(geo::RadToDeg(pb.yaw_rad)), 0.4, kInterpTol);
   EXPECT_NEAR(geo::RadToDeg(in.steps[0].plots[1][0].meas.az_rad), 30, 1e-12);
+}
+
+// A nav writer keeping pitch within ±90° switches to (ϑ + 180°, 180° − ϕ, α + 180°) when the pitch
+// passes 90°: the reader converts back to the continuous triple (the bias is additive there).
+TEST(RegistrationInput, UnfoldsPitchFoldedIntoPlusMinus90) {
+  const std::string nav =
+      "t_s,radar,lat_deg,lon_deg,h_m,yaw_deg,pitch_deg,roll_deg\n"
+      "0,a,25,110,1000,10,85,5\n"
+      "0,b,25,110,1000,0,0,0\n"
+      "10,a,25,110,1000,190.2,85,185.2\n"  // continuous: 10.2, 95, 5.2
+      "10,b,25,110,1000,0,0,0\n";
+  const RegistrationInput in = Read("t_s,radar,range_m,az_deg,el_deg\n5,a,1,0,0\n5,b,1,0,0\n", nav);
+  const PlatformPose& p = in.steps[0].plots[0][0].pose;
+  EXPECT_NEAR(geo::RadToDeg(p.pitch_rad), 90.0, kInterpTol);
+  EXPECT_NEAR(geo::RadToDeg(p.yaw_rad), 10.1, kInterpTol);
+  EXPECT_NEAR(geo::RadToDeg(p.roll_rad), 5.1, kInterpTol);
+  EXPECT_EQ(in.summary.nav_unfolded_rows[0], 1u);
+  EXPECT_EQ(in.summary.nav_unfolded_rows[1], 0u);
+  // The two triples are one rotation.
+  const double y = DegToRadForTest(190.2), pi = DegToRadForTest(85), r = DegToRadForTest(185.2);
+  EXPECT_LT((RotationEnuFromPlatform(y, pi, r) -
+             RotationEnuFromPlatform(DegToRadForTest(10.2), DegToRadForTest(95), DegToRadForTest(5.2)))
+                .cwiseAbs()
+                .maxCoeff(),
+            1e-12);
 }
 
 TEST(RegistrationInput, ZeroToleranceSeparatesRadarsWithDifferentTimes) {
