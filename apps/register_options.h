@@ -132,7 +132,9 @@ inline registration::RegistrationInput ReadInput(const InputArgs& a, bool requir
   if (!io_opt.Check(&why)) throw UsageError(why);
   const io::CsvTable plots = io::CsvTable::Read(a.plots);
   const io::CsvTable nav = io::CsvTable::Read(a.nav);
-  return registration::ReadRegistrationInput(plots, nav, io_opt);
+  registration::RegistrationInput in = registration::ReadRegistrationInput(plots, nav, io_opt);
+  registration::RequirePairedSteps(in, io_opt.pair_tol_s);
+  return in;
 }
 
 // Writes the biases CSV and, with --report, the JSON report: {tool, version, command_line,

@@ -102,6 +102,35 @@ io::Json InputSummary::ToJson(const std::array<std::string, 2>& radars) const {
   return j;
 }
 
+double MedianRadarOffset(const RegistrationInput& in) {
+  std::array<std::vector<double>, 2> times;
+  for (const RegistrationStep& st : in.steps) {
+    for (int r = 0; r < 2; ++r) {
+      for (const PlotRecord& p : st.plots[r]) {
+        if (times[r].empty() || times[r].back() != p.t_s) times[r].push_back(p.t_s);
+      }
+    }
+  }
+  if (times[0].empty() || times[1].empty()) return 0.0;
+  std::vector<double> off;
+  for (double tb : times[1]) {
+    auto it = std::lower_bound(times[0].begin(), times[0].end(), tb);
+    double best = INFINITY;
+    if (it != times[0].end()) best = *it - tb;
+    if (it != times[0].begin() && std::abs(*(it - 1) - tb) < std::abs(best)) best = *(it - 1) - tb;
+    off.push_back(-best);  // t_b − t_a
+  }
+  std::nth_element(off.begin(), off.begin() + static_cast<long>(off.size() / 2), off.end());
+  return off[off.size() / 2];
+}
+
+void RequirePairedSteps(const RegistrationInput& in, double pair_tol_s) {
+  if (in.summary.steps_one_radar < in.summary.steps) return;
+  throw ProcessingError("no step has plots of both radars within --pair-tol " + FormatTime(pair_tol_s) +
+                        " s (radar '" + in.radars[1] + "' reports typically " + FormatTime(MedianRadarOffset(in)) +
+                        " s after radar '" + in.radars[0] + "'): nothing to estimate; raise --pair-tol");
+}
+
 RegistrationInput ReadRegistrationInput(const io::CsvTable& plots, const io::CsvTable& nav,
                                         const InputOptions& options) {
   std::string why;

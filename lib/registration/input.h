@@ -73,6 +73,14 @@ struct RegistrationInput {
   InputSummary summary;
 };
 
+// Median over radar b's scan times of the signed offset to radar a's nearest scan time (s): what
+// --pair-tol must cover. 0 when either radar has no plots.
+double MedianRadarOffset(const RegistrationInput& input);
+
+// Throws ProcessingError (exit 1) when no step has plots of both radars (nothing can be estimated),
+// naming the radars' typical time offset and the tolerance.
+void RequirePairedSteps(const RegistrationInput& input, double pair_tol_s);
+
 // Throws DataError (exit 3) naming file:line:col for every problem listed in the header.
 RegistrationInput ReadRegistrationInput(const io::CsvTable& plots, const io::CsvTable& nav,
                                         const InputOptions& options);

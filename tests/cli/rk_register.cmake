@@ -70,8 +70,9 @@ rk-register bernoulli --plots "$d/plots.csv" --nav "$d/nav.csv" -o "$d/b.csv" --
 test "$(grep -c '' "$d/b.csv")" = 41
 sed -n 2p "$d/b.csv" | grep -q '^0.300000000,'
 grep -q '"max_pair_offset_s": 0.3' "$d/b.json"
-rk-register bernoulli --plots "$d/plots.csv" --nav "$d/nav.csv" -o "$d/b0.csv" --pair-tol 0.1 2>/dev/null
-test "$(grep -c ',predicted' "$d/b0.csv")" = 80        # every scan alone: no pair, no update
+# A tolerance below the offset pairs nothing: exit 1 with the offset in the message, no output.
+"$expect" 1 "$d/b0.csv" "typically 0.3 s after radar 'a'.*raise --pair-tol" -- \
+  rk-register bernoulli --plots "$d/plots.csv" --nav "$d/nav.csv" -o "$d/b0.csv" --pair-tol 0.1
 echo ok
 ]==])
 
