@@ -133,12 +133,13 @@ struct SolveOutcome {
 SolveOutcome Solve(const RegistrationInput& in, const PairList& pairs, const BiasVector& x0, const BatchOptions& opt) {
   SolveOutcome out;
   out.x = x0;
-  ceres::Problem::Options popt;
-  popt.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem problem(popt);
+  // The loss outlives the problem that uses it (declared first, destroyed last).
   std::unique_ptr<ceres::LossFunction> loss;
   if (opt.loss == RobustLoss::kHuber) loss = std::make_unique<ceres::HuberLoss>(opt.loss_scale);
   if (opt.loss == RobustLoss::kCauchy) loss = std::make_unique<ceres::CauchyLoss>(opt.loss_scale);
+  ceres::Problem::Options popt;
+  popt.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  ceres::Problem problem(popt);
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     for (const auto& [i, j] : pairs[k]) {
       const PlotRecord& a = in.steps[k].plots[0][i];
