@@ -10,9 +10,9 @@
 // positions s(k), attitudes v(k)) are evaluated at κ = t − t0 in seconds (--index-unit second,
 // default: the paper gives their units as m, m/s, rad and rad/s, so 200 is a speed in m/s and
 // 0.002 a rate in rad/s) or at κ = scan index (--index-unit step, the other reading),
-// continuously in t for nav rows between scans. The default reproduces the paper's accuracy
-// figures (docs/benchmarks.md); the step reading gives 2–4 times less information. Targets are constant-velocity:
-// X(t) = X0 + V (t − t0), velocities in m/s.
+// continuously in t for nav rows between scans. With the default, rk-register comes within about a
+// point of the paper's accuracy figures (docs/benchmarks.md); the step reading carries 2–4 times
+// less information. Targets are constant-velocity: X(t) = X0 + V (t − t0), velocities in m/s.
 // Scenarios (rad, m):
 //   radar a: σ_r 50, σ_θ = σ_φ = 0.0087; biases Δr 1200, Δθ 0.0105, Δφ 0.0035, Δϑ 0.0105,
 //            Δϕ 0.0035, Δα 0.0035; s_a(κ) = [−10000, −20000 + 200κ, 40000].
