@@ -1,0 +1,176 @@
+// Options and output shared by the rk-register subcommands (register_<name>_cmd.cpp): inputs,
+// measurement noise, filter prior and process noise, output and report. Thin: everything is
+// parsed into lib/registration's Options structs; see docs/rk-register.md.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "geo/angles.h"
+#include "io/cli.h"
+#include "io/csv.h"
+#include "io/error.h"
+#include "io/file_util.h"
+#include "registration/bernoulli.h"
+#include "registration/filter_common.h"
+#include "registration/input.h"
+#include "subcommand.h"
+
+namespace rk::app::reg {
+
+struct InputArgs {
+  std::string plots, nav, output;
+  bool sigmas = false;
+  registration::InputOptions input;
+  double sigma_range_m = 50.0;
+  double sigma_az_deg = geo::RadToDeg(0.0087);
+  double sigma_el_deg = geo::RadToDeg(0.0087);
+  std::string linearize = "estimate";
+  std::string p0, q;  // six values each, file units (m, deg)
+};
+
+inline void AddInputOptions(CLI::App* sub, InputArgs* a) {
+  sub->add_option("--plots", a->plots, "Radar plots CSV: t_s,radar,range_m,az_deg,el_deg[,track_id] ('-' = stdin)")
+      ->required();
+  sub->add_option("--nav", a->nav, "Platform nav CSV: t_s,radar,lat_deg,lon_deg,h_m,yaw_deg,pitch_deg,roll_deg")
+      ->required();
+  sub->add_option("-o,--output", a->output, "Biases CSV, one row per step ('-' = stdout)")->required();
+  sub->add_flag("--sigmas", a->sigmas, "Add the 1-sigma columns <radar>_range_sigma_m ... <radar>_roll_sigma_deg");
+  sub->add_option("--pair-tol", a->input.pair_tol_s,
+                  "Plots of both radars within this many seconds of a step's first plot form one step (s)")
+      ->capture_default_str();
+  sub->add_option("--sigma-range", a->sigma_range_m, "Range noise 1-sigma of both radars (m)")->capture_default_str();
+  sub->add_option("--sigma-az", a->sigma_az_deg, "Azimuth noise 1-sigma of both radars (deg)")->capture_default_str();
+  sub->add_option("--sigma-el", a->sigma_el_deg, "Elevation noise 1-sigma of both radars (deg)")->capture_default_str();
+  sub->add_option("--linearize", a->linearize,
+                  "Linearisation point of the measurement model: estimate (current bias estimate) or measured "
+                  "(the paper's eqs. 2 and 7: about the measured values)")
+      ->check(CLI::IsMember({"estimate", "measured"}))
+      ->capture_default_str();
+  sub->add_option("--p0", a->p0,
+                  "Prior 1-sigma of each radar's biases: range_m,az_deg,el_deg,yaw_deg,pitch_deg,roll_deg "
+                  "(default 2000,1.719,1.719,1.719,1.719,1.719; prior mean 0)");
+  sub->add_option("--q", a->q,
+                  "Random-walk 1-sigma per step of each radar's biases, same order and units "
+                  "(default 0.05,1.146e-5,...: 0.05 m and 2e-7 rad)");
+}
+
+inline registration::RadarBias ParseSix(const std::string& list, const std::string& option) {
+  const std::vector<std::string> items = io::SplitList(list);
+  if (items.size() != 6) throw UsageError(option + ": give six values (range_m,az_deg,el_deg,yaw_deg,pitch_deg,roll_deg)");
+  registration::RadarBias v;
+  for (int i = 0; i < 6; ++i) {
+    try {
+      std::size_t used = 0;
+      const double x = std::stod(items[i], &used);
+      if (used != items[i].size() || !std::isfinite(x)) throw std::invalid_argument(items[i]);
+      v[i] = x / registration::BiasToFileUnit(i);
+    } catch (const std::exception&) {
+      throw UsageError(option + ": '" + items[i] + "' is not a number");
+    }
+  }
+  return v;
+}
+
+inline registration::FilterOptions MakeFilterOptions(const InputArgs& a) {
+  registration::FilterOptions f;
+  f.noise.sigma_range_m = a.sigma_range_m;
+  f.noise.sigma_az_rad = geo::DegToRad(a.sigma_az_deg);
+  f.noise.sigma_el_rad = geo::DegToRad(a.sigma_el_deg);
+  registration::ParseLinearization(a.linearize, &f.linearization);
+  if (!a.p0.empty()) f.initial_sigma = ParseSix(a.p0, "--p0");
+  if (!a.q.empty()) f.process_sigma = ParseSix(a.q, "--q");
+  std::string why;
+  if (!f.Check(&why)) throw UsageError(why);
+  return f;
+}
+
+inline void AddBernoulliOptions(CLI::App* sub, registration::BernoulliOptions* b, bool with_gate) {
+  sub->add_option("-K,--subsets", b->subsets, "Greedy partition: number of subsets K kept per component")
+      ->capture_default_str();
+  sub->add_option("-L,--subset-length", b->subset_length,
+                  "Greedy partition: subset length L (pairs per component and step); 1 = no partition")
+      ->capture_default_str();
+  if (with_gate) {
+    sub->add_option("--gate", b->gate_d2, "Gate on the pair's Mahalanobis distance squared (3 dof)")
+        ->capture_default_str();
+  }
+  sub->add_option("--pd", b->detection_probability,
+                  "Detection probability p_D in (0, 1]; 1 = the paper's no-missed-detection subsets")
+      ->capture_default_str();
+  sub->add_option("--clutter-density", b->clutter_density,
+                  "Density of false differences (per m^3); 0 = estimated per step")
+      ->capture_default_str();
+  sub->add_option("--prune", b->prune_weight, "Prune components lighter than this weight")->capture_default_str();
+  sub->add_option("--merge", b->merge_d2, "Merge components within this Mahalanobis distance squared")
+      ->capture_default_str();
+  sub->add_option("--max-components", b->max_components, "Keep at most this many Gaussian components")
+      ->capture_default_str();
+}
+
+inline void CheckPaths(const InputArgs& a, const Context& ctx) {
+  if (io::IsStdStream(a.plots) && io::IsStdStream(a.nav)) throw UsageError("--plots and --nav cannot both be stdin");
+  const std::vector<std::string> inputs{a.plots, a.nav};
+  io::CheckOutputNotInput(a.output, inputs);
+  if (!ctx.common.report_path.empty()) {
+    io::CheckOutputNotInput(ctx.common.report_path, inputs);
+    if (ctx.common.report_path == a.output && !io::IsStdStream(a.output)) {
+      throw UsageError("--report and -o name the same file " + a.output);
+    }
+    if (io::IsStdStream(ctx.common.report_path) && io::IsStdStream(a.output)) {
+      throw UsageError("--report and -o cannot both be stdout");
+    }
+  }
+}
+
+inline registration::RegistrationInput ReadInput(const InputArgs& a, bool require_track_id) {
+  registration::InputOptions io_opt = a.input;
+  io_opt.require_track_id = require_track_id;
+  std::string why;
+  if (!io_opt.Check(&why)) throw UsageError(why);
+  const io::CsvTable plots = io::CsvTable::Read(a.plots);
+  const io::CsvTable nav = io::CsvTable::Read(a.nav);
+  registration::RegistrationInput in = registration::ReadRegistrationInput(plots, nav, io_opt);
+  registration::RequirePairedSteps(in, io_opt.pair_tol_s);
+  return in;
+}
+
+// Writes the biases CSV and, with --report, the JSON report: {tool, version, command_line,
+// inputs, subcommand, radars, input, options, estimate, sigma, correlation, stats, rows_written}
+// plus `extra`.
+inline void WriteOutputs(const InputArgs& a, const Context& ctx, const std::string& subcommand,
+                         const registration::RegistrationInput& in, const registration::RegistrationResult& r,
+                         const io::Json& extra = io::Json::object()) {
+  const io::CsvWriter csv = registration::BiasesCsv(in, r, a.sigmas);
+  io::Json report;
+  if (!ctx.common.report_path.empty()) {
+    report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
+    cli::AddReportInput(&report, "plots", a.plots);
+    cli::AddReportInput(&report, "nav", a.nav);
+    report["subcommand"] = subcommand;
+    report["radars"] = {in.radars[0], in.radars[1]};
+    report["input"] = in.summary.ToJson(in.radars);
+    const io::Json est = registration::EstimateJson(in, r.x, r.P);
+    for (auto it = est.begin(); it != est.end(); ++it) report[it.key()] = it.value();
+    report["stats"] = r.stats;
+    if (report["stats"].contains("options")) {
+      report["options"] = report["stats"]["options"];
+      report["stats"].erase("options");
+    }
+    for (auto it = extra.begin(); it != extra.end(); ++it) report[it.key()] = it.value();
+    report["rows_written"] = csv.rows();
+  }
+  csv.Write(a.output);
+  if (!ctx.common.report_path.empty()) io::WriteJson(ctx.common.report_path, report);
+  for (int r = 0; r < 2; ++r) {
+    if (in.summary.nav_unfolded_rows[r] > 0) {
+      cli::Warn(ctx.tool, ctx.common,
+                "nav of radar '" + in.radars[r] + "': " + std::to_string(in.summary.nav_unfolded_rows[r]) +
+                    " rows had the pitch folded into [-90, 90] (yaw and roll +180); read as the continuous angles");
+    }
+  }
+}
+
+}  // namespace rk::app::reg

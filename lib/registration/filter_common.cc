@@ -1,0 +1,168 @@
+#include "registration/filter_common.h"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+#include "geo/angles.h"
+#include "io/csv.h"
+
+namespace rk::registration {
+namespace {
+
+constexpr double kLog2Pi = 1.8378770664093453;
+// Eigenvalue floor of a repaired covariance, relative to its largest eigenvalue.
+constexpr double kRepairRelativeFloor = 1e-15;
+constexpr int kTimeDecimals = 9;
+constexpr int kValueDecimals = 9;
+
+}  // namespace
+
+bool FilterOptions::Check(std::string* why) const {
+  if (!noise.Check(why)) return false;
+  for (int i = 0; i < kRadarBiasDim; ++i) {
+    if (!(initial_sigma[i] > 0 && std::isfinite(initial_sigma[i]))) {
+      if (why) *why = std::string("initial sigma of ") + BiasName(i) + " must be > 0";
+      return false;
+    }
+    if (!(process_sigma[i] >= 0 && std::isfinite(process_sigma[i]))) {
+      if (why) *why = std::string("process sigma of ") + BiasName(i) + " must be >= 0";
+      return false;
+    }
+  }
+  return true;
+}
+
+io::Json FilterOptions::ToJson() const {
+  io::Json j;
+  j["sigma_range_m"] = noise.sigma_range_m;
+  j["sigma_az_deg"] = geo::RadToDeg(noise.sigma_az_rad);
+  j["sigma_el_deg"] = geo::RadToDeg(noise.sigma_el_rad);
+  j["linearize"] = LinearizationName(linearization);
+  for (int i = 0; i < kRadarBiasDim; ++i) {
+    j["initial_sigma"][BiasColumnSuffix(i)] = initial_sigma[i] * BiasToFileUnit(i);
+    j["process_sigma_per_step"][BiasColumnSuffix(i)] = process_sigma[i] * BiasToFileUnit(i);
+  }
+  return j;
+}
+
+BiasMatrix InitialCovariance(const FilterOptions& opt) {
+  BiasVector v;
+  v << opt.initial_sigma.cwiseAbs2(), opt.initial_sigma.cwiseAbs2();
+  return v.asDiagonal();
+}
+
+BiasMatrix ProcessCovariance(const FilterOptions& opt) {
+  BiasVector v;
+  v << opt.process_sigma.cwiseAbs2(), opt.process_sigma.cwiseAbs2();
+  return v.asDiagonal();
+}
+
+io::Json FilterCounters::ToJson() const {
+  io::Json j;
+  j["steps"] = steps;
+  j["steps_updated"] = steps_updated;
+  j["steps_predicted"] = steps_predicted;
+  j["pairs_evaluated"] = pairs_evaluated;
+  j["updates"] = updates;
+  j["innovation_not_pd"] = innovation_not_pd;
+  j["covariance_repairs"] = covariance_repairs;
+  return j;
+}
+
+bool SymmetrizeAndRepair(BiasMatrix* P) {
+  *P = 0.5 * (*P + P->transpose()).eval();
+  Eigen::LLT<BiasMatrix> llt(*P);
+  if (llt.info() == Eigen::Success) return false;
+  Eigen::SelfAdjointEigenSolver<BiasMatrix> es(*P);
+  BiasVector ev = es.eigenvalues();
+  const double floor = std::max(ev.maxCoeff(), 1e-300) * kRepairRelativeFloor;
+  for (int i = 0; i < kBiasDim; ++i) ev[i] = std::max(ev[i], floor);
+  *P = es.eigenvectors() * ev.asDiagonal() * es.eigenvectors().transpose();
+  *P = 0.5 * (*P + P->transpose()).eval();
+  return true;
+}
+
+bool UpdateWithPair(const PlotLinearization& a, const PlotLinearization& b, BiasVector* m, BiasMatrix* P,
+                    FilterCounters* counters, double* d2, double* log_q) {
+  ++counters->pairs_evaluated;
+  const Vec3 nu = b.PointAt(m->tail<kRadarBiasDim>()) - a.PointAt(m->head<kRadarBiasDim>());
+  Eigen::Matrix<double, 3, kBiasDim> H;
+  H.leftCols<kRadarBiasDim>() = a.J;
+  H.rightCols<kRadarBiasDim>() = -b.J;
+  const Mat3 R = a.noise_cov + b.noise_cov;
+  const Eigen::Matrix<double, kBiasDim, 3> PHt = *P * H.transpose();
+  Mat3 S = H * PHt + R;
+  S = 0.5 * (S + S.transpose()).eval();
+  Eigen::LLT<Mat3> llt(S);
+  if (llt.info() != Eigen::Success) {
+    ++counters->innovation_not_pd;
+    return false;
+  }
+  const Eigen::Matrix<double, kBiasDim, 3> K = llt.solve(PHt.transpose()).transpose();
+  const Vec3 w = llt.matrixL().solve(nu);
+  if (d2) *d2 = w.squaredNorm();
+  if (log_q) {
+    const Mat3 L = llt.matrixL();
+    *log_q = -0.5 * w.squaredNorm() - 0.5 * 3 * kLog2Pi - std::log(L(0, 0) * L(1, 1) * L(2, 2));
+  }
+  *m += K * nu;
+  const BiasMatrix A = BiasMatrix::Identity() - K * H;
+  *P = A * *P * A.transpose() + K * R * K.transpose();
+  if (SymmetrizeAndRepair(P)) ++counters->covariance_repairs;
+  ++counters->updates;
+  return true;
+}
+
+io::CsvWriter BiasesCsv(const RegistrationInput& input, const RegistrationResult& result, bool sigmas) {
+  std::vector<std::string> cols{"t_s"};
+  for (int r = 0; r < 2; ++r) {
+    for (int i = 0; i < kRadarBiasDim; ++i) cols.push_back(input.radars[r] + "_" + BiasColumnSuffix(i));
+  }
+  cols.push_back("status");
+  if (sigmas) {
+    for (int r = 0; r < 2; ++r) {
+      for (int i = 0; i < kRadarBiasDim; ++i) cols.push_back(input.radars[r] + "_" + BiasSigmaColumnSuffix(i));
+    }
+  }
+  io::CsvWriter csv(cols);
+  for (const StepEstimate& s : result.steps) {
+    csv.Add(s.t_s, kTimeDecimals);
+    for (int j = 0; j < kBiasDim; ++j) csv.Add(s.x[j] * BiasToFileUnit(j % kRadarBiasDim), kValueDecimals);
+    csv.Add(RowStatusName(s.status));
+    if (sigmas) {
+      for (int j = 0; j < kBiasDim; ++j) {
+        csv.Add(s.sigma[j] * BiasToFileUnit(j % kRadarBiasDim), kValueDecimals);
+      }
+    }
+    csv.EndRow();
+  }
+  return csv;
+}
+
+io::Json EstimateJson(const RegistrationInput& input, const BiasVector& x, const BiasMatrix& P) {
+  io::Json j;
+  io::Json corr = io::Json::array();
+  std::vector<std::string> names;
+  for (int r = 0; r < 2; ++r) {
+    for (int i = 0; i < kRadarBiasDim; ++i) {
+      const int k = r * kRadarBiasDim + i;
+      const double u = BiasToFileUnit(i);
+      j["estimate"][input.radars[r]][BiasColumnSuffix(i)] = x[k] * u;
+      j["sigma"][input.radars[r]][BiasColumnSuffix(i)] = std::sqrt(std::max(0.0, P(k, k))) * u;
+      names.push_back(input.radars[r] + "_" + BiasColumnSuffix(i));
+    }
+  }
+  for (int a = 0; a < kBiasDim; ++a) {
+    io::Json row = io::Json::array();
+    for (int b = 0; b < kBiasDim; ++b) {
+      const double d = std::sqrt(std::max(0.0, P(a, a)) * std::max(0.0, P(b, b)));
+      row.push_back(d > 0 ? P(a, b) / d : 0.0);
+    }
+    corr.push_back(row);
+  }
+  j["correlation"] = {{"order", names}, {"matrix", corr}};
+  return j;
+}
+
+}  // namespace rk::registration

@@ -1,0 +1,84 @@
+// What the recursive bias filters (Bernoulli, known-association KF) share: the state model,
+// options, the Joseph-form pair update and the per-step output.
+//
+// State (eq. 17): x = [Δr_a Δθ_a Δφ_a Δϑ_a Δϕ_a Δα_a Δr_b … Δα_b] (m, rad), random walk (eq. 21)
+//   x_k = x_{k−1} + w_{k−1},  w ~ N(0, Q),  Q = diag(process_sigma², process_sigma²) per step.
+// Prior x_0 ~ N(0, P_0), P_0 = diag(initial_sigma², initial_sigma²) (both radars alike).
+// Update with one pair (z = H x + G v, radar_model.h), Joseph form:
+//   S = H P Hᵀ + G R Gᵀ,  K = P Hᵀ S⁻¹,  m ← m + K ν,
+//   P ← (I − K H) P (I − K H)ᵀ + K G R Gᵀ Kᵀ, then symmetrised; a P that is not positive
+//   definite afterwards is repaired (eigenvalues clamped) and counted.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "io/json_util.h"
+#include "io/row_status.h"
+#include "registration/input.h"
+#include "registration/radar_model.h"
+
+namespace rk::registration {
+
+struct FilterOptions {
+  MeasurementNoise noise;
+  Linearization linearization = Linearization::kEstimate;
+  // P_0 1-sigma of each bias of a radar (m, rad); the initial mean is 0 (biases unknown).
+  RadarBias initial_sigma = (RadarBias() << 2000.0, 0.03, 0.03, 0.03, 0.03, 0.03).finished();
+  // Q 1-sigma per step of the random walk (m, rad); > 0 keeps the filter from freezing.
+  RadarBias process_sigma = (RadarBias() << 0.05, 2e-7, 2e-7, 2e-7, 2e-7, 2e-7).finished();
+  bool Check(std::string* why) const;
+  io::Json ToJson() const;
+};
+
+BiasMatrix InitialCovariance(const FilterOptions& opt);
+BiasMatrix ProcessCovariance(const FilterOptions& opt);
+
+// Counters every filter reports.
+struct FilterCounters {
+  std::int64_t steps = 0;
+  std::int64_t steps_updated = 0;     // steps with at least one accepted pair
+  std::int64_t steps_predicted = 0;   // steps without an update (status 'predicted')
+  std::int64_t pairs_evaluated = 0;   // pair likelihoods computed
+  std::int64_t updates = 0;           // pair updates applied (all hypotheses)
+  std::int64_t innovation_not_pd = 0;  // S not positive definite: pair skipped
+  std::int64_t covariance_repairs = 0; // P not positive definite after an update: eigenvalues clamped
+  io::Json ToJson() const;
+};
+
+// Symmetrises P; if it is not positive definite, clamps its eigenvalues to a small positive
+// floor and returns true (a repair).
+bool SymmetrizeAndRepair(BiasMatrix* P);
+
+// Joseph-form update of (m, P) with the pair (a, b): ν = g_b(m_b) − g_a(m_a). Returns false
+// (nothing changed) if S is not positive definite. d2 = νᵀ S⁻¹ ν; log_q = ln N(ν; 0, S).
+bool UpdateWithPair(const PlotLinearization& a, const PlotLinearization& b, BiasVector* m, BiasMatrix* P,
+                    FilterCounters* counters, double* d2 = nullptr, double* log_q = nullptr);
+
+// Per-step output of any method.
+struct StepEstimate {
+  double t_s = 0.0;
+  RowStatus status = RowStatus::kPredicted;
+  BiasVector x = BiasVector::Zero();
+  BiasVector sigma = BiasVector::Zero();
+  int pairs_used = 0;   // pairs in the reported estimate's update this step
+  int components = 1;   // Gaussian components after pruning/merging (1 for the KF)
+};
+
+struct RegistrationResult {
+  std::string method;  // "bernoulli", "kf", "batch"
+  std::vector<StepEstimate> steps;
+  BiasVector x = BiasVector::Zero();  // final estimate
+  BiasMatrix P = BiasMatrix::Zero();  // its covariance
+  io::Json stats = io::Json::object();  // method-specific statistics (counters, options)
+};
+
+// Biases CSV of SPEC.md §2.1: t_s + per radar R: R_range_m,R_az_deg,R_el_deg,R_yaw_deg,
+// R_pitch_deg,R_roll_deg, then status; with `sigmas`, R_range_sigma_m … R_roll_sigma_deg after.
+io::CsvWriter BiasesCsv(const RegistrationInput& input, const RegistrationResult& result, bool sigmas);
+// Final estimate, 1-sigma and correlation for the report: {"<radar>": {"range_m": .., ...},
+// "sigma": {...}, "correlation": 12x12}.
+io::Json EstimateJson(const RegistrationInput& input, const BiasVector& x, const BiasMatrix& P);
+
+}  // namespace rk::registration

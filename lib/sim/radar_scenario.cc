@@ -1,0 +1,483 @@
+#include "sim/radar_scenario.h"
+
+#include <Eigen/Geometry>
+#include <GeographicLib/Geocentric.hpp>
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "geo/angles.h"
+#include "io/csv.h"
+#include "io/error.h"
+#include "sim/trial_folder.h"
+
+namespace rk::sim {
+namespace {
+
+constexpr int kTimeDecimals = 9;
+constexpr int kAngleDecimals = 9;
+constexpr int kRangeDecimals = 3;
+constexpr int kLatLonDecimals = 10;
+constexpr int kHeightDecimals = 4;
+constexpr int kPaperTargets = 5;
+// Random extra targets: horizontal speed range (m/s).
+constexpr double kExtraMinSpeed = 50.0, kExtraMaxSpeed = 400.0;
+// Clutter box when there is no target to span it.
+constexpr double kNoTargetMinRangeM = 1000.0, kNoTargetMaxRangeM = 300000.0;
+constexpr double kNoTargetMinElRad = -geo::kPi / 6, kNoTargetMaxElRad = geo::kPi / 3;
+
+std::mt19937_64 Stream(std::uint64_t seed, std::uint64_t stream) {
+  std::seed_seq seq{static_cast<std::uint32_t>(seed & 0xffffffffu), static_cast<std::uint32_t>(seed >> 32),
+                    static_cast<std::uint32_t>(stream)};
+  return std::mt19937_64(seq);
+}
+
+// WGS-84 geometry of the common frame.
+struct CommonFrame {
+  Eigen::Vector3d origin_ecef;
+  Eigen::Matrix3d R_ecef_enu0;
+  CommonFrame(double lat0, double lon0, double h0) {
+    std::vector<double> M(9);
+    double X, Y, Z;
+    GeographicLib::Geocentric::WGS84().Forward(lat0, lon0, h0, X, Y, Z, M);
+    origin_ecef = Eigen::Vector3d(X, Y, Z);
+    R_ecef_enu0 << M[0], M[1], M[2], M[3], M[4], M[5], M[6], M[7], M[8];
+  }
+  Eigen::Vector3d Ecef(const Eigen::Vector3d& enu) const { return origin_ecef + R_ecef_enu0 * enu; }
+  // Geodetic (deg, deg, m) and the local ENU axes there.
+  Eigen::Vector3d Geodetic(const Eigen::Vector3d& enu, Eigen::Matrix3d* R_ecef_enu) const {
+    const Eigen::Vector3d x = Ecef(enu);
+    double lat, lon, h;
+    GeographicLib::Geocentric::WGS84().Reverse(x.x(), x.y(), x.z(), lat, lon, h);
+    if (R_ecef_enu) {
+      std::vector<double> M(9);
+      double X, Y, Z;
+      GeographicLib::Geocentric::WGS84().Forward(lat, lon, h, X, Y, Z, M);
+      *R_ecef_enu << M[0], M[1], M[2], M[3], M[4], M[5], M[6], M[7], M[8];
+    }
+    return Eigen::Vector3d(lat, lon, h);
+  }
+};
+
+// SPEC.md §3: R_enu_B = Rz(−ϑ)·Rx(−ϕ)·Ry(−α) from elementary rotations.
+Eigen::Matrix3d RotationEnuFromBody(const Eigen::Vector3d& att) {
+  return (Eigen::AngleAxisd(-att[0], Eigen::Vector3d::UnitZ()) *
+          Eigen::AngleAxisd(-att[1], Eigen::Vector3d::UnitX()) *
+          Eigen::AngleAxisd(-att[2], Eigen::Vector3d::UnitY()))
+      .toRotationMatrix();
+}
+
+// (r, θ, φ) of a body-frame vector (x right, y forward, z up): θ clockwise from forward.
+Eigen::Vector3d Spherical(const Eigen::Vector3d& d) {
+  return Eigen::Vector3d(d.norm(), geo::WrapTwoPi(std::atan2(d.x(), d.y())), std::atan2(d.z(), std::hypot(d.x(), d.y())));
+}
+
+Eigen::Vector3d Measure(const CommonFrame& frame, const Eigen::Vector3d& target_enu, const Eigen::Vector3d& platform_enu,
+                        const Eigen::Matrix3d& R_ecef_enu_platform, const Eigen::Vector3d& att) {
+  const Eigen::Vector3d d_ecef = frame.Ecef(target_enu) - frame.Ecef(platform_enu);
+  const Eigen::Vector3d d_enu = R_ecef_enu_platform.transpose() * d_ecef;
+  return Spherical(RotationEnuFromBody(att).transpose() * d_enu);
+}
+
+}  // namespace
+
+Eigen::Vector3d TrueRadarMeasurement(const Eigen::Vector3d& target_enu, const Eigen::Vector3d& platform_enu,
+                                     const Eigen::Vector3d& attitude, double origin_lat_deg, double origin_lon_deg,
+                                     double origin_h_m) {
+  const CommonFrame frame(origin_lat_deg, origin_lon_deg, origin_h_m);
+  Eigen::Matrix3d R;
+  frame.Geodetic(platform_enu, &R);
+  return Measure(frame, target_enu, platform_enu, R, attitude);
+}
+
+bool RadarSimOptions::Check(std::string* why) const {
+  auto fail = [&](const std::string& w) {
+    if (why) *why = w;
+    return false;
+  };
+  if (scenario < 1 || scenario > 3) return fail("scenario must be 1, 2 or 3");
+  if (steps < 1 || steps > 100000) return fail("steps must be in [1, 100000]");
+  if (!(dt_s > 0 && dt_s <= 3600)) return fail("scan interval must be in (0, 3600] s");
+  if (!(t0_s >= 0 && std::isfinite(t0_s))) return fail("t0 must be a finite time >= 0 s");
+  if (targets < 0 || targets > 100) return fail("targets must be in [0, 100]");
+  if (!(std::isfinite(clutter_rate) && clutter_rate <= 1000)) return fail("clutter rate must be <= 1000 per scan");
+  if (!(detection_probability > 0 && detection_probability <= 1)) {
+    return fail("detection probability must be in (0, 1]");
+  }
+  if (!(origin_lat_deg >= -89 && origin_lat_deg <= 89)) return fail("origin latitude must be in [-89, 89] deg");
+  if (!std::isfinite(origin_lon_deg) || !(std::abs(origin_h_m) <= 1e5)) return fail("origin longitude/height invalid");
+  if (!(std::abs(time_offset_b_s) < 0.5 * dt_s)) return fail("radar b time offset must be below half the scan interval");
+  if (t0_s + std::min(0.0, time_offset_b_s) < 0) return fail("t0 + radar b time offset must be >= 0 s");
+  if (!(nav_rate_hz >= 0 && nav_rate_hz <= 1000)) return fail("nav rate must be in [0, 1000] Hz");
+  if (!(attitude_noise_rad >= 0 && attitude_noise_rad < 0.1)) return fail("attitude noise must be in [0, 5.7] deg");
+  if (!(clutter_margin_m >= 0 && clutter_margin_rad >= 0 && clutter_margin_rad < geo::kPi)) {
+    return fail("clutter margins must be >= 0 (angle < 180 deg)");
+  }
+  if (names[0].empty() || names[1].empty() || names[0] == names[1]) return fail("radar names must be two distinct names");
+  for (const auto& n : names) {
+    if (n.find_first_of(",\"\n\r") != std::string::npos) return fail("radar names must not contain , \" or line breaks");
+  }
+  return true;
+}
+
+io::Json RadarSimOptionsToJson(const RadarSimOptions& o) {
+  io::Json j;
+  j["scenario"] = o.scenario;
+  j["steps"] = o.steps;
+  j["dt_s"] = o.dt_s;
+  j["t0_s"] = o.t0_s;
+  j["targets"] = o.targets;
+  j["clutter_rate"] = o.ClutterRate();
+  j["detection_probability"] = o.detection_probability;
+  j["origin"] = {{"lat_deg", o.origin_lat_deg}, {"lon_deg", o.origin_lon_deg}, {"h_m", o.origin_h_m}};
+  j["time_offset_b_s"] = o.time_offset_b_s;
+  j["nav_rate_hz"] = o.nav_rate_hz;
+  j["attitude_noise_deg"] = geo::RadToDeg(o.attitude_noise_rad);
+  j["index_unit"] = o.index_unit == RadarIndexUnit::kStep ? "step" : "second";
+  j["clutter_margin_m"] = o.clutter_margin_m;
+  j["clutter_margin_deg"] = geo::RadToDeg(o.clutter_margin_rad);
+  j["names"] = {o.names[0], o.names[1]};
+  j["seed"] = o.seed;
+  return j;
+}
+
+RadarSimulator::RadarSimulator(RadarSimOptions opt) : opt_(std::move(opt)) {
+  std::string why;
+  if (!opt_.Check(&why)) throw UsageError(why);
+
+  // Platforms (seed 002 §4.1).
+  RadarPlatformSpec& a = platforms_[0];
+  a.p0_enu = Eigen::Vector3d(-10000, -20000, 40000);
+  a.p_rate = Eigen::Vector3d(0, 200, 0);
+  a.bias = {1200.0, 0.0105, 0.0035, 0.0105, 0.0035, 0.0035};
+  RadarPlatformSpec& b = platforms_[1];
+  b.p0_enu = Eigen::Vector3d(20000, 20000, 20000);
+  b.p_rate = Eigen::Vector3d(10, 8, 0);
+  b.bias = {1000.0, 0.0087, 0.0047, 0.0087, 0.0047, 0.0037};
+  if (opt_.scenario == 2) {
+    a.att0 = Eigen::Vector3d(0, 0.01, 0.01);
+    a.att_rate = Eigen::Vector3d(8e-4, 8e-4, 8e-4);
+    b.att_rate = Eigen::Vector3d(8e-4, 4e-4, 4e-4);
+  } else {
+    a.att0 = Eigen::Vector3d(0, 0.01, 0.01);
+    a.att_rate = Eigen::Vector3d(0.002, 0.002, 0.002);
+    b.att_rate = Eigen::Vector3d(0.002, 0.001, 0.001);
+  }
+
+  // Targets.
+  const double paper[kPaperTargets][6] = {{10000, 55, 1000, 150, 50000, 0},
+                                          {9000, 50, 900, 150, 50000, 0},
+                                          {1000, 250, 3000, -10, 10000, 0},
+                                          {15000, -10, 500, 50, 15000, 0},
+                                          {3000, 300, 3600, 400, 20000, 0}};
+  std::mt19937_64 rng_targets = Stream(opt_.seed, 1);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
+  for (int i = 0; i < opt_.targets; ++i) {
+    RadarTargetSpec t;
+    if (i < kPaperTargets) {
+      t.p0_enu = Eigen::Vector3d(paper[i][0], paper[i][2], paper[i][4]);
+      t.v_enu = Eigen::Vector3d(paper[i][1], paper[i][3], paper[i][5]);
+    } else {
+      t.p0_enu = Eigen::Vector3d(1000 + 14000 * u01(rng_targets), 500 + 3100 * u01(rng_targets),
+                                 10000 + 40000 * u01(rng_targets));
+      const double speed = kExtraMinSpeed + (kExtraMaxSpeed - kExtraMinSpeed) * u01(rng_targets);
+      const double dir = geo::kTwoPi * u01(rng_targets);
+      t.v_enu = Eigen::Vector3d(speed * std::sin(dir), speed * std::cos(dir), 0);
+    }
+    targets_.push_back(t);
+  }
+
+  const CommonFrame frame(opt_.origin_lat_deg, opt_.origin_lon_deg, opt_.origin_h_m);
+  std::array<std::mt19937_64, 2> rng_noise{Stream(opt_.seed, 2), Stream(opt_.seed, 3)};
+  std::mt19937_64 rng_detect = Stream(opt_.seed, 4), rng_clutter = Stream(opt_.seed, 5),
+                  rng_shuffle = Stream(opt_.seed, 6), rng_nav = Stream(opt_.seed, 7);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::poisson_distribution<int> poisson(std::max(opt_.ClutterRate(), 1e-300));
+  const bool clutter = opt_.ClutterRate() > 0;
+
+  std::vector<SimRadarPlot> scan;
+  for (int k = 0; k < opt_.steps; ++k) {
+    for (int r = 0; r < 2; ++r) {
+      const RadarPlatformSpec& ps = platforms_[r];
+      const double t = ScanTime(r, k);
+      const Eigen::Vector3d s_enu = PlatformEnu(r, t), att = PlatformAttitude(r, t);
+      Eigen::Matrix3d R_ecef_enu;
+      frame.Geodetic(s_enu, &R_ecef_enu);
+      scan.clear();
+      double rmin = INFINITY, rmax = -INFINITY, emin = INFINITY, emax = -INFINITY;
+      double ss = 0, cs = 0;
+      std::vector<double> az_true;
+      for (int i = 0; i < opt_.targets; ++i) {
+        const Eigen::Vector3d m = Measure(frame, TargetEnu(i, t), s_enu, R_ecef_enu, att);
+        rmin = std::min(rmin, m[0]);
+        rmax = std::max(rmax, m[0]);
+        emin = std::min(emin, m[2]);
+        emax = std::max(emax, m[2]);
+        ss += std::sin(m[1]);
+        cs += std::cos(m[1]);
+        az_true.push_back(m[1]);
+        const double n0 = gauss(rng_noise[r]), n1 = gauss(rng_noise[r]), n2 = gauss(rng_noise[r]);
+        if (u01(rng_detect) >= opt_.detection_probability) {
+          ++missed_;
+          continue;
+        }
+        SimRadarPlot p;
+        p.t_s = t;
+        p.radar = r;
+        p.target = i;
+        p.range_m = m[0] + ps.bias[0] + ps.sigma_range_m * n0;
+        p.az_rad = geo::WrapTwoPi(m[1] + ps.bias[1] + ps.sigma_az_rad * n1);
+        p.el_rad = m[2] + ps.bias[2] + ps.sigma_el_rad * n2;
+        if (std::abs(p.el_rad) > geo::kPi / 2) {
+          p.el_rad = std::copysign(geo::kPi / 2, p.el_rad);
+          ++el_clamped_;
+        }
+        scan.push_back(p);
+      }
+      if (clutter) {
+        double r_lo = kNoTargetMinRangeM, r_hi = kNoTargetMaxRangeM, e_lo = kNoTargetMinElRad, e_hi = kNoTargetMaxElRad;
+        double a_lo = 0, a_hi = geo::kTwoPi, a_mid = 0;
+        if (opt_.targets > 0) {
+          r_lo = std::max(1.0, rmin - opt_.clutter_margin_m);
+          r_hi = rmax + opt_.clutter_margin_m;
+          e_lo = std::max(-geo::kPi / 2, emin - opt_.clutter_margin_rad);
+          e_hi = std::min(geo::kPi / 2, emax + opt_.clutter_margin_rad);
+          a_mid = std::atan2(ss, cs);
+          double off_lo = INFINITY, off_hi = -INFINITY;
+          for (double az : az_true) {
+            const double off = geo::WrapPi(az - a_mid);
+            off_lo = std::min(off_lo, off);
+            off_hi = std::max(off_hi, off);
+          }
+          a_lo = off_lo - opt_.clutter_margin_rad;
+          a_hi = off_hi + opt_.clutter_margin_rad;
+          if (a_hi - a_lo >= geo::kTwoPi) {
+            a_lo = 0;
+            a_hi = geo::kTwoPi;
+            a_mid = 0;
+          }
+        }
+        const int n = poisson(rng_clutter);
+        for (int c = 0; c < n; ++c) {
+          SimRadarPlot p;
+          p.t_s = t;
+          p.radar = r;
+          p.range_m = r_lo + (r_hi - r_lo) * u01(rng_clutter);
+          p.az_rad = geo::WrapTwoPi(a_mid + a_lo + (a_hi - a_lo) * u01(rng_clutter));
+          p.el_rad = e_lo + (e_hi - e_lo) * u01(rng_clutter);
+          scan.push_back(p);
+          ++clutter_plots_;
+        }
+      }
+      std::shuffle(scan.begin(), scan.end(), rng_shuffle);
+      plots_.insert(plots_.end(), scan.begin(), scan.end());
+    }
+  }
+  std::stable_sort(plots_.begin(), plots_.end(),
+                   [](const SimRadarPlot& x, const SimRadarPlot& y) { return x.t_s < y.t_s; });
+
+  // Nav.
+  std::vector<std::pair<double, int>> nav_times;
+  if (opt_.nav_rate_hz > 0) {
+    double tmin = INFINITY, tmax = -INFINITY;
+    for (int r = 0; r < 2; ++r) {
+      tmin = std::min(tmin, ScanTime(r, 0));
+      tmax = std::max(tmax, ScanTime(r, opt_.steps - 1));
+    }
+    const long j0 = static_cast<long>(std::floor((tmin - opt_.t0_s) * opt_.nav_rate_hz));
+    const long j1 = static_cast<long>(std::ceil((tmax - opt_.t0_s) * opt_.nav_rate_hz));
+    for (long j = std::max(0L, j0); j <= j1; ++j) {
+      for (int r = 0; r < 2; ++r) nav_times.emplace_back(opt_.t0_s + static_cast<double>(j) / opt_.nav_rate_hz, r);
+    }
+  } else {
+    for (int k = 0; k < opt_.steps; ++k) {
+      for (int r = 0; r < 2; ++r) nav_times.emplace_back(ScanTime(r, k), r);
+    }
+    std::stable_sort(nav_times.begin(), nav_times.end(),
+                     [](const auto& x, const auto& y) { return x.first < y.first; });
+  }
+  for (const auto& [t, r] : nav_times) {
+    SimNavRow row;
+    row.t_s = t;
+    row.radar = r;
+    const Eigen::Vector3d g = frame.Geodetic(PlatformEnu(r, t), nullptr);
+    row.lat_deg = g[0];
+    row.lon_deg = g[1];
+    row.h_m = g[2];
+    const Eigen::Vector3d att = PlatformAttitude(r, t);
+    const auto& bias = platforms_[r].bias;
+    const double n0 = gauss(rng_nav), n1 = gauss(rng_nav), n2 = gauss(rng_nav);
+    row.yaw_rad = att[0] + bias[3] + opt_.attitude_noise_rad * n0;
+    row.pitch_rad = att[1] + bias[4] + opt_.attitude_noise_rad * n1;
+    row.roll_rad = att[2] + bias[5] + opt_.attitude_noise_rad * n2;
+    nav_.push_back(row);
+  }
+}
+
+double RadarSimulator::Kappa(double t_s) const {
+  const double dt = t_s - opt_.t0_s;
+  return opt_.index_unit == RadarIndexUnit::kStep ? dt / opt_.dt_s : dt;
+}
+
+Eigen::Vector3d RadarSimulator::PlatformEnu(int radar, double t_s) const {
+  return platforms_[radar].p0_enu + platforms_[radar].p_rate * Kappa(t_s);
+}
+
+Eigen::Vector3d RadarSimulator::PlatformAttitude(int radar, double t_s) const {
+  return platforms_[radar].att0 + platforms_[radar].att_rate * Kappa(t_s);
+}
+
+Eigen::Vector3d RadarSimulator::TargetEnu(int target, double t_s) const {
+  return targets_[target].p0_enu + targets_[target].v_enu * (t_s - opt_.t0_s);
+}
+
+Eigen::Vector3d RadarSimulator::Geodetic(const Eigen::Vector3d& enu) const {
+  return CommonFrame(opt_.origin_lat_deg, opt_.origin_lon_deg, opt_.origin_h_m).Geodetic(enu, nullptr);
+}
+
+double RadarSimulator::ScanTime(int radar, int k) const {
+  return opt_.t0_s + k * opt_.dt_s + (radar == 1 ? opt_.time_offset_b_s : 0.0);
+}
+
+io::Json RadarTrialSummary::ToJson() const {
+  io::Json j;
+  j["plots"] = plots;
+  j["target_plots"] = target_plots;
+  j["clutter_plots"] = clutter_plots;
+  j["missed_detections"] = missed_detections;
+  j["nav_rows"] = nav_rows;
+  j["elevation_clamped"] = elevation_clamped;
+  j["min_range_m"] = min_range_m;
+  j["max_range_m"] = max_range_m;
+  j["max_abs_pitch_deg"] = max_abs_pitch_deg;
+  return j;
+}
+
+RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWriteOptions& opt) {
+  const RadarSimOptions& so = sim.options();
+  TrialFolder folder(opt.out_dir, opt.force);
+  folder.MakeSubfolder("truth");
+  RadarTrialSummary sum;
+  sum.min_range_m = INFINITY;
+
+  io::CsvWriter plots({"t_s", "radar", "range_m", "az_deg", "el_deg", "track_id"});
+  for (const SimRadarPlot& p : sim.plots()) {
+    plots.Add(p.t_s, kTimeDecimals).Add(so.names[p.radar]).Add(p.range_m, kRangeDecimals);
+    plots.Add(geo::WrapDeg360(geo::RadToDeg(p.az_rad)), kAngleDecimals).Add(geo::RadToDeg(p.el_rad), kAngleDecimals);
+    if (p.target >= 0) {
+      plots.Add(p.target + 1);
+      ++sum.target_plots;
+      sum.min_range_m = std::min(sum.min_range_m, p.range_m);
+      sum.max_range_m = std::max(sum.max_range_m, p.range_m);
+    } else {
+      plots.AddEmpty();
+    }
+    plots.EndRow();
+  }
+  if (sum.target_plots == 0) sum.min_range_m = 0;
+  sum.plots = static_cast<std::int64_t>(sim.plots().size());
+  sum.clutter_plots = sim.clutter_plots();
+  sum.missed_detections = sim.missed_detections();
+  sum.elevation_clamped = sim.elevation_clamped();
+
+  io::CsvWriter nav({"t_s", "radar", "lat_deg", "lon_deg", "h_m", "yaw_deg", "pitch_deg", "roll_deg"});
+  for (const SimNavRow& n : sim.nav()) {
+    nav.Add(n.t_s, kTimeDecimals).Add(so.names[n.radar]).Add(n.lat_deg, kLatLonDecimals).Add(n.lon_deg, kLatLonDecimals);
+    nav.Add(n.h_m, kHeightDecimals).Add(geo::WrapDeg360(geo::RadToDeg(n.yaw_rad)), kAngleDecimals);
+    nav.Add(geo::WrapDeg180(geo::RadToDeg(n.pitch_rad)), kAngleDecimals);
+    nav.Add(geo::WrapDeg180(geo::RadToDeg(n.roll_rad)), kAngleDecimals);
+    nav.EndRow();
+  }
+  sum.nav_rows = static_cast<std::int64_t>(sim.nav().size());
+
+  // Truth: biases per scan (file units, the columns rk-register writes), targets, platforms.
+  static const char* const kSuffix[6] = {"range_m", "az_deg", "el_deg", "yaw_deg", "pitch_deg", "roll_deg"};
+  std::vector<std::string> bias_cols{"t_s"};
+  for (int r = 0; r < 2; ++r) {
+    for (const char* s : kSuffix) bias_cols.push_back(so.names[r] + "_" + s);
+  }
+  io::CsvWriter biases(bias_cols);
+  io::CsvWriter targets({"t_s", "target", "e_m", "n_m", "u_m"});
+  io::CsvWriter platforms(
+      {"t_s", "radar", "e_m", "n_m", "u_m", "lat_deg", "lon_deg", "h_m", "yaw_deg", "pitch_deg", "roll_deg"});
+  for (int k = 0; k < so.steps; ++k) {
+    const double t_step = std::max(sim.ScanTime(0, k), sim.ScanTime(1, k));
+    biases.Add(t_step, kTimeDecimals);
+    for (int r = 0; r < 2; ++r) {
+      for (int i = 0; i < 6; ++i) {
+        const double b = sim.platforms()[r].bias[i];
+        biases.Add(i == 0 ? b : geo::RadToDeg(b), kAngleDecimals);
+      }
+    }
+    biases.EndRow();
+    const double t = sim.ScanTime(0, k);
+    for (int i = 0; i < so.targets; ++i) {
+      const Eigen::Vector3d p = sim.TargetEnu(i, t);
+      targets.Add(t, kTimeDecimals).Add(i + 1).Add(p.x(), kRangeDecimals).Add(p.y(), kRangeDecimals);
+      targets.Add(p.z(), kRangeDecimals).EndRow();
+    }
+    for (int r = 0; r < 2; ++r) {
+      const double tr = sim.ScanTime(r, k);
+      const Eigen::Vector3d p = sim.PlatformEnu(r, tr), att = sim.PlatformAttitude(r, tr), g = sim.Geodetic(p);
+      sum.max_abs_pitch_deg = std::max(sum.max_abs_pitch_deg, std::abs(geo::RadToDeg(att[1])));
+      platforms.Add(tr, kTimeDecimals).Add(so.names[r]).Add(p.x(), kRangeDecimals).Add(p.y(), kRangeDecimals);
+      platforms.Add(p.z(), kRangeDecimals).Add(g[0], kLatLonDecimals).Add(g[1], kLatLonDecimals).Add(g[2], kHeightDecimals);
+      platforms.Add(geo::WrapDeg360(geo::RadToDeg(att[0])), kAngleDecimals);
+      platforms.Add(geo::WrapDeg180(geo::RadToDeg(att[1])), kAngleDecimals);
+      platforms.Add(geo::WrapDeg180(geo::RadToDeg(att[2])), kAngleDecimals).EndRow();
+    }
+  }
+
+  plots.Write(folder.Path("plots.csv"));
+  nav.Write(folder.Path("nav.csv"));
+  biases.Write(folder.Path("truth/biases.csv"));
+  targets.Write(folder.Path("truth/targets.csv"));
+  platforms.Write(folder.Path("truth/platforms.csv"));
+
+  io::Json j;
+  j["generator"] = "rk-sim radar";
+  j["seed_paper"] = "002 (Deng et al. 2024), section 4.1";
+  j["scenario"] = so.scenario;
+  j["seed"] = so.seed;
+  j["options"] = RadarSimOptionsToJson(so);
+  j["common_frame"] = "local ENU (x east, y north, z up, m) at the WGS-84 origin";
+  io::Json radars;
+  static const char* const kNames[6] = {"range_m", "az_deg", "el_deg", "yaw_deg", "pitch_deg", "roll_deg"};
+  for (int r = 0; r < 2; ++r) {
+    const RadarPlatformSpec& ps = sim.platforms()[r];
+    io::Json rj;
+    for (int i = 0; i < 6; ++i) rj["bias"][kNames[i]] = i == 0 ? ps.bias[i] : geo::RadToDeg(ps.bias[i]);
+    rj["bias_rad"] = {ps.bias[1], ps.bias[2], ps.bias[3], ps.bias[4], ps.bias[5]};
+    rj["sigma"] = {{"range_m", ps.sigma_range_m},
+                   {"az_deg", geo::RadToDeg(ps.sigma_az_rad)},
+                   {"el_deg", geo::RadToDeg(ps.sigma_el_rad)}};
+    rj["position_enu_m"] = {{"at_0", {ps.p0_enu.x(), ps.p0_enu.y(), ps.p0_enu.z()}},
+                            {"per_index", {ps.p_rate.x(), ps.p_rate.y(), ps.p_rate.z()}}};
+    rj["attitude_rad"] = {{"at_0", {ps.att0.x(), ps.att0.y(), ps.att0.z()}},
+                          {"per_index", {ps.att_rate.x(), ps.att_rate.y(), ps.att_rate.z()}}};
+    radars[so.names[r]] = rj;
+  }
+  j["radars"] = radars;
+  j["motion_model"] =
+      "platform s(kappa) = at_0 + per_index*kappa, attitude (yaw, pitch, roll)(kappa) likewise, kappa = (t - t0)/dt "
+      "(index_unit step) or t - t0 (second); target X(t) = X0 + V (t - t0)";
+  io::Json tj = io::Json::array();
+  for (std::size_t i = 0; i < sim.targets().size(); ++i) {
+    const RadarTargetSpec& t = sim.targets()[i];
+    tj.push_back({{"track_id", i + 1},
+                  {"p0_enu_m", {t.p0_enu.x(), t.p0_enu.y(), t.p0_enu.z()}},
+                  {"v_enu_mps", {t.v_enu.x(), t.v_enu.y(), t.v_enu.z()}}});
+  }
+  j["targets"] = tj;
+  j["files"] = {{"plots", "plots.csv"},
+                {"nav", "nav.csv"},
+                {"truth_biases", "truth/biases.csv"},
+                {"truth_targets", "truth/targets.csv"},
+                {"truth_platforms", "truth/platforms.csv"}};
+  j["summary"] = sum.ToJson();
+  io::WriteJson(folder.Path("scenario.json"), j);
+  folder.Commit();
+  return sum;
+}
+
+}  // namespace rk::sim
