@@ -11,6 +11,8 @@
 #include "io/error.h"
 #include "sim/trial_folder.h"
 
+#include <filesystem>
+
 namespace rk::sim {
 namespace {
 
@@ -476,6 +478,22 @@ RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWri
                 {"truth_platforms", "truth/platforms.csv"}};
   j["summary"] = sum.ToJson();
   io::WriteJson(folder.Path("scenario.json"), j);
+
+  // Trial manifest (SPEC.md §6), so that rk-run processes the folder like a recorded trial; the station is the
+  // origin of the common frame.
+  io::Json m;
+  m["name"] = std::filesystem::path(opt.out_dir).lexically_normal().filename().string();
+  if (m["name"].get<std::string>().empty()) m["name"] = std::filesystem::path(opt.out_dir).parent_path().filename().string();
+  m["epoch_utc"] = opt.epoch_utc;
+  m["station"] = {{"lat_deg", so.origin_lat_deg}, {"lon_deg", so.origin_lon_deg}, {"h_m", so.origin_h_m}};
+  m["cameras"] = io::Json::object();
+  m["turret"] = nullptr;
+  m["range"] = nullptr;
+  m["theodolite"] = nullptr;
+  m["radar"] = {{"plots", "plots.csv"}, {"nav", "nav.csv"}};
+  m["steps"] = io::Json::object();
+  m["sim"] = {{"generator", "rk-sim radar"}, {"scenario", "scenario.json"}, {"truth", {{"biases", "truth/biases.csv"}}}};
+  io::WriteJson(folder.Path("trial.json"), m);
   folder.Commit();
   return sum;
 }

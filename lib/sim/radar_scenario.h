@@ -142,6 +142,7 @@ class RadarSimulator {
 struct RadarTrialWriteOptions {
   std::string out_dir;
   bool force = false;
+  std::string epoch_utc = "2026-01-01T00:00:00Z";  // trial epoch written to trial.json (t_s = 0)
 };
 
 struct RadarTrialSummary {
@@ -152,8 +153,9 @@ struct RadarTrialSummary {
   io::Json ToJson() const;
 };
 
-// Writes plots.csv, nav.csv, truth/biases.csv, truth/targets.csv, truth/platforms.csv and
-// scenario.json (docs/rk-sim.md) into a new folder, atomically (sim/trial_folder.h).
+// Writes plots.csv, nav.csv, truth/biases.csv, truth/targets.csv, truth/platforms.csv, scenario.json and
+// trial.json (the SPEC.md §6 manifest with its radar block, for rk-run; docs/rk-sim.md) into a new folder,
+// atomically (sim/trial_folder.h).
 RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWriteOptions& opt);
 
 }  // namespace rk::sim
