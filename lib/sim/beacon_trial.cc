@@ -1,12 +1,7 @@
 #include "sim/beacon_trial.h"
 
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <regex>
 
@@ -15,6 +10,7 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
+#include "sim/trial_folder.h"
 #include "video/frame_sink.h"
 
 namespace rk::sim {
@@ -25,36 +21,6 @@ constexpr int kTimeDecimals = 9;
 constexpr int kAngleDecimals = 9;
 constexpr int kMetreDecimals = 6;
 constexpr int kPixelDecimals = 4;
-
-// Creates a fresh folder "<parent>/.<stem>.XXXXXX" (mode 0777 & ~umask).
-std::string MakeTempDir(const fs::path& parent, const std::string& stem, const std::string& for_path) {
-  std::string templ = (parent / ("." + stem + ".XXXXXX")).string();
-  std::vector<char> buf(templ.begin(), templ.end());
-  buf.push_back('\0');
-  if (!::mkdtemp(buf.data())) {
-    throw IoError(for_path, std::string("cannot create a folder beside it: ") + std::strerror(errno));
-  }
-  mode_t mask = ::umask(0);
-  ::umask(mask);
-  ::chmod(buf.data(), 0777 & ~mask);
-  return std::string(buf.data());
-}
-
-// Removes a folder tree unless released (failed runs leave nothing behind).
-class TempDirGuard {
- public:
-  explicit TempDirGuard(std::string path) : path_(std::move(path)) {}
-  ~TempDirGuard() {
-    if (!path_.empty()) {
-      std::error_code ec;
-      fs::remove_all(path_, ec);
-    }
-  }
-  void Release() { path_.clear(); }
-
- private:
-  std::string path_;
-};
 
 double Deg(double rad) { return geo::RadToDeg(rad); }
 
@@ -94,26 +60,9 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
   if (!opt.Check(&why)) throw UsageError(why);
   const BeaconSimOptions& so = sim.options();
 
-  fs::path out = fs::path(opt.out_dir).lexically_normal();
-  if (!out.has_filename() && out.has_parent_path()) out = out.parent_path();
-  const std::string out_str = out.string();
-  if (out.filename() == "." || out.filename() == ".." || out_str.empty()) {
-    throw UsageError("--out '" + opt.out_dir + "' must name a new folder");
-  }
-  std::error_code ec;
-  const bool exists = fs::exists(fs::symlink_status(out, ec));
-  if (exists) {
-    if (!fs::is_directory(out, ec)) throw UsageError("--out " + out_str + " exists and is not a folder");
-    if (!fs::is_empty(out, ec) && !opt.force) {
-      throw UsageError("--out " + out_str + " exists and is not empty; use --force to replace it");
-    }
-  }
-  const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
-  io::MakeDirectories(parent.string());
-  const std::string stem = out.filename().string();
-  const std::string tmp = MakeTempDir(parent, stem, out_str);
-  TempDirGuard guard(tmp);
-  const fs::path root(tmp);
+  TrialFolder folder(opt.out_dir, opt.force);
+  const std::string stem = fs::path(folder.out()).filename().string();
+  const fs::path root(folder.Path(""));
   io::MakeDirectories((root / "az").string());
   io::MakeDirectories((root / "truth").string());
 
@@ -233,29 +182,7 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
   m["sim"] = simj;
   io::WriteJson((root / "trial.json").string(), m);
 
-  // Move into place: an empty folder is replaced directly; a non-empty one
-  // (only with force) is first moved aside and removed after the switch.
-  std::string trash;
-  if (fs::exists(fs::symlink_status(out, ec))) {
-    if (fs::is_directory(out, ec) && fs::is_empty(out, ec)) {
-      fs::remove(out, ec);
-      if (ec) throw IoError(out_str, "cannot replace the empty folder: " + ec.message());
-    } else {
-      trash = MakeTempDir(parent, stem + ".old", out_str);
-      if (std::rename(out_str.c_str(), trash.c_str()) != 0) {
-        const int e = errno;
-        fs::remove(trash, ec);
-        throw IoError(out_str, std::string("cannot move the old folder aside: ") + std::strerror(e));
-      }
-    }
-  }
-  if (std::rename(tmp.c_str(), out_str.c_str()) != 0) {
-    const int e = errno;
-    if (!trash.empty()) std::rename(trash.c_str(), out_str.c_str());  // put the old trial back
-    throw IoError(out_str, std::string("cannot rename into place: ") + std::strerror(e));
-  }
-  guard.Release();
-  if (!trash.empty()) fs::remove_all(trash, ec);
+  folder.Commit();
   return sum;
 }
 

@@ -1,18 +1,14 @@
 #include "sim/posetrack.h"
 
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
-#include <cstring>
 #include <filesystem>
 #include <random>
 
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
+#include "sim/trial_folder.h"
 
 namespace rk::sim {
 namespace fs = std::filesystem;
@@ -40,36 +36,6 @@ std::mt19937_64 Stream(std::uint64_t seed, std::uint64_t stream) {
                     static_cast<std::uint32_t>(stream)};
   return std::mt19937_64(seq);
 }
-
-// Creates a fresh folder "<parent>/.<stem>.XXXXXX" (mode 0777 & ~umask). Same protocol as
-// sim/beacon_trial.cc.
-std::string MakeTempDir(const fs::path& parent, const std::string& stem, const std::string& for_path) {
-  std::string templ = (parent / ("." + stem + ".XXXXXX")).string();
-  std::vector<char> buf(templ.begin(), templ.end());
-  buf.push_back('\0');
-  if (!::mkdtemp(buf.data())) {
-    throw IoError(for_path, std::string("cannot create a folder beside it: ") + std::strerror(errno));
-  }
-  mode_t mask = ::umask(0);
-  ::umask(mask);
-  ::chmod(buf.data(), 0777 & ~mask);
-  return std::string(buf.data());
-}
-
-class TempDirGuard {
- public:
-  explicit TempDirGuard(std::string path) : path_(std::move(path)) {}
-  ~TempDirGuard() {
-    if (!path_.empty()) {
-      std::error_code ec;
-      fs::remove_all(path_, ec);
-    }
-  }
-  void Release() { path_.clear(); }
-
- private:
-  std::string path_;
-};
 
 double FileValue(int c, double v) {
   if (!PoseIsAngle(c)) return v;
@@ -274,28 +240,11 @@ PoseTrackSummary WritePoseTrack(const PoseTrackSimulator& sim, const PoseTrackWr
   if (!opt.Check(&why)) throw UsageError(why);
   const PoseTrackOptions& so = sim.options();
 
-  fs::path out = fs::path(opt.out_dir).lexically_normal();
-  if (!out.has_filename() && out.has_parent_path()) out = out.parent_path();
-  const std::string out_str = out.string();
-  if (out.filename() == "." || out.filename() == ".." || out_str.empty()) {
-    throw UsageError("--out '" + opt.out_dir + "' must name a new folder");
-  }
-  std::error_code ec;
-  if (fs::exists(fs::symlink_status(out, ec))) {
-    if (!fs::is_directory(out, ec)) throw UsageError("--out " + out_str + " exists and is not a folder");
-    if (!fs::is_empty(out, ec) && !opt.force) {
-      throw UsageError("--out " + out_str + " exists and is not empty; use --force to replace it");
-    }
-  }
-  const fs::path parent = out.has_parent_path() ? out.parent_path() : fs::path(".");
-  io::MakeDirectories(parent.string());
-  const std::string stem = out.filename().string();
-  const std::string tmp = MakeTempDir(parent, stem, out_str);
-  TempDirGuard guard(tmp);
-  const fs::path root(tmp);
+  TrialFolder folder(opt.out_dir, opt.force);
+  const std::string stem = fs::path(folder.out()).filename().string();
+  const fs::path root(folder.Path(""));
 
   PoseTrackSummary sum;
-  // Measurements.
   std::vector<std::string> meas_cols{"t_s"};
   for (const auto& c : PoseColumns()) meas_cols.push_back(c);
   io::CsvWriter meas_csv(meas_cols);
@@ -404,29 +353,7 @@ PoseTrackSummary WritePoseTrack(const PoseTrackSimulator& sim, const PoseTrackWr
   j["summary"] = sum.ToJson();
   io::WriteJson((root / "scenario.json").string(), j);
 
-  // Move into place: an empty folder is replaced directly; a non-empty one (only with
-  // force) is first moved aside and removed after the switch.
-  std::string trash;
-  if (fs::exists(fs::symlink_status(out, ec))) {
-    if (fs::is_directory(out, ec) && fs::is_empty(out, ec)) {
-      fs::remove(out, ec);
-      if (ec) throw IoError(out_str, "cannot replace the empty folder: " + ec.message());
-    } else {
-      trash = MakeTempDir(parent, stem + ".old", out_str);
-      if (std::rename(out_str.c_str(), trash.c_str()) != 0) {
-        const int e = errno;
-        fs::remove(trash, ec);
-        throw IoError(out_str, std::string("cannot move the old folder aside: ") + std::strerror(e));
-      }
-    }
-  }
-  if (std::rename(tmp.c_str(), out_str.c_str()) != 0) {
-    const int e = errno;
-    if (!trash.empty()) std::rename(trash.c_str(), out_str.c_str());
-    throw IoError(out_str, std::string("cannot rename into place: ") + std::strerror(e));
-  }
-  guard.Release();
-  if (!trash.empty()) fs::remove_all(trash, ec);
+  folder.Commit();
   return sum;
 }
 
