@@ -12,7 +12,9 @@
 #include "capture/emulator_dimetix.h"
 #include "capture/emulator_ptu.h"
 #include "io/error.h"
+#include "io/cli.h"
 #include "io/file_util.h"
+#include "io/json_util.h"
 #include "subcommand.h"
 
 namespace rk::app {
@@ -62,7 +64,7 @@ rk::capture::EmulatorOptions Common(const DeviceCli& c) {
   return e;
 }
 
-int Serve(rk::capture::DeviceEmulator* emu, const DeviceCli& c) {
+int Serve(rk::capture::DeviceEmulator* emu, const DeviceCli& c, const Context& ctx, const char* kind) {
   if (!(c.duration_s >= 0)) throw rk::UsageError("--duration must be >= 0");
   std::string why;
   if (!emu->Start(&why)) throw rk::IoError(c.link.empty() ? "pty" : c.link, why);
@@ -74,6 +76,15 @@ int Serve(rk::capture::DeviceEmulator* emu, const DeviceCli& c) {
   if (!c.port_file.empty()) rk::io::WriteFileAtomic(c.port_file, emu->port() + "\n");
   std::cout << emu->port() << std::endl;
   emu->Run(g_device_stop, c.duration_s);
+  if (!ctx.common.report_path.empty()) {
+    rk::io::Json r = rk::cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
+    r["subcommand"] = std::string("device ") + kind;
+    r["port"] = emu->port();
+    const rk::capture::EmulatorStats st = emu->stats();
+    r["summary"] = {{"sent", st.sent},         {"dropped", st.dropped},   {"garbage", st.garbage},
+                    {"received", st.received}, {"ignored", st.ignored},   {"disconnects", st.disconnects}};
+    rk::io::WriteJson(ctx.common.report_path, r);
+  }
   return 0;
 }
 
@@ -98,7 +109,7 @@ Command AddDeviceCommand(CLI::App& parent) {
   dim->add_option("--noise-mm", d.noise_mm, "Distance noise std (mm)")->capture_default_str();
   dim->add_option("--temperature-c", d.temperature_c, "Temperature answered to sNt (deg C)")->capture_default_str();
 
-  CLI::App* ptu = device->add_subcommand("ptu", "FLIR PTU-D46/D48 pan-tilt unit (PP, TP, PR, TR, PP<n>, TP<n>, ED, FT)");
+  CLI::App* ptu = device->add_subcommand("ptu", "FLIR PTU-D46/D48 pan-tilt unit (PP, TP, PR, TR, PP<n>, TP<n>, ED, FT, V)");
   AddCommon(ptu, c.get());
   ptu->add_option("--pan-res-arcsec", p.pan_res_arcsec, "Pan resolution answered to PR (arcsec per position)")
       ->capture_default_str();
@@ -114,19 +125,18 @@ Command AddDeviceCommand(CLI::App& parent) {
   ptu->add_option("--slew-deg-s", p.slew_deg_s, "Speed of commanded moves (deg/s)")->capture_default_str();
   ptu->add_option("--reply-s", p.reply_s, "Command processing time (s)")->capture_default_str();
 
-  return {device, [c, dim, ptu](const Context&) -> int {
+  return {device, [c, dim](const Context& ctx) -> int {
             std::string why;
             if (dim->parsed()) {
               c->dimetix.common = Common(*c);
               if (!c->dimetix.Check(&why)) throw rk::UsageError(why);
               rk::capture::DimetixEmulator emu(c->dimetix);
-              return Serve(&emu, *c);
+              return Serve(&emu, *c, ctx, "dimetix");
             }
             c->ptu.common = Common(*c);
             if (!c->ptu.Check(&why)) throw rk::UsageError(why);
-            (void)ptu;
             rk::capture::PtuEmulator emu(c->ptu);
-            return Serve(&emu, *c);
+            return Serve(&emu, *c, ctx, "ptu");
           }};
 }
 

@@ -1,6 +1,10 @@
 #include "capture/device.h"
 
+#include <pthread.h>
+#include <sched.h>
 #include <time.h>
+
+#include <cstring>
 
 #include <algorithm>
 
@@ -27,6 +31,17 @@ void GapState::Ok(const Stamp& at) {
   if (!in_gap_) return;
   in_gap_ = false;
   if (reporter_ && reporter_->gap_end) reporter_->gap_end(at);
+}
+
+bool RaiseThreadPriority(int priority, std::string* why) {
+  sched_param p{};
+  p.sched_priority = priority;
+  const int rc = ::pthread_setschedparam(::pthread_self(), SCHED_FIFO, &p);
+  if (rc != 0) {
+    if (why) *why = std::strerror(rc);
+    return false;
+  }
+  return true;
 }
 
 bool SleepUntil(std::int64_t deadline_ns, const std::atomic<bool>& stop) {

@@ -39,6 +39,12 @@ class GapState {
   std::int64_t gaps_ = 0;
 };
 
+// Gives the calling thread real-time priority (SCHED_FIFO, `priority` 1..99) so that arrival stamps
+// are taken within microseconds even when the CPUs are busy (the kernel still caps real-time
+// threads at 95 % of a CPU). Needs CAP_SYS_NICE or an RLIMIT_RTPRIO; false with the reason if not
+// granted, and the thread keeps its normal priority.
+bool RaiseThreadPriority(int priority, std::string* why);
+
 // Sleeps until CLOCK_MONOTONIC reaches `deadline_ns` or `stop` becomes true (checked every 20 ms).
 // Returns false if stopped.
 bool SleepUntil(std::int64_t deadline_ns, const std::atomic<bool>& stop);

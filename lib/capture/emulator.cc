@@ -177,9 +177,9 @@ std::string DeviceEmulator::port() const { return o_.link.empty() ? pty_.slave_p
 
 double DeviceEmulator::Elapsed() const { return static_cast<double>(MonoNowNs() - t0_ns_) * 1e-9; }
 
-void DeviceEmulator::Truth(const char* event, std::string_view data) {
+void DeviceEmulator::Truth(const char* event, std::string_view data, std::int64_t mono_ns) {
   if (!truth_) return;
-  std::fprintf(truth_, "%.9f,%s,%.*s\n", static_cast<double>(MonoNowNs()) * 1e-9, event,
+  std::fprintf(truth_, "%.9f,%s,%.*s\n", static_cast<double>(mono_ns > 0 ? mono_ns : MonoNowNs()) * 1e-9, event,
                static_cast<int>(data.size()), data.data());
 }
 
@@ -228,13 +228,12 @@ void DeviceEmulator::Reply(const std::string& line, double delay_s) {
   pending_.push_back({due, line});
 }
 
-bool DeviceEmulator::WritePaced(const std::string& bytes) {
-  if (o_.baud > 0) {
-    const std::int64_t ns = static_cast<std::int64_t>(static_cast<double>(bytes.size()) * 10.0 / o_.baud * 1e9);
-    timespec ts{static_cast<time_t>(ns / kNsPerS), static_cast<long>(ns % kNsPerS)};
-    ::nanosleep(&ts, nullptr);
-  }
-  return pty_.Write(bytes);
+void DeviceEmulator::Pace(std::size_t bytes) {
+  if (o_.baud <= 0) return;
+  // The line time of `bytes` characters (10 bits each) passes before they have all arrived.
+  const std::int64_t ns = static_cast<std::int64_t>(static_cast<double>(bytes) * 10.0 / o_.baud * 1e9);
+  timespec ts{static_cast<time_t>(ns / kNsPerS), static_cast<long>(ns % kNsPerS)};
+  ::nanosleep(&ts, nullptr);
 }
 
 void DeviceEmulator::SendDue(std::int64_t now_ns) {
@@ -258,13 +257,18 @@ void DeviceEmulator::SendDue(std::int64_t now_ns) {
       }
       junk += "\r\n";
       ++stats_.garbage;
-      Truth("garbage", p.line);
-      WritePaced(junk);
+      Pace(junk.size());
+      const std::int64_t at = MonoNowNs();
+      pty_.Write(junk);
+      Truth("garbage", p.line, at);
       continue;
     }
     ++stats_.sent;
-    Truth("sent", p.line);
-    WritePaced(p.line + "\r\n");
+    // The time is taken just before the bytes go out; the log (a file write) comes after them.
+    Pace(p.line.size() + 2);
+    const std::int64_t at = MonoNowNs();
+    pty_.Write(p.line + "\r\n");
+    Truth("sent", p.line, at);
   }
 }
 

@@ -115,7 +115,8 @@ class DeviceEmulator {
   bool Active(FaultKind kind, double t, Fault* fault = nullptr) const;
   bool RandomError();
   std::mt19937_64& rng() { return rng_; }
-  void Truth(const char* event, std::string_view data);
+  // Logs an event; `mono_ns` = when it happened (0 = now).
+  void Truth(const char* event, std::string_view data, std::int64_t mono_ns = 0);
 
   EmulatorOptions o_;
 
@@ -125,7 +126,7 @@ class DeviceEmulator {
     std::string line;
   };
   void SendDue(std::int64_t now_ns);
-  bool WritePaced(const std::string& bytes);
+  void Pace(std::size_t bytes);
 
   PtyEndpoint pty_;
   std::int64_t t0_ns_ = 0;

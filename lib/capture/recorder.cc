@@ -152,6 +152,8 @@ class Recorder {
   void GapEnd(const std::string& stream, AppendLog* log, const Stamp& at);
   DeviceReporter MakeReporter(const std::string& stream, AppendLog** log);
   void WriteManifest(const std::string& state);
+  // Raises the calling (stamping) thread to the configured real-time priority; records the outcome.
+  void RealTime(const std::string& stream);
   io::Json ManifestJson(const std::string& state);
   std::string StatusLine(double t_s);
   CaptureSummary Summarise();
@@ -182,6 +184,8 @@ class Recorder {
   DeviceReporter range_write_reporter_, turret_write_reporter_;
   std::atomic<std::int64_t> range_failed_{0}, turret_failed_{0};
   std::atomic<bool> el_warned_{false};
+  std::atomic<int> realtime_threads_{0}, normal_threads_{0};
+  std::atomic<bool> realtime_warned_{false};
 
   std::mutex manifest_mutex_;  // gaps_, video lists
   std::vector<GapRecord> gaps_;
@@ -245,8 +249,11 @@ void Recorder::Event(EventLevel level, const std::string& source, const std::str
   const Stamp at = Now();
   const std::string line = FormatFixed(T(at), 6) + " " + FormatUtc(at.real_ns, 3) + " " + EventLevelName(level) +
                            " " + source + ": " + message;
-  std::string why;
-  if (!events_ || !events_->Append(line, &why)) ++events_lost_;
+  if (events_) {
+    events_->Post(line);
+  } else {
+    ++events_lost_;
+  }
   if (level != EventLevel::kInfo && opt_.warn) opt_.warn(source + ": " + message);
 }
 
@@ -258,8 +265,7 @@ void Recorder::GapBegin(const std::string& stream, AppendLog* log, const Stamp& 
     if (gaps_.size() < kMaxGapsListed) gaps_.push_back({stream, reason, t, std::nullopt});
   }
   Event(EventLevel::kWarning, stream, "gap begins: " + reason);
-  std::string why;
-  if (log) log->Append("# gap begins at t_s=" + FormatFixed(t, 6) + ": " + reason, &why);
+  if (log) log->Post("# gap begins at t_s=" + FormatFixed(t, 6) + ": " + reason);
 }
 
 void Recorder::GapEnd(const std::string& stream, AppendLog* log, const Stamp& at) {
@@ -276,8 +282,7 @@ void Recorder::GapEnd(const std::string& stream, AppendLog* log, const Stamp& at
     }
   }
   Event(EventLevel::kInfo, stream, "gap ends after " + FormatFixed(t - start, 3) + " s");
-  std::string why;
-  if (log) log->Append("# gap ends at t_s=" + FormatFixed(t, 6), &why);
+  if (log) log->Post("# gap ends at t_s=" + FormatFixed(t, 6));
 }
 
 DeviceReporter Recorder::MakeReporter(const std::string& stream, AppendLog** log) {
@@ -359,6 +364,21 @@ void Recorder::CreateLogs() {
   turret_write_gap_ = std::make_unique<GapState>(&turret_write_reporter_);
   range_write_reporter_ = MakeReporter("range", &range_log_ptr_);
   turret_write_reporter_ = MakeReporter("turret", &turret_log_ptr_);
+  // Rows that the disk refused: counted and marked as a gap of the stream (comment lines aside).
+  auto on_result = [this](GapState* gap, std::atomic<std::int64_t>* failed, const char* file) {
+    return [this, gap, failed, file](const std::string& line, bool ok, const std::string& why) {
+      if (!line.empty() && line[0] == '#') return;
+      std::lock_guard<std::mutex> lock(write_gap_mutex_);
+      if (ok) {
+        gap->Ok(Now());
+      } else {
+        ++*failed;
+        gap->Fault(Now(), std::string(file) + " not written: " + why);
+      }
+    };
+  };
+  if (range_log_) range_log_->set_on_result(on_result(range_write_gap_.get(), &range_failed_, kRangeFile));
+  if (turret_log_) turret_log_->set_on_result(on_result(turret_write_gap_.get(), &turret_failed_, kTurretFile));
   for (auto& cam : cameras_) {
     cam->frames_log = std::make_unique<AppendLog>(
         (fs::path(cam->folder) / kFramesFile).string(),
@@ -384,14 +404,7 @@ void Recorder::OnRange(const RangeSample& s) {
   if (s.distance_01mm) row += FormatFixed(static_cast<double>(*s.distance_01mm) / 10000.0, 4);
   row += "," + std::to_string(s.status) + "," + FormatFixed(static_cast<double>(s.stamp.mono_ns) * 1e-9, 9) + "," +
          FormatFixed(static_cast<double>(s.stamp.real_ns) * 1e-9, 6);
-  std::string why;
-  std::lock_guard<std::mutex> lock(write_gap_mutex_);
-  if (range_log_->Append(row, &why)) {
-    range_write_gap_->Ok(s.stamp);
-  } else {
-    ++range_failed_;
-    range_write_gap_->Fault(s.stamp, "range.csv not written: " + why);
-  }
+  range_log_->Post(std::move(row));  // never wait for the disk on the stamping thread
 }
 
 void Recorder::OnTurret(const TurretSample& s) {
@@ -415,14 +428,7 @@ void Recorder::OnTurret(const TurretSample& s) {
     last_az_ = az;
     last_el_ = el;
   }
-  std::string why;
-  std::lock_guard<std::mutex> lock(write_gap_mutex_);
-  if (turret_log_->Append(row, &why)) {
-    turret_write_gap_->Ok(s.stamp);
-  } else {
-    ++turret_failed_;
-    turret_write_gap_->Fault(s.stamp, "turret.csv not written: " + why);
-  }
+  turret_log_->Post(std::move(row));
 }
 
 void Recorder::GrabLoop(CameraStream* cam) {
@@ -617,6 +623,9 @@ io::Json Recorder::ManifestJson(const std::string& state) {
   cap["recording_end_s"] = record_end_ns_ > 0 ? io::Json(epoch_.TrialSeconds(record_end_ns_)) : io::Json(nullptr);
   cap["clocks"] = DescribeClocks(epoch_);
   cap["sync_s"] = cfg_.sync_s;
+  cap["stamping_threads"] = {{"realtime_priority", cfg_.realtime_priority},
+                             {"realtime", realtime_threads_.load()},
+                             {"normal", normal_threads_.load()}};
   cap["events"] = kEventsFile;
   cap["config_path"] = cfg_.path;
   cap["config"] = cfg_.json;
@@ -669,6 +678,21 @@ io::Json Recorder::ManifestJson(const std::string& state) {
   cap["events_not_written"] = events_lost_.load();
   m["capture"] = cap;
   return m;
+}
+
+void Recorder::RealTime(const std::string& stream) {
+  if (cfg_.realtime_priority <= 0) return;
+  std::string why;
+  if (RaiseThreadPriority(cfg_.realtime_priority, &why)) {
+    ++realtime_threads_;
+  } else {
+    ++normal_threads_;
+    if (!realtime_warned_.exchange(true)) {
+      Event(EventLevel::kInfo, stream,
+            "real-time priority " + std::to_string(cfg_.realtime_priority) + " not granted (" + why +
+                "): arrival stamps may be late while the CPUs are busy");
+    }
+  }
 }
 
 void Recorder::WriteManifest(const std::string& state) {
@@ -766,6 +790,9 @@ CaptureSummary Recorder::Run() {
   if (opt_.free_space_probe) syncer_->set_free_space_probe(opt_.free_space_probe);
   syncer_->set_on_error([this](const std::string& w) { Event(EventLevel::kError, "disk", w); });
   events_ = std::make_unique<AppendLog>((fs::path(dir_) / kEventsFile).string(), "", syncer_.get());
+  events_->set_on_result([this](const std::string&, bool ok, const std::string&) {
+    if (!ok) ++events_lost_;
+  });
   syncer_->Start();
   Event(EventLevel::kInfo, "capture",
         std::string("rk-capture ") + kVersion + " started; epoch " + epoch_.utc() + "; config " + cfg_.path);
@@ -791,10 +818,23 @@ CaptureSummary Recorder::Run() {
   for (auto& cam : cameras_) {
     CameraStream* c = cam.get();
     c->write_thread = std::thread([this, c] { WriteLoop(c); });
-    c->grab_thread = std::thread([this, c] { GrabLoop(c); });
+    c->grab_thread = std::thread([this, c] {
+      RealTime("camera:" + c->cfg.name);
+      GrabLoop(c);
+    });
   }
-  if (range_) range_thread_ = std::thread([this] { range_->Run(stop_); });
-  if (turret_) turret_thread_ = std::thread([this] { turret_->Run(stop_); });
+  if (range_) {
+    range_thread_ = std::thread([this] {
+      RealTime("range");
+      range_->Run(stop_);
+    });
+  }
+  if (turret_) {
+    turret_thread_ = std::thread([this] {
+      RealTime("turret");
+      turret_->Run(stop_);
+    });
+  }
 
   const std::int64_t manifest_period = static_cast<std::int64_t>(cfg_.manifest_s * 1e9);
   const std::int64_t status_period = static_cast<std::int64_t>(opt_.status_period_s * 1e9);
@@ -846,7 +886,13 @@ CaptureSummary Recorder::Run() {
   if (range_thread_.joinable()) range_thread_.join();
   if (turret_thread_.joinable()) turret_thread_.join();
   stopped_utc_ = FormatUtc(RealNowNs(), 6);
-  Event(EventLevel::kInfo, "capture", "stopped after " + FormatFixed(static_cast<double>(record_end_ns_ - record_start_ns_) * 1e-9, 3) + " s");
+  Event(EventLevel::kInfo, "capture",
+        "stopped after " + FormatFixed(static_cast<double>(record_end_ns_ - record_start_ns_) * 1e-9, 3) + " s");
+  // Everything posted reaches the files before the last sync.
+  if (range_log_) range_log_->Drain();
+  if (turret_log_) turret_log_->Drain();
+  for (auto& cam : cameras_) cam->frames_log->Drain();
+  events_->Drain();
   syncer_->Stop();
   WriteManifest("complete");
   std::string dwhy;

@@ -206,6 +206,9 @@ StationConfig StationConfigFromJson(const io::Json& j, const std::string& path) 
   if (!(c.manifest_s >= 0.1 && c.manifest_s <= 60)) throw DataError(path, 0, 0, "'manifest_s' must be in [0.1, 60]");
   c.min_free_mb = io::NumberOr(j, "min_free_mb", c.min_free_mb, path);
   if (!(c.min_free_mb >= 0)) throw DataError(path, 0, 0, "'min_free_mb' must be >= 0");
+  c.realtime_priority = IntOr(j, "realtime_priority", c.realtime_priority, path);
+  if (c.realtime_priority < 0 || c.realtime_priority > 99)
+    throw DataError(path, 0, 0, "'realtime_priority' must be 0 (off) ... 99");
   if (j.contains("cameras") && !j.at("cameras").is_null()) {
     const io::Json& cams = j.at("cameras");
     if (!cams.is_array()) throw DataError(path, 0, 0, "'cameras' must be an array");
@@ -224,7 +227,7 @@ StationConfig StationConfigFromJson(const io::Json& j, const std::string& path) 
   if (c.cameras.empty() && !c.rangefinder && !c.turret) throw DataError(path, 0, 0, "no cameras, rangefinder or turret to record");
   WarnUnknown(j,
               {"cameras", "rangefinder", "turret", "segment_s", "sync_s", "manifest_s", "min_free_mb", "name", "station",
-               "steps", "theodolite", "radar"},
+               "steps", "theodolite", "radar", "realtime_priority"},
               path, &c.warnings);
   return c;
 }

@@ -45,6 +45,7 @@ struct StationConfig {
   double sync_s = 1.0;           // fdatasync period of every file (s), ≤ 1
   double manifest_s = 1.0;       // manifest rewrite period while recording (s)
   double min_free_mb = 512.0;    // video frames are dropped (gap) when less space is left (MB)
+  int realtime_priority = 10;    // SCHED_FIFO priority of the stamping threads (0 = normal scheduling)
   std::vector<std::string> warnings;  // unknown keys and other things worth telling
 };
 

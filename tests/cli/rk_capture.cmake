@@ -53,7 +53,8 @@ rk-capture recover trial --report recover.json
 python3 -c "import json; r = json.load(open('recover.json'))['summary']; assert r['readable'] and r['state_after'] == 'recovered', r"
 # Nothing older than one second before the kill may be lost.
 python3 "$src/tests/cli/capture_check.py" trial --dls-truth dls_truth.csv --ptu-truth ptu_truth.csv \
-  --source-md5 source.md5 --cutoff "$(python3 -c "print($killed - 1.0)")" --state recovered --min-frames 150
+  --source-md5 source.md5 --cutoff "$(python3 -c "print($killed - 1.0)")" --state recovered --min-frames 150 \
+  --expect-faults
 # rk-extract reads the segments as the manifest lists them, unchanged.
 args=$(python3 -c "import json; m = json.load(open('trial/trial.json')); print(' '.join('--video trial/' + v for v in m['cameras']['az']['video']))")
 rk-extract beacon $args --frames trial/az/frames.csv -o track.csv --quiet
