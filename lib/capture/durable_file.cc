@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 
@@ -148,6 +149,12 @@ void Syncer::DirectoryChanged(const std::string& dir) {
   dirs_.insert(dir);
 }
 
+std::int64_t Syncer::free_bytes() const {
+  const std::int64_t f = free_bytes_.load();
+  if (f < 0) return f;
+  return std::max<std::int64_t>(0, f - written_since_probe_.load());
+}
+
 double Syncer::max_pass_s() const { return static_cast<double>(max_pass_ns_.load()) * 1e-9; }
 
 void Syncer::SyncNow() {
@@ -174,6 +181,7 @@ void Syncer::SyncNow() {
     std::string why;
     if (!SyncDirectory(d, &why) && on_error_) on_error_(why);
   }
+  written_since_probe_.store(0);  // reset before the reading, so nothing written after it is lost
   if (probe_) {
     free_bytes_.store(probe_());
   } else {

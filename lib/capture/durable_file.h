@@ -83,8 +83,11 @@ class Syncer {
   // Runs one pass now (also used by tests).
   void SyncNow();
 
-  // Free bytes for unprivileged writers under `dir`, as of the last pass (-1 if unknown).
-  std::int64_t free_bytes() const { return free_bytes_.load(); }
+  // Free bytes for unprivileged writers under `dir`: the last pass's reading minus what was noted as
+  // written since (-1 if unknown).
+  std::int64_t free_bytes() const;
+  // Bytes just written (video frames), so that free_bytes() follows a fast writer between passes.
+  void NoteWritten(std::int64_t bytes) { written_since_probe_ += bytes; }
   // Sync failures (EIO, ENOSPC on write-back) are passed here.
   void set_on_error(std::function<void(const std::string&)> f) { on_error_ = std::move(f); }
   // Replaces the free-space probe (tests).
@@ -104,6 +107,7 @@ class Syncer {
   std::thread thread_;
   std::mutex pass_mutex_;
   std::atomic<std::int64_t> free_bytes_{-1};
+  std::atomic<std::int64_t> written_since_probe_{0};
   std::atomic<std::int64_t> passes_{0};
   std::atomic<std::int64_t> max_pass_ns_{0};
   std::function<void(const std::string&)> on_error_;

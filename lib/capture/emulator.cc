@@ -281,6 +281,7 @@ void DeviceEmulator::Run(const std::atomic<bool>& stop, double duration_s) {
     const bool cut = Active(FaultKind::kDisconnect, t);
     if (cut && pty_.is_open()) {
       pty_.Close();
+      for (const Pending& p : pending_) Truth("lost", p.line);  // queued replies die with the line
       pending_.clear();
       partial_.clear();
       ++stats_.disconnects;

@@ -16,7 +16,7 @@
 // Every byte sent and every command received is written to an optional truth log
 //   host_mono_s,event,data
 // (host_mono_s = CLOCK_MONOTONIC, the clock rk-capture stamps with; event = sent, dropped, garbage,
-// received, ignored, disconnect, reconnect; data = the reply or command line without its terminator)
+// lost (queued when the line was cut), received, ignored, disconnect, reconnect; data = the reply or command line without its terminator)
 // so that tests can check every record rk-capture wrote against what the device said.
 #pragma once
 

@@ -552,6 +552,7 @@ void Recorder::WriteFrame(CameraStream* cam, const CameraStream::Item& item) {
     cam->Fault(item.at, "frames.csv not written (" + why + "): frame removed");
     return;
   }
+  syncer_->NoteWritten(static_cast<std::int64_t>(frame.total() * frame.elemSize()));
   ++cam->frame_index;
   ++cam->written;
   if (cam->writer->frames_in_segment() == 1) {

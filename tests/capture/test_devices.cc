@@ -279,7 +279,7 @@ std::vector<std::pair<std::int64_t, std::int64_t>> TruthPairs(const std::vector<
   std::vector<TruthLine> replies;
   for (const auto& l : truth) {
     if (l.event == "received") commands.push_back(l.data);
-    if (l.event == "sent" || l.event == "dropped" || l.event == "garbage") replies.push_back(l);
+    if (l.event == "sent" || l.event == "dropped" || l.event == "garbage" || l.event == "lost") replies.push_back(l);
   }
   for (std::size_t i = 0; i < replies.size() && i < commands.size(); ++i) {
     if (replies[i].mono_s >= before) break;
@@ -345,7 +345,8 @@ TEST(PtuDriver, FaultsNeverMispairReplies) {
   std::string why;
   // Late replies (0.25 s, longer than the 0.1 s timeout) are the dangerous fault: without the
   // resynchronisation they would be taken for answers to later queries.
-  for (const char* f : {"error:0.2:0.15", "silence:0.5:0.25", "slow:0.9:0.25:0.25", "garbage:1.3:0.1"}) {
+  for (const char* f :
+       {"error:0.2:0.15", "silence:0.5:0.25", "slow:1.1:0.25:0.25", "garbage:1.6:0.1", "disconnect:1.9:0.2"}) {
     Fault fault;
     ASSERT_TRUE(ParseFault(f, &fault, &why));
     e.common.faults.push_back(fault);
@@ -355,20 +356,27 @@ TEST(PtuDriver, FaultsNeverMispairReplies) {
   o.serial = Serial(emu.port());
   o.rate_hz = 50;
   o.timeout_s = 0.1;
+  o.reconnect_s = 0.1;
   Recorded rec;
   std::vector<TurretSample> samples;
   PtuDriver d(o, rec.Reporter(), [&](const TurretSample& s) { samples.push_back(s); });
   ASSERT_TRUE(d.Connect(&why)) << why;
   std::atomic<bool> stop{false};
   std::thread t([&] { d.Run(stop); });
-  std::this_thread::sleep_for(std::chrono::milliseconds(1800));
+  std::this_thread::sleep_for(std::chrono::milliseconds(2600));
   stop = true;
   t.join();
   emu.Stop();
   const PtuStats st = d.stats();
   EXPECT_GE(st.error_replies, 1);
-  EXPECT_GE(st.timeouts, 2);  // silence and slow
+  EXPECT_GE(st.timeouts, 1);  // silence and slow (one gap if the machine is too slow to close the first in between)
+  EXPECT_EQ(st.disconnects, 1);
+  EXPECT_EQ(st.reconnects, 1);  // and the resolution read again from the re-created unit
   EXPECT_GE(rec.gaps_begun, 3);
+  // The late replies of the slow fault were seen and thrown away, not used.
+  bool discarded = false;
+  for (const auto& e : rec.events) discarded = discarded || e.find("late line(s) discarded") != std::string::npos;
+  EXPECT_TRUE(discarded);
   EXPECT_EQ(rec.gaps_begun, rec.gaps_ended);
   // Every sample is a (PP answer, TP answer) pair the unit really gave for those two queries.
   const auto pairs = TruthPairs(ReadTruth(e.common.truth_path), 1e18);
@@ -377,7 +385,8 @@ TEST(PtuDriver, FaultsNeverMispairReplies) {
     EXPECT_EQ(samples[i].pan_pos, pairs[i].first) << i;
     EXPECT_EQ(samples[i].tilt_pos, pairs[i].second) << i;
   }
-  EXPECT_GE(samples.size(), 30u);  // 1.8 s at 50 Hz minus ~0.8 s of faults and resynchronisation
+  EXPECT_GE(samples.size(), 40u);  // 2.6 s at 50 Hz minus ~1.3 s of faults and resynchronisation
+  EXPECT_GT(samples.back().stamp.mono_ns, samples.front().stamp.mono_ns + 2 * kNsPerS);  // polls after the reconnect
   fs::remove_all(dir);
 }
 

@@ -183,6 +183,13 @@ TEST(Syncer, FreeSpaceProbeAndRetiredFiles) {
   syncer.SyncNow();
   EXPECT_EQ(syncer.free_bytes(), 12345);
   EXPECT_EQ(f.use_count(), 1);  // the Syncer synced it once more and let it go
+  // Between two readings the estimate follows what the writers noted; the next reading replaces it.
+  syncer.NoteWritten(2345);
+  EXPECT_EQ(syncer.free_bytes(), 10000);
+  syncer.NoteWritten(20000);
+  EXPECT_EQ(syncer.free_bytes(), 0);
+  syncer.SyncNow();
+  EXPECT_EQ(syncer.free_bytes(), 12345);
   fs::remove_all(dir);
 }
 

@@ -118,7 +118,7 @@ def check_turret(trial, truth_path, cutoff, manifest):
     for mono, ev, data in read_truth(truth_path):
         if ev == "received":
             commands.append((mono, data))
-        elif ev in ("sent", "dropped", "garbage"):
+        elif ev in ("sent", "dropped", "garbage", "lost"):
             replies.append((mono, ev, data))
     pairs = []  # (pan, tilt, pp_sent, tp_sent, on_time)
     pan = None

@@ -170,3 +170,8 @@ printf 'oops\n' >> t/az/frames.csv && printf '9,1.0,1,1,9,0\n' >> t/az/frames.cs
 "$expect" 2 - '' -- rk-sim device
 echo ok
 ]==])
+
+# A really full disk (ENOSPC), where the machine allows it: tests/cli/capture_disk_full.sh mounts a
+# 12 MB tmpfs in a private mount namespace (needs CAP_SYS_ADMIN; the test is skipped otherwise).
+rk_cli_test(rk_capture_disk_full COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/capture_disk_full.sh ${RK_CLI_DATA})
+set_tests_properties(rk_capture_disk_full PROPERTIES SKIP_RETURN_CODE 77)
