@@ -1,6 +1,8 @@
 #include "capture/recorder.h"
 
+#include <fcntl.h>
 #include <signal.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -127,7 +129,10 @@ struct CameraStream {
 class Recorder {
  public:
   Recorder(const StationConfig& cfg, const CaptureOptions& opt) : cfg_(cfg), opt_(opt) {}
-  ~Recorder() { Abort(); }
+  ~Recorder() {
+    Abort();
+    if (lock_fd_ >= 0) ::close(lock_fd_);  // releases the lock
+  }
 
   CaptureSummary Run();
 
@@ -163,6 +168,7 @@ class Recorder {
   std::string dir_;
   bool created_dir_ = false;
   bool recording_ = false;
+  int lock_fd_ = -1;
   TrialEpoch epoch_;
   Stamp started_;
   std::int64_t record_start_ns_ = 0, record_end_ns_ = 0;
@@ -218,6 +224,9 @@ void Recorder::PrepareFolder() {
     created_dir_ = true;
   }
   dir_ = out;
+  const std::string lock = (fs::path(dir_) / kLockFile).string();
+  lock_fd_ = ::open(lock.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd_ < 0 || ::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) throw IoError(lock, "cannot lock the trial folder");
 }
 
 void Recorder::Abort() {

@@ -66,6 +66,8 @@ struct CaptureSummary {
 // Records until the duration is over or *stop is set, then stops the devices, writes what is
 // queued and leaves the manifest in state "complete". Throws rk::Error before recording starts
 // (output folder refused, a device or camera not answering) and leaves nothing behind then.
+// Process-wide effect: SIGXFSZ is ignored (a file-size limit must fail a write, not kill the
+// recording).
 CaptureSummary RunCapture(const StationConfig& config, const CaptureOptions& options);
 
 }  // namespace rk::capture

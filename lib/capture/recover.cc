@@ -1,6 +1,7 @@
 #include "capture/recover.h"
 
 #include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -406,6 +407,13 @@ RecoverSummary Recovery::Run() {
   if (!fs::is_directory(dir_, ec)) throw IoError(dir_, "not a folder");
   const std::string manifest_path = Path(kManifestFile);
   if (!fs::is_regular_file(manifest_path, ec)) throw IoError(manifest_path, "no manifest: not a trial directory");
+  // Never touch a recording in progress.
+  const int lock = ::open(Path(kLockFile).c_str(), O_RDONLY | O_CLOEXEC);
+  if (lock >= 0) {
+    const bool busy = ::flock(lock, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK;
+    ::close(lock);
+    if (busy) throw UsageError(dir_ + ": rk-capture is still recording into it (" + kLockFile + " is held); stop it first");
+  }
   io::Json m = io::LoadJson(manifest_path);
   if (!m.is_object() || !m.contains("cameras") || !m["cameras"].is_object()) {
     throw DataError(manifest_path, 0, 0, "not a trial manifest (no \"cameras\" object)");

@@ -10,6 +10,9 @@ inline constexpr const char* kTurretFile = "turret.csv";
 inline constexpr const char* kFramesFile = "frames.csv";  // in each camera's folder
 inline constexpr const char* kCameraModelFile = "camera.json";
 inline constexpr const char* kTargetModelFile = "target.json";
+// Held (flock) by rk-capture while it records into the folder; the kernel releases it when the
+// process ends, even by kill -9. `recover` refuses a folder whose lock is held.
+inline constexpr const char* kLockFile = ".rk-capture.lock";
 
 // frame: 0-based decode index over all segments; seq: the source's frame counter (a jump = frames
 // dropped before the disk); segment: index of the segment holding the frame.

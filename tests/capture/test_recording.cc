@@ -6,6 +6,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <thread>
 
 #include "capture/camera_source.h"
 #include "capture/recorder.h"
@@ -273,6 +274,28 @@ TEST_F(Recover, ABadRowInsideALogIsReported) {
   const RecoverSummary r = RecoverTrial(trial_, {});
   EXPECT_FALSE(r.readable());
   EXPECT_NE(r.problems.front().find("frames.csv:"), std::string::npos) << r.problems.front();
+}
+
+TEST(RecoverErrors, RefusesARecordingInProgress) {
+  const std::string dir = TempDir("busy");
+  const StationConfig cfg = StationConfigFromJson(SyntheticStation(), dir + "/station.json");
+  CaptureOptions o;
+  o.out_dir = dir + "/trial";
+  o.duration_s = 1.5;
+  std::thread t([&] { RunCapture(cfg, o); });
+  for (int i = 0; i < 100 && !fs::exists(dir + "/trial/trial.json"); ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  try {
+    RecoverTrial(dir + "/trial", {});
+    ADD_FAILURE() << "recover ran on a recording in progress";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kUsage);
+    EXPECT_NE(std::string(e.what()).find("still recording"), std::string::npos);
+  }
+  t.join();
+  EXPECT_TRUE(RecoverTrial(dir + "/trial", {}).readable());  // the lock went with the recording
+  fs::remove_all(dir);
 }
 
 TEST(RecoverErrors, NotATrial) {
