@@ -102,8 +102,8 @@ struct CameraStream {
 
   std::unique_ptr<AppendLog> frames_log;
   std::unique_ptr<SegmentWriter> writer;
-  FrameFormat format;
-  bool have_format = false;
+  FrameFormat format;                    // set by the writer thread before have_format
+  std::atomic<bool> have_format{false};  // read by the manifest writer
   int segment = -1;
   std::int64_t frame_index = 0;
 
@@ -507,7 +507,7 @@ void Recorder::WriteFrame(CameraStream* cam, const CameraStream::Item& item) {
   if (!cam->have_format) {
     cam->format = {frame.cols, frame.rows, frame.depth() == CV_16U ? 16 : 8, cam->fps};
     cam->writer = MakeSegmentWriter(cam->cfg.format, dir_, cam->cfg.name, cam->format, syncer_.get());
-    cam->have_format = true;
+    cam->have_format.store(true, std::memory_order_release);
     if (!cam->cfg.model_path.empty()) {
       try {
         const camera::CameraModel m = camera::LoadCameraModel(cam->cfg.model_path);
@@ -648,9 +648,10 @@ io::Json Recorder::ManifestJson(const std::string& state) {
     c["fps"] = cam->fps;
     c["format"] = cam->cfg.format;
     c["frames_per_segment"] = cam->frames_per_segment;
-    c["width"] = cam->have_format ? io::Json(cam->format.width) : io::Json(nullptr);
-    c["height"] = cam->have_format ? io::Json(cam->format.height) : io::Json(nullptr);
-    c["bit_depth"] = cam->have_format ? io::Json(cam->format.bit_depth) : io::Json(nullptr);
+    const bool known = cam->have_format.load(std::memory_order_acquire);
+    c["width"] = known ? io::Json(cam->format.width) : io::Json(nullptr);
+    c["height"] = known ? io::Json(cam->format.height) : io::Json(nullptr);
+    c["bit_depth"] = known ? io::Json(cam->format.bit_depth) : io::Json(nullptr);
     c["frames_grabbed"] = cam->grabbed.load();
     c["frames_written"] = cam->written.load();
     c["dropped_queue_full"] = cam->dropped_queue.load();
