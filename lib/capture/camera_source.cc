@@ -38,62 +38,6 @@ void ToMono(const cv::Mat& in, cv::Mat* out) {
   }
 }
 
-class OpenCvSource : public CameraSource {
- public:
-  explicit OpenCvSource(CameraSourceOptions o) : o_(std::move(o)) {}
-  bool Open(std::string* why) override {
-    Close();
-    bool ok = false;
-    if (o_.source.rfind("gst:", 0) == 0) {
-      ok = cap_.open(o_.source.substr(4), cv::CAP_GSTREAMER);
-    } else if (IsIndex(o_.source)) {
-      ok = cap_.open(std::stoi(o_.source), cv::CAP_V4L2);
-    } else {
-      ok = cap_.open(o_.source, cv::CAP_V4L2);
-    }
-    if (!ok || !cap_.isOpened()) {
-      if (why) *why = "cannot open camera '" + o_.source + "'";
-      return false;
-    }
-    if (o_.fourcc.size() == 4) {
-      cap_.set(cv::CAP_PROP_FOURCC, cv::VideoWriter::fourcc(o_.fourcc[0], o_.fourcc[1], o_.fourcc[2], o_.fourcc[3]));
-    }
-    if (o_.width > 0) cap_.set(cv::CAP_PROP_FRAME_WIDTH, o_.width);
-    if (o_.height > 0) cap_.set(cv::CAP_PROP_FRAME_HEIGHT, o_.height);
-    if (!kGst()) cap_.set(cv::CAP_PROP_FPS, o_.fps);
-    const double f = cap_.get(cv::CAP_PROP_FPS);
-    fps_ = f > 0 && std::isfinite(f) ? f : o_.fps;
-    return true;
-  }
-  void Close() override {
-    if (cap_.isOpened()) cap_.release();
-  }
-  GrabResult Grab(cv::Mat* out, Stamp* at, std::string* why, const std::atomic<bool>& stop) override {
-    if (stop.load()) return GrabResult::kStopped;
-    if (!cap_.isOpened() || !cap_.grab()) {
-      if (why) *why = "camera '" + o_.source + "' delivered no frame";
-      return GrabResult::kError;
-    }
-    *at = Now();
-    if (!cap_.retrieve(raw_) || raw_.empty()) {
-      if (why) *why = "camera '" + o_.source + "': frame could not be retrieved";
-      return GrabResult::kError;
-    }
-    ToMono(raw_, out);
-    return GrabResult::kFrame;
-  }
-  double fps() const override { return fps_; }
-  std::string kind() const override { return kGst() ? "gstreamer" : "v4l2"; }
-
- private:
-  bool kGst() const { return o_.source.rfind("gst:", 0) == 0; }
-  CameraSourceOptions o_;
-  cv::VideoCapture cap_;
-  cv::Mat raw_;
-  double fps_ = 0;
-};
-
-// Paces frames at a fixed rate on CLOCK_MONOTONIC: frame k is due at start + k / fps.
 // The clock starts at the first Wait(), so a source opened early does not deliver a burst.
 class Pacer {
  public:
@@ -112,6 +56,75 @@ class Pacer {
   std::int64_t period_ns_ = 50000000, start_ns_ = -1, k_ = 0;
 };
 
+class OpenCvSource : public CameraSource {
+ public:
+  explicit OpenCvSource(CameraSourceOptions o) : o_(std::move(o)) {}
+  bool Open(std::string* why) override {
+    Close();
+    bool ok = false;
+    if (IsFile()) {
+      ok = cap_.open(o_.source.substr(7), cv::CAP_FFMPEG);
+    } else if (o_.source.rfind("gst:", 0) == 0) {
+      ok = cap_.open(o_.source.substr(4), cv::CAP_GSTREAMER);
+    } else if (IsIndex(o_.source)) {
+      ok = cap_.open(std::stoi(o_.source), cv::CAP_V4L2);
+    } else {
+      ok = cap_.open(o_.source, cv::CAP_V4L2);
+    }
+    if (!ok || !cap_.isOpened()) {
+      if (why) *why = "cannot open camera '" + o_.source + "'";
+      return false;
+    }
+    if (o_.fourcc.size() == 4) {
+      cap_.set(cv::CAP_PROP_FOURCC, cv::VideoWriter::fourcc(o_.fourcc[0], o_.fourcc[1], o_.fourcc[2], o_.fourcc[3]));
+    }
+    if (o_.width > 0) cap_.set(cv::CAP_PROP_FRAME_WIDTH, o_.width);
+    if (o_.height > 0) cap_.set(cv::CAP_PROP_FRAME_HEIGHT, o_.height);
+    if (!kGst() && !IsFile()) cap_.set(cv::CAP_PROP_FPS, o_.fps);
+    const double f = cap_.get(cv::CAP_PROP_FPS);
+    fps_ = f > 0 && std::isfinite(f) && f < 10000 ? f : o_.fps;
+    pacer_.Reset(fps_);
+    return true;
+  }
+  void Close() override {
+    if (cap_.isOpened()) cap_.release();
+  }
+  GrabResult Grab(cv::Mat* out, Stamp* at, std::string* why, const std::atomic<bool>& stop) override {
+    if (stop.load()) return GrabResult::kStopped;
+    if (IsFile() && !pacer_.Wait(stop)) return GrabResult::kStopped;  // a file plays at its rate
+    bool ok = cap_.isOpened() && cap_.grab();
+    if (!ok && IsFile() && cap_.isOpened()) {
+      if (!o_.loop) return GrabResult::kEnd;
+      cap_.set(cv::CAP_PROP_POS_FRAMES, 0);
+      ok = cap_.grab();
+    }
+    if (!ok) {
+      if (why) *why = "camera '" + o_.source + "' delivered no frame";
+      return GrabResult::kError;
+    }
+    if (IsFile()) pacer_.Next();
+    *at = Now();
+    if (!cap_.retrieve(raw_) || raw_.empty()) {
+      if (why) *why = "camera '" + o_.source + "': frame could not be retrieved";
+      return GrabResult::kError;
+    }
+    ToMono(raw_, out);
+    return GrabResult::kFrame;
+  }
+  double fps() const override { return fps_; }
+  std::string kind() const override { return IsFile() ? "opencv-file" : kGst() ? "gstreamer" : "v4l2"; }
+
+ private:
+  bool kGst() const { return o_.source.rfind("gst:", 0) == 0; }
+  bool IsFile() const { return o_.source.rfind("cvfile:", 0) == 0; }
+  Pacer pacer_;
+  CameraSourceOptions o_;
+  cv::VideoCapture cap_;
+  cv::Mat raw_;
+  double fps_ = 0;
+};
+
+// Paces frames at a fixed rate on CLOCK_MONOTONIC: frame k is due at start + k / fps.
 class FileSource : public CameraSource {
  public:
   explicit FileSource(CameraSourceOptions o) : o_(std::move(o)), path_(o_.source.substr(5)) {}

@@ -7,6 +7,9 @@
 //   "file:<path>"        a recorded video or image sequence, replayed at its frame rate (tests);
 //                        decoded by the suite's own reader (lib/video FrameSource, the one
 //                        rk-extract uses), so frames arrive bit-exact, 16-bit kept
+//   "cvfile:<path>"      a video file through OpenCV VideoCapture (CAP_FFMPEG), replayed at its
+//                        frame rate: the V4L2 / GStreamer code path (grab, retrieve, grey
+//                        conversion) on a file, for tests; 8-bit
 //   "synthetic:WxH[:16]" frames made in memory at the configured rate (benchmarks and tests):
 //                        a fixed random texture with a moving bright spot; the frame's sequence
 //                        number is written into its first 8 pixels (SyntheticFrameSeq reads it)

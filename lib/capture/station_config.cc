@@ -66,10 +66,12 @@ CameraConfig CameraFromJson(const io::Json& c, const std::string& path, std::siz
   }
   cam.source_text = io::RequireString(c, "source", where);
   cam.source.source = cam.source_text;
-  if (cam.source_text.rfind("file:", 0) == 0) {
-    const std::string file = cam.source_text.substr(5);
-    if (file.empty()) throw DataError(where, 0, 0, "'source' file: needs a path");
-    cam.source.source = "file:" + Resolve(path, file);
+  for (const std::string prefix : {"file:", "cvfile:"}) {
+    if (cam.source_text.rfind(prefix, 0) == 0) {
+      const std::string file = cam.source_text.substr(prefix.size());
+      if (file.empty()) throw DataError(where, 0, 0, "'source' " + prefix + " needs a path");
+      cam.source.source = prefix + Resolve(path, file);
+    }
   }
   cam.source.fps = io::NumberOr(c, "fps", 20.0, where);
   if (!(cam.source.fps > 0 && cam.source.fps <= 1000)) throw DataError(where, 0, 0, "'fps' must be in (0, 1000]");

@@ -24,7 +24,7 @@ namespace rk::capture {
 struct CameraConfig {
   std::string name;              // folder in the trial: letters, digits, '_' and '-'
   std::string source_text;       // "source" as written
-  CameraSourceOptions source;    // with file: paths resolved
+  CameraSourceOptions source;    // with file: / cvfile: paths resolved
   std::string model_path;        // camera model JSON (resolved), copied to <name>/camera.json; may be empty
   std::string role = "beacon";   // beacon, features, silhouette
   std::string target_path;       // target model JSON (resolved), copied to <name>/target.json; may be empty

@@ -17,6 +17,7 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "io/json_util.h"
+#include "video/frame_sink.h"
 #include "video/frame_source.h"
 
 namespace rk::capture {
@@ -124,6 +125,42 @@ TEST(Recorder, PgmSequenceSegments) {
   const io::Json m = io::LoadJson(trial + "/trial.json");
   EXPECT_EQ(m["cameras"]["az"]["video"][0], "az/seg_000/%06d.pgm");
   EXPECT_EQ(CheckCamera(trial, "az"), s.cameras[0].written);
+  fs::remove_all(dir);
+}
+
+// The OpenCV VideoCapture path (V4L2 and GStreamer cameras use it) on a file: every frame of an FFV1
+// grey video recorded bit-exact (grey → BGR → grey is exact in OpenCV's integer conversion).
+TEST(Recorder, OpenCvSourceRecordsEveryFrameOfAFile) {
+  const std::string dir = TempDir("cvfile");
+  std::vector<cv::Mat> src;
+  {
+    video::FrameSink sink(dir + "/src.mkv", 64, 48, 8, 40.0);
+    for (int k = 0; k < 12; ++k) {
+      cv::Mat m(48, 64, CV_8UC1);
+      cv::RNG rng(static_cast<std::uint64_t>(k) + 7);
+      rng.fill(m, cv::RNG::UNIFORM, 0, 256);
+      sink.Write(m);
+      src.push_back(m);
+    }
+    sink.Close();
+  }
+  io::Json j = {{"cameras", {{{"name", "az"}, {"source", "cvfile:src.mkv"}, {"fps", 40}}}}};
+  const CaptureSummary s = Record(dir, j, 5.0);
+  EXPECT_EQ(s.stop_reason, "sources ended");  // the file's 12 frames at 40 fps, long before 5 s
+  ASSERT_EQ(s.cameras.size(), 1u);
+  EXPECT_EQ(s.cameras[0].source_kind, "opencv-file");
+  EXPECT_NEAR(s.cameras[0].fps, 40.0, 1e-9);
+  EXPECT_TRUE(s.cameras[0].ended);
+  ASSERT_EQ(s.cameras[0].written, 12);
+  const io::Json m = io::LoadJson(dir + "/trial/trial.json");
+  std::vector<std::string> segs;
+  for (const auto& v : m["cameras"]["az"]["video"]) segs.push_back(dir + "/trial/" + v.get<std::string>());
+  video::FrameSource rec(segs);
+  cv::Mat f;
+  for (int k = 0; k < 12; ++k) {
+    ASSERT_TRUE(rec.Read(&f));
+    EXPECT_EQ(cv::norm(f, src[static_cast<std::size_t>(k)], cv::NORM_INF), 0.0) << "frame " << k;
+  }
   fs::remove_all(dir);
 }
 
