@@ -1,0 +1,25 @@
+// Names and columns of the trial directory written by rk-capture (SPEC.md §6, docs/rk-capture.md).
+#pragma once
+
+namespace rk::capture {
+
+inline constexpr const char* kManifestFile = "trial.json";
+inline constexpr const char* kEventsFile = "events.log";
+inline constexpr const char* kRangeFile = "range.csv";
+inline constexpr const char* kTurretFile = "turret.csv";
+inline constexpr const char* kFramesFile = "frames.csv";  // in each camera's folder
+inline constexpr const char* kCameraModelFile = "camera.json";
+inline constexpr const char* kTargetModelFile = "target.json";
+// Held (flock) by rk-capture while it records into the folder; the kernel releases it when the
+// process ends, even by kill -9. `recover` refuses a folder whose lock is held.
+inline constexpr const char* kLockFile = ".rk-capture.lock";
+
+// frame: 0-based decode index over all segments; seq: the source's frame counter (a jump = frames
+// dropped before the disk); segment: index of the segment holding the frame.
+inline constexpr const char* kFramesColumns = "frame,t_s,host_mono_s,host_real_s,seq,segment";
+// status: 0 ok, else the device's error code (range empty).
+inline constexpr const char* kRangeColumns = "t_s,range_m,status,host_mono_s,host_real_s";
+inline constexpr const char* kTurretColumns =
+    "t_s,az_deg,el_deg,pan_pos,tilt_pos,pan_res_arcsec,tilt_res_arcsec,pair_dt_s,host_mono_s,host_real_s";
+
+}  // namespace rk::capture
