@@ -270,21 +270,29 @@ TEST(DimetixDriver, ConnectFailsCleanlyWithoutADevice) {
 }
 
 // Position replies of the emulator, paired as the driver pairs them (PP answer, then TP answer).
-std::vector<std::pair<std::int64_t, std::int64_t>> TruthPairs(const std::vector<TruthLine>& truth, double before) {
+// Replies later than max_latency_s after their query are ones the driver has timed out on, so a
+// pair with such a reply is not a sample.
+std::vector<std::pair<std::int64_t, std::int64_t>> TruthPairs(const std::vector<TruthLine>& truth, double before,
+                                                              double max_latency_s = 1e18) {
   std::vector<std::pair<std::int64_t, std::int64_t>> out;
   bool have_pan = false;
   std::int64_t pan = 0;
   // In-order matching: the n-th reply answers the n-th command.
   std::vector<std::string> commands;
+  std::vector<double> asked_at;
   std::vector<TruthLine> replies;
   for (const auto& l : truth) {
-    if (l.event == "received") commands.push_back(l.data);
+    if (l.event == "received") {
+      commands.push_back(l.data);
+      asked_at.push_back(l.mono_s);
+    }
     if (l.event == "sent" || l.event == "dropped" || l.event == "garbage" || l.event == "lost") replies.push_back(l);
   }
   for (std::size_t i = 0; i < replies.size() && i < commands.size(); ++i) {
     if (replies[i].mono_s >= before) break;
     const PtuReply r = ParsePtuReply(replies[i].data);
-    const bool good = replies[i].event == "sent" && r.kind == PtuReplyKind::kOk && r.value;
+    const bool good = replies[i].event == "sent" && r.kind == PtuReplyKind::kOk && r.value &&
+                      replies[i].mono_s - asked_at[i] <= max_latency_s;
     if (commands[i] == "PP") {
       have_pan = good;
       pan = good ? static_cast<std::int64_t>(*r.value) : 0;
@@ -378,8 +386,9 @@ TEST(PtuDriver, FaultsNeverMispairReplies) {
   for (const auto& e : rec.events) discarded = discarded || e.find("late line(s) discarded") != std::string::npos;
   EXPECT_TRUE(discarded);
   EXPECT_EQ(rec.gaps_begun, rec.gaps_ended);
-  // Every sample is a (PP answer, TP answer) pair the unit really gave for those two queries.
-  const auto pairs = TruthPairs(ReadTruth(e.common.truth_path), 1e18);
+  // Every sample is a (PP answer, TP answer) pair the unit really gave, in time, for those two queries
+  // (a TP answer the slow fault delays past the timeout ends that poll without a sample).
+  const auto pairs = TruthPairs(ReadTruth(e.common.truth_path), 1e18, o.timeout_s);
   ASSERT_EQ(pairs.size(), samples.size());
   for (std::size_t i = 0; i < samples.size(); ++i) {
     EXPECT_EQ(samples[i].pan_pos, pairs[i].first) << i;
