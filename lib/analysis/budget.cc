@@ -304,7 +304,7 @@ io::Json BudgetResultToJson(const BudgetModel& model, const std::vector<BudgetSo
     if (q.unit == BudgetUnit::kAngle) e["sigma_arcmin"] = geo::RadToDeg(r.input_sigma[i]) * 60.0;
     ins.push_back(e);
   }
-  j["inputs"] = ins;
+  j["model_inputs"] = ins;
   io::Json src = io::Json::array();
   for (const BudgetSource& s : sources) {
     io::Json names = io::Json::array();

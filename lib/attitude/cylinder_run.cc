@@ -197,7 +197,8 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
     double t_s;
     Eigen::Vector3d axis;
   };
-  std::vector<History> history;  // accepted rows, last two kept
+  constexpr std::size_t kHistory = 5;
+  std::vector<History> history;  // accepted rows, the last kHistory kept
   std::size_t complete_frames = 0, covered_frames = 0;
 
   result.rows.reserve(points.frames.size());
@@ -259,7 +260,7 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
       row.sigma_yaw_rad = bound / std::max(std::cos(los.el_rad), 1e-9);
       row.sigma_pitch_rad = bound;
       history.push_back({f.t_s, mid});
-      if (history.size() > 2) history.erase(history.begin());
+      if (history.size() > kHistory) history.erase(history.begin());
       finish(ok_status, CylinderSolutionStatus::kTailChase);
       continue;
     }
@@ -287,10 +288,27 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
     while (!history.empty() && f.t_s - history.back().t_s > options.continuity_gap_s) history.clear();
     std::optional<Eigen::Vector3d> predicted;
     if (history.size() >= 2) {
-      const History& h1 = history[history.size() - 2];
-      const History& h2 = history.back();
-      const double dt = h2.t_s - h1.t_s;
-      predicted = dt > 0.0 ? (h2.axis + (h2.axis - h1.axis) * ((f.t_s - h2.t_s) / dt)).normalized() : h2.axis;
+      // Straight-line least-squares fit of the axis components over the history (up to kHistory rows), so
+      // that one noisy row does not throw the prediction (two-point extrapolation doubles the noise).
+      const double t_ref = history.back().t_s;
+      double sw = 0, st = 0, stt = 0;
+      Eigen::Vector3d sa = Eigen::Vector3d::Zero(), sta = Eigen::Vector3d::Zero();
+      for (const History& h : history) {
+        const double t = h.t_s - t_ref;
+        sw += 1;
+        st += t;
+        stt += t * t;
+        sa += h.axis;
+        sta += t * h.axis;
+      }
+      const double det = sw * stt - st * st;
+      if (det > 1e-12 * std::max(1.0, stt * sw)) {
+        const Eigen::Vector3d slope = (sw * sta - st * sa) / det;
+        const Eigen::Vector3d icept = (sa - slope * st) / sw;
+        predicted = (icept + slope * (f.t_s - t_ref)).normalized();
+      } else {
+        predicted = (sa / sw).normalized();
+      }
     } else if (history.size() == 1) {
       predicted = history.back().axis;
     }
@@ -336,7 +354,7 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
       row.sigma_pitch_rad = sigma(1);
     }
     history.push_back({f.t_s, p.axis_enu});
-    if (history.size() > 2) history.erase(history.begin());
+    if (history.size() > kHistory) history.erase(history.begin());
     finish(ok_status, sol_status);
   }
 

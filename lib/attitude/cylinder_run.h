@@ -18,8 +18,9 @@
 //      equidistant from the tail points (|∠(nose,tail1) − ∠(nose,tail2)| · f > max_asymmetry_px; zero for a
 //      true cylinder) → `inconsistent` (mislabelled or bad points).
 //   5. All admissible solutions (cylinder_solve.h). None → `no_solution`; only a near miss → `near_miss`.
-//   6. Primary (SPEC.md §3): the solution continuous with the previous rows — nearest to the axis linearly
-//      extrapolated from the last two accepted rows (or the last one) not older than continuity_gap_s —
+//   6. Primary (SPEC.md §3): the solution continuous with the previous rows — nearest to the axis predicted
+//      by a straight-line least-squares fit of the axis over the last (up to five) accepted rows not older
+//      than continuity_gap_s (the last row itself when there is only one) —
 //      and, with no such history, the nose-nearer one. Solution status: `unique` (one solution),
 //      `continuity` (two, chosen by history), `ambiguous` (two more than ambiguity_deg apart that history
 //      cannot tell apart: none, or both within ambiguity_deg of the prediction — primary by the SPEC rule,

@@ -74,7 +74,7 @@ TEST(Budget, MonteCarloAgreesWithJacobianForSmallErrors) {
   EXPECT_EQ(r.outputs[0].sigma_mc, r2.outputs[0].sigma_mc);
   const io::Json j = BudgetResultToJson(*m, src, opt, r);
   EXPECT_EQ(j["outputs"][0]["name"], "az");
-  EXPECT_NEAR(j["inputs"][0]["sigma_arcmin"].get<double>(), 2.0 / 60.0, 1e-12);
+  EXPECT_NEAR(j["model_inputs"][0]["sigma_arcmin"].get<double>(), 2.0 / 60.0, 1e-12);
   EXPECT_NE(FormatBudgetTable(*m, src, r).find("sigma_jac"), std::string::npos);
 }
 
