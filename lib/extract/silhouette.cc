@@ -493,29 +493,51 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
   }
 
   // 5. Tail. Body plateau A(v): mean α at offset v from the centre line over the body (blurred near the
-  // edges). Along lines of constant v (|v| ≤ 0.8 w where A ≥ 0.5): rough edge e0 = first drop below A/2
+  // edges). Along lines of constant v (|v| ≤ min(0.8 w, w − 3 s), A ≥ 0.5): rough edge e0 = first drop below A/2
   // walking out of the body; then e = e0 + h − ∫_{e0−h}^{e0+h} α du / A(v), h = 3 σ_psf + 2 (a short window
-  // keeps the integrated sky noise small). Fit e(v) = u0 − b sqrt(1 − (v/w)²), b ≥ 0.
+  // keeps the integrated sky noise small). Each such edge is the outline averaged over the effective blur
+  // across the lines (PSF, pixel area and resampling, variance s²): e_meas(v) = e(v) + (s²/2) e''(v).
+  // s² is measured on the body's own side edges: for a blurred step, ∫ t (H(−t) − A(w + t)) dt = −s²/2.
+  // Fit e(v) = u0 − b [g(v) + (s²/2) g''(v)], g = sqrt(1 − (v/w)²), linear in (u0, b), b ≥ 0.
   auto half_width = [&](double u) { return 0.5 * ((e1.a + e1.b * u) - (e2.a + e2.b * u)); };
   auto centre = [&](double u) { return 0.5 * ((e1.a + e1.b * u) + (e2.a + e2.b * u)); };
   const double body_u0 = u_first + 0.5 * width + mrg, body_u1 = std::max(body_u0 + 1.0, u_cone - mrg);
   const double h = 3.0 * opt.psf_sigma_px + 2.0;
   constexpr double hu = 0.25;
+  // Mean α across the body at offset v from the centre line (averaged along the body).
+  auto plateau = [&](double v) {
+    double A = 0;
+    int na = 0;
+    for (double u = body_u0; u <= body_u1; u += kStep) {
+      const Eigen::Vector2d q = f.At(u, centre(u) + v);
+      A += Bilinear(alpha, q.x(), q.y());
+      ++na;
+    }
+    return A / std::max(na, 1);
+  };
+  double blur2 = 0.0;
+  {
+    const double wb = half_width(0.5 * (body_u0 + body_u1));
+    double m = 0;
+    for (int side = -1; side <= 1; side += 2) {
+      for (double t = -h; t <= h + 1e-9; t += hu) {
+        const double a = plateau(side * (wb + t));
+        m += t * ((t < 0 ? 1.0 : 0.0) - a) * hu;
+      }
+    }
+    blur2 = std::max(0.0, -m);  // each side: ∫ t (H(−t) − A) dt = −s²/2; two sides: −s²
+  }
+  res.edge_blur_px = std::sqrt(blur2);
   double u0 = u_first, b = 0;
   for (int iter = 0; iter < 2; ++iter) {
     const double w = half_width(u0);
     const double c = centre(u0);
     double s11 = 0, s12 = 0, s22 = 0, r1 = 0, r2 = 0;
     int count = 0;
-    for (double v = -0.8 * w; v <= 0.8 * w + 1e-9; v += kStep) {
-      double A = 0;
-      int na = 0;
-      for (double u = body_u0; u <= body_u1; u += kStep) {
-        const Eigen::Vector2d q = f.At(u, centre(u) + v);
-        A += Bilinear(alpha, q.x(), q.y());
-        ++na;
-      }
-      A /= std::max(na, 1);
+    // Lines closer to a side edge than 3 s see that edge's blur too (the curvature model then fails).
+    const double vmax = std::min(0.8 * w, w - 3.0 * std::sqrt(blur2));
+    for (double v = -vmax; v <= vmax + 1e-9; v += kStep) {
+      const double A = plateau(v);
       if (!(A >= 0.5)) continue;
       auto alpha_at = [&](double u) {
         const Eigen::Vector2d q = f.At(u, c + v);
@@ -533,7 +555,8 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
       double integral = 0;
       for (int i = 0; i <= n; ++i) integral += ((i == 0 || i == n) ? 0.5 : 1.0) * alpha_at(e0 - h + i * hu);
       const double e = (e0 - h + n * hu) - hu * integral / A;
-      const double g = -std::sqrt(std::max(0.0, 1.0 - (v / w) * (v / w)));
+      const double q = std::max(1e-3, 1.0 - (v / w) * (v / w));
+      const double g = -(std::sqrt(q) - 0.5 * blur2 / (w * w * q * std::sqrt(q)));  // −(g + (s²/2) g'')
       s11 += 1;
       s12 += g;
       s22 += g * g;

@@ -17,10 +17,11 @@
 //   4. The nose end is the narrower one. Side lines v = C ± S/2 over the cylindrical body (S ≥ 0.97 of the
 //      body width, away from the tail and the nose by 3 PSF σ + 2 px) are fitted by clipped least squares;
 //      their mid-line re-defines the axis and the profiles are sampled again (twice).
-//   5. Tail: along lines of constant v (|v| ≤ 0.8 w), the edge position e(v) = u_in − ∫ α du (same
+//   5. Tail: along lines of constant v (|v| ≤ min(0.8 w, w − 3 s)), the edge position e(v) = u_in − ∫ α du (same
 //      unbiased integral). The tail outline is the outer half of the rim ellipse, whose major axis is the
 //      diameter seen edge-on, perpendicular to the image axis: e(v) = u0 − b sqrt(1 − (v/w)²), linear in
-//      (u0, b) (b ≥ 0 enforced). tail1 / tail2 = the left / right side line at u0: the tangent points of the
+//      (u0, b) (b ≥ 0 enforced), with the blur's curvature bias e += (s²/2) e'' modelled (s = the effective
+//      blur σ, measured on the side edges). tail1 / tail2 = the left / right side line at u0: the tangent points of the
 //      rim ellipse, i.e. the ends of the edge-on diameter. (Orthographic within the target's own depth: the
 //      error is ~ w·r/range, < 0.002 px at seed 004 scales.)
 //   6. Nose: over the cone, S(u) and C(u) are straight lines; fitted where 0.15 W ≤ S ≤ 0.7 W (clear of
@@ -65,6 +66,7 @@ struct SilhouetteResult {
   double length_px = 0.0;        // nose tip to tail centre
   double side_rms_px = 0.0;      // RMS residual of the side-line fits
   double tail_b_px = 0.0;        // semi-minor axis of the tail-rim ellipse
+  double edge_blur_px = 0.0;     // effective blur σ of the side edges (PSF, pixel, resampling)
   int region_area_px = 0;
 };
 
