@@ -84,14 +84,16 @@ BranchPoint Bisect(Context& c, int s2, int s3, BranchPoint lo, BranchPoint hi) {
   return std::abs(lo.f) <= std::abs(hi.f) ? lo : hi;
 }
 
-// Golden-section minimum of |f| on [lo, hi] (invalid points count as +inf).
-BranchPoint GoldenMinAbs(Context& c, int s2, int s3, double lo, double hi) {
+// Golden-section minimum of sign·f on [lo, hi] (invalid points count as +inf): with sign = the sign of f
+// around a dip, this is the bottom of the dip — of the opposite sign when a pair of roots hides in it (a
+// minimum of |f| could instead stop at one of the roots from either side).
+BranchPoint GoldenDip(Context& c, int s2, int s3, double lo, double hi, double sign) {
   constexpr double kInvPhi = 0.6180339887498949;
-  auto absf = [](const BranchPoint& p) { return p.valid ? std::abs(p.f) : std::numeric_limits<double>::infinity(); };
+  auto g = [sign](const BranchPoint& p) { return p.valid ? sign * p.f : std::numeric_limits<double>::infinity(); };
   double x1 = hi - kInvPhi * (hi - lo), x2 = lo + kInvPhi * (hi - lo);
   BranchPoint p1 = Eval(c, s2, s3, x1), p2 = Eval(c, s2, s3, x2);
   for (int it = 0; it < 90 && hi - lo > 1e-15 * std::abs(hi); ++it) {
-    if (absf(p1) <= absf(p2)) {
+    if (g(p1) <= g(p2)) {
       hi = x2;
       x2 = x1;
       p2 = p1;
@@ -105,7 +107,7 @@ BranchPoint GoldenMinAbs(Context& c, int s2, int s3, double lo, double hi) {
       p2 = Eval(c, s2, s3, x2);
     }
   }
-  return absf(p1) <= absf(p2) ? p1 : p2;
+  return g(p1) <= g(p2) ? p1 : p2;
 }
 
 void AddExact(Context& c, const BranchPoint& p) {
@@ -125,7 +127,7 @@ void AddNearMiss(Context& c, const BranchPoint& p) {
 
 // A grid minimum of |f| at `mid` between `lo` and `hi` (same sign throughout): a hidden root pair or a near miss.
 void ExamineMinimum(Context& c, int s2, int s3, const BranchPoint& lo, const BranchPoint& mid, const BranchPoint& hi) {
-  const BranchPoint m = GoldenMinAbs(c, s2, s3, lo.R1, hi.R1);
+  const BranchPoint m = GoldenDip(c, s2, s3, lo.R1, hi.R1, Negative(mid.f) ? -1.0 : 1.0);
   if (!m.valid) return;
   if (m.f == 0.0) {
     AddExact(c, m);
@@ -182,11 +184,26 @@ CylinderSolveResult SolveCylinderSearch(const CylinderRays& rays, const Cylinder
   if (!(hi > lo)) return result;
   const double step = L / opt.search_steps_per_slant;
   const long n = std::clamp(static_cast<long>(std::ceil((hi - lo) / step)), 2L, static_cast<long>(opt.search_max_samples));
+  // Where the band ends at the joint of the branches (R1 = L'/max(s12, s13), the square roots vanish) the
+  // roots crowd towards it like the square root does (a pair within 1e-3 m of it at a side-on view): the last
+  // interval is replaced by points closing in geometrically, R1max − step·2^−k, k = 1 … 45.
+  const bool joint = hi == r1_max;
+  constexpr int kJointPoints = 45;
+  const long total = joint ? n - 1 + kJointPoints + 1 : n;
+  auto grid = [&](long j) {
+    if (joint && j >= n - 1) {
+      const long k = j - (n - 1);  // 0 … kJointPoints
+      if (k == kJointPoints) return hi;
+      const double h = (hi - lo) / static_cast<double>(n);
+      return hi - h * std::ldexp(1.0, -static_cast<int>(k));
+    }
+    return j == n ? hi : lo + (hi - lo) * static_cast<double>(j) / static_cast<double>(n);
+  };
   for (const auto& br : kBranches) {
     const int s2 = br[0], s3 = br[1];
     BranchPoint p2, p1;  // previous two grid points
-    for (long j = 0; j <= n; ++j) {
-      const double R1 = j == n ? hi : lo + (hi - lo) * static_cast<double>(j) / static_cast<double>(n);
+    for (long j = 0; j <= total; ++j) {
+      const double R1 = grid(j);
       const BranchPoint p = Eval(c, s2, s3, R1);
       if (p1.valid && p.valid) {
         if (p.f == 0.0) {
@@ -200,6 +217,11 @@ CylinderSolveResult SolveCylinderSearch(const CylinderRays& rays, const Cylinder
       }
       p2 = p1;
       p1 = p;
+    }
+    // The joint itself can be the bottom of a dip (the branch continues on its partner beyond it).
+    if (joint && p1.valid && p2.valid && p1.f != 0.0 && Negative(p1.f) == Negative(p2.f) &&
+        std::abs(p1.f) < std::abs(p2.f)) {
+      ExamineMinimum(c, s2, s3, p2, p1, p1);
     }
   }
   Finish(c);
@@ -298,7 +320,9 @@ CylinderSolveResult SolveCylinderP3P(const CylinderRays& rays, const CylinderTar
     const double hi = std::min(R(0) + 0.5 * L, MaxNoseRange(a, target));
     if (!(hi > lo)) continue;
     const BranchPoint plo = EvaluateBranch(a, target, s2, s3, lo), phi = EvaluateBranch(a, target, s2, s3, hi);
-    const BranchPoint m = GoldenMinAbs(c, s2, s3, lo, hi);
+    const BranchPoint seed = EvaluateBranch(a, target, s2, s3, R(0));
+    if (!seed.valid) continue;
+    const BranchPoint m = GoldenDip(c, s2, s3, lo, hi, Negative(seed.f) ? -1.0 : 1.0);
     if (!m.valid) continue;
     if (plo.valid && Negative(plo.f) != Negative(m.f)) {
       AddExact(c, Bisect(c, s2, s3, plo, m));

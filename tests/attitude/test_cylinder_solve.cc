@@ -195,6 +195,29 @@ TEST(CylinderSolve, Seed004Table2HighElevationRowsAreTheMirrorSolution) {
   }
 }
 
+// At (nearly) side-on views the edge-on pair sits within a millimetre of the end of the real branches and
+// two more P3P roots (a tilted pair) come close: the search must still find every root the closed form finds.
+TEST(CylinderSolve, SideOnViewsBothMethodsFindAllRoots) {
+  constexpr double kDoubleRootRad = 1e-6;  // the truth at a near double root (rounding ∝ sqrt(eps))
+  for (double el : {0.0, 10.0}) {
+    for (double yaw : {89.95, 90.0, 90.05, 90.5}) {
+      const Case c = MakeCase(1000.0, 0.0, el, yaw, 0.0, 2.5, 0.25);
+      const CylinderSolveResult s = SolveCylinder(c.rays, c.target, Opt(CylinderMethod::kSearch));
+      const CylinderSolveResult p = SolveCylinder(c.rays, c.target, Opt(CylinderMethod::kP3P));
+      ASSERT_EQ(s.solutions.size(), p.solutions.size()) << el << " " << yaw;
+      ASSERT_GE(p.solutions.size(), 2u);
+      double e = 0;
+      Nearest(s, c.pose.Axis(), &e);
+      EXPECT_LT(e, kDoubleRootRad) << el << " " << yaw;
+      for (const CylinderSolution& a : p.solutions) {
+        double best = 1e9;
+        for (const CylinderSolution& b : s.solutions) best = std::min(best, AxisAngle(a.axis_enu, b.axis_enu));
+        EXPECT_LT(best, kDoubleRootRad) << el << " " << yaw;
+      }
+    }
+  }
+}
+
 // Yaw is clockwise from north in [0, 360): targets heading just either side of north.
 TEST(CylinderSolve, YawAcrossNorth) {
   for (double yaw : {359.99, 0.01, 180.0, 90.0}) {
