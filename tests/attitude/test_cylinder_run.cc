@@ -141,7 +141,8 @@ TEST(CylinderRun, StatusesForBadRows) {
   std::string csv = PointsCsv(sim);
   const camera::CameraModel& cam = o.camera;
   // Frame 2: tail2 missing. Frame 3: nose outside the image. Frame 4: nose and tail1 swapped (inconsistent).
-  // Frame 5: tail chase (nose on the tail centre). Frame 6: tail1 = tail2 (degenerate).
+  // Frame 5: tail chase (nose on the tail centre). Frame 6: tail1 = tail2 (degenerate). Frame 7: the three
+  // points collinear with the nose beyond tail2 (inconsistent with a cylinder).
   std::istringstream in(csv);
   std::ostringstream out;
   std::string line;
@@ -167,6 +168,7 @@ TEST(CylinderRun, StatusesForBadRows) {
     if (k == 4 && id == "tail1") p = px[{k, "nose"}];
     if (k == 5 && id == "nose") p = 0.5 * (px[{k, "tail1"}] + px[{k, "tail2"}]) + Eigen::Vector2d(0.3, -0.2);
     if (k == 6 && id == "tail2") p = px[{k, "tail1"}];
+    if (k == 7 && id == "nose") p = px[{k, "tail2"}] + 5.0 * (px[{k, "tail2"}] - px[{k, "tail1"}]);  // collinear
     out.precision(12);
     out << fr << "," << t << "," << id << "," << p.x() << "," << p.y() << "\n";
   }
@@ -193,6 +195,8 @@ TEST(CylinderRun, StatusesForBadRows) {
   EXPECT_EQ(r.rows[5].status, RowStatus::kOk);
   EXPECT_EQ(r.rows[5].solution, S::kTailChase);
   EXPECT_EQ(r.rows[6].solution, S::kDegenerate);
+  EXPECT_EQ(r.rows[7].solution, S::kInconsistent);
+  EXPECT_EQ(r.rows[7].status, RowStatus::kInvalid);
   EXPECT_EQ(r.rows[15].solution, S::kNoTheodolite);
   EXPECT_EQ(r.rows[15].status, RowStatus::kInvalid);
   EXPECT_EQ(r.rows[10].status, RowStatus::kOk);
