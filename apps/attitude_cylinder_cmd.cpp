@@ -58,7 +58,7 @@ Command AddCylinderCommand(CLI::App& parent) {
                 "Solutions (or their distances to the predicted axis) closer than this are not told apart (deg)")
       ->capture_default_str();
   c->add_option("--max-asymmetry-px", a->opt.max_asymmetry_px,
-                "Largest difference of the nose's distances to tail1 and tail2 (px) before a frame is inconsistent")
+                "Largest difference of the nose's distances to tail1 and tail2 (px; at least a quarter of the tail diameter's image) before a frame is inconsistent")
       ->capture_default_str();
   c->add_option("--max-miss-px", a->opt.max_miss_px,
                 "Where noise removes the exact solutions, accept the closest approach if it misses by at most this (px); 0 = never")

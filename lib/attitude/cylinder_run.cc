@@ -265,7 +265,9 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
       continue;
     }
     row.asymmetry_px = std::abs(AxisAngle(rays.nose, rays.tail1) - AxisAngle(rays.nose, rays.tail2)) * cam.fx();
-    if (*row.asymmetry_px > options.max_asymmetry_px) {
+    // Inconsistent: beyond the absolute limit and beyond a quarter of the tail diameter's image (a mislabelled
+    // or foreign point is off by about the diameter or more; reading noise by much less).
+    if (*row.asymmetry_px > std::max(options.max_asymmetry_px, 0.25 * bc * cam.fx())) {
       finish(RowStatus::kInvalid, CylinderSolutionStatus::kInconsistent);
       continue;
     }

@@ -15,8 +15,9 @@
 //      inside the tail-rim image (angle nose–tail centre ≤ half the angle tail1–tail2: the axis within
 //      atan(d/2l) of the line of sight, the nose hidden behind the tail) → `tail_chase`, attitude = the line
 //      of sight to the tail centre (seed 004 §3: "the attitude is the theodolite pointing"); the nose not
-//      equidistant from the tail points (|∠(nose,tail1) − ∠(nose,tail2)| · f > max_asymmetry_px; zero for a
-//      true cylinder) → `inconsistent` (mislabelled or bad points).
+//      equidistant from the tail points (|∠(nose,tail1) − ∠(nose,tail2)| · f above both max_asymmetry_px and a
+//      quarter of the tail diameter's image; zero for a true cylinder) → `inconsistent` (mislabelled or bad
+//      points).
 //   5. All admissible solutions (cylinder_solve.h). None → `no_solution`; only a near miss → `near_miss`.
 //   6. Primary (SPEC.md §3): the solution continuous with the previous rows — nearest to the axis predicted
 //      by a straight-line least-squares fit of the axis over the last (up to five) accepted rows not older
@@ -95,7 +96,7 @@ struct CylinderRunOptions {
   double theodolite_max_gap_s = 0.2;        // > 0
   double continuity_gap_s = 1.0;            // history older than this is not used, > 0
   double ambiguity_deg = 1.0;               // > 0
-  double max_asymmetry_px = 3.0;            // > 0
+  double max_asymmetry_px = 3.0;            // > 0; the limit is max(this, diameter image / 4)
   double pixel_sigma_px = 0.3;              // for the σ columns, >= 0
   double angle_sigma_arcsec = 0.0;          // for the σ columns, >= 0
   bool Check(std::string* why) const;
