@@ -68,6 +68,17 @@ Eigen::Vector3d CameraModel::NormalisedRay(const Eigen::Vector2d& px) const {
   return {n.x(), n.y(), 1.0};
 }
 
+Eigen::Matrix2d CameraModel::NormalisedRayJacobian(const Eigen::Vector2d& px) const {
+  Eigen::Matrix2d scale = Eigen::Matrix2d::Zero();
+  scale(0, 0) = 1.0 / fx();
+  scale(1, 1) = 1.0 / fy();
+  if (!HasDistortion()) return scale;
+  const Eigen::Vector3d m = NormalisedRay(px);
+  Eigen::Matrix2d J;
+  Distort(distortion, Eigen::Vector2d(m.x(), m.y()), &J);
+  return J.inverse() * scale;
+}
+
 std::optional<Eigen::Vector2d> CameraModel::Project(const Eigen::Vector3d& p_cam) const {
   if (!(p_cam.z() > 0.0)) return std::nullopt;
   Eigen::Vector2d n(p_cam.x() / p_cam.z(), p_cam.y() / p_cam.z());

@@ -44,6 +44,9 @@ struct CameraModel {
   // The distortion is inverted by Newton iteration to ~1e-14 (not OpenCV's
   // fixed 5 iterations, which leave ~0.01 px at the corners of strong lenses).
   Eigen::Vector3d NormalisedRay(const Eigen::Vector2d& px) const;
+  // Jacobian d(xn, yn)/d(x_px, y_px) of NormalisedRay (inverse of the distortion Jacobian, scaled by
+  // 1/fx, 1/fy): for error propagation and automatic differentiation through the undistortion.
+  Eigen::Matrix2d NormalisedRayJacobian(const Eigen::Vector2d& px) const;
   // Camera-frame point (z > 0) → distorted pixel. nullopt behind the camera.
   std::optional<Eigen::Vector2d> Project(const Eigen::Vector3d& p_cam) const;
 

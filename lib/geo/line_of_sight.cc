@@ -7,13 +7,7 @@
 namespace rk::geo {
 
 Eigen::Matrix3d RotationEnuFromTurret(double az_rad, double el_rad) {
-  const double sa = std::sin(az_rad), ca = std::cos(az_rad);
-  const double se = std::sin(el_rad), ce = std::cos(el_rad);
-  Eigen::Matrix3d R;
-  R.col(0) << ca, -sa, 0.0;            // r: image x (right)
-  R.col(1) << sa * se, ca * se, -ce;   // d: image y (down)
-  R.col(2) << sa * ce, ca * ce, se;    // b: boresight
-  return R;
+  return RotationEnuFromTurretT<double>(az_rad, el_rad);
 }
 
 Eigen::Vector3d DirectionFromAzEl(double az_rad, double el_rad) {

@@ -1,0 +1,130 @@
+// rk-analyze budget: error propagation through a computation by Jacobian (automatic differentiation)
+// and Monte Carlo, side by side (seed 004 §4). Thin CLI: the engine is lib/analysis/budget.h, the models
+// analysis/budget_locate.h and attitude/cylinder_budget.h; user page docs/rk-analyze.md.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "analysis/budget.h"
+#include "analysis/budget_locate.h"
+#include "attitude/cylinder_budget.h"
+#include "camera/camera_model.h"
+#include "io/error.h"
+#include "io/file_util.h"
+#include "io/json_util.h"
+#include "sim/theodolite_scene.h"
+#include "subcommand.h"
+
+namespace rk::app {
+namespace {
+
+const char* const kTool = "rk-analyze";
+
+struct BudgetArgs {
+  std::string budget_path, out_path, method = "p3p";
+  std::optional<std::int64_t> samples;
+  std::optional<std::uint64_t> seed;
+  bool table = false;
+};
+
+// "camera": a path (relative to the budget file), an inline model, or absent (the model's default).
+camera::CameraModel BudgetCamera(const io::Json& j, const std::string& budget_path, const camera::CameraModel& fallback) {
+  if (!j.contains("camera") || j.at("camera").is_null()) return fallback;
+  const io::Json& c = j.at("camera");
+  if (c.is_string()) {
+    std::filesystem::path p(c.get<std::string>());
+    if (p.is_relative() && !io::IsStdStream(budget_path)) p = std::filesystem::path(budget_path).parent_path() / p;
+    return camera::LoadCameraModel(p.string());
+  }
+  if (c.is_object()) return camera::CameraModelFromJson(c, budget_path + ": camera");
+  throw DataError(budget_path, 0, 0, "\"camera\" must be a path or a camera model object");
+}
+
+}  // namespace
+
+Command AddBudgetCommand(CLI::App& parent) {
+  auto a = std::make_shared<BudgetArgs>();
+  CLI::App* c = parent.add_subcommand(
+      "budget",
+      "Error budget: independent error sources (angles in arcmin/arcsec, pixels, sizes, ranges) from a JSON budget "
+      "propagated through a computation (models: cylinder, cylinder-ranges, locate) by autodiff Jacobian and by "
+      "Monte Carlo, side by side, with each source's share.");
+  c->add_option("--budget", a->budget_path, "Budget JSON: model, camera, nominal, sources[, monte_carlo] ('-' = stdin)")
+      ->required();
+  c->add_option("-o,--output", a->out_path, "Result JSON ('-' = stdout)")->required();
+  c->add_option("--samples", a->samples, "Monte Carlo draws (overrides the file; default 20000; 0 = Jacobian only)");
+  c->add_option("--seed", a->seed, "Monte Carlo seed (overrides the file; default 1)");
+  c->add_option("--method", a->method, "Cylinder solver in Monte Carlo: p3p or search")
+      ->check(CLI::IsMember({"p3p", "search"}))
+      ->capture_default_str();
+  c->add_flag("--table", a->table, "Print a fixed-width table to stdout (to stderr when -o is '-')");
+
+  return {c, [a](const Context& ctx) -> int {
+            io::CheckOutputNotInput(a->out_path, {a->budget_path});
+            if (!ctx.common.report_path.empty()) io::CheckOutputNotInput(ctx.common.report_path, {a->budget_path});
+            const io::Json j = io::LoadJson(a->budget_path);
+            const std::string& where = a->budget_path;
+            if (!j.is_object()) throw DataError(where, 0, 0, "a budget must be a JSON object");
+            const std::string model_name = io::RequireString(j, "model", where);
+            if (!j.contains("nominal")) throw DataError(where, 0, 0, "missing \"nominal\"");
+            if (!j.contains("sources")) throw DataError(where, 0, 0, "missing \"sources\"");
+            attitude::CylinderSolveOptions solve;
+            if (!attitude::ParseCylinderMethod(a->method, &solve.method)) throw UsageError("unknown --method " + a->method);
+            std::unique_ptr<analysis::BudgetModel> model;
+            if (model_name == "cylinder") {
+              model = attitude::MakeCylinderBudgetModel(j.at("nominal"), BudgetCamera(j, where, sim::Seed004Camera()), solve, where);
+            } else if (model_name == "cylinder-ranges") {
+              model = attitude::MakeCylinderRangesBudgetModel(j.at("nominal"), BudgetCamera(j, where, sim::Seed004Camera()),
+                                                              solve, where);
+            } else if (model_name == "locate") {
+              model = analysis::MakeLocateBudgetModel(j.at("nominal"), BudgetCamera(j, where, camera::DefaultCamera()), where);
+            } else {
+              throw DataError(where, 0, 0, "unknown model '" + model_name + "' (cylinder, cylinder-ranges or locate)");
+            }
+            const auto sources = analysis::ParseBudgetSources(j.at("sources"), *model, where);
+            analysis::BudgetOptions opt;
+            if (j.contains("monte_carlo") && j.at("monte_carlo").is_object()) {
+              const io::Json& mc = j.at("monte_carlo");
+              opt.samples = static_cast<std::int64_t>(io::NumberOr(mc, "samples", static_cast<double>(opt.samples), where + ": monte_carlo"));
+              opt.seed = static_cast<std::uint64_t>(io::NumberOr(mc, "seed", static_cast<double>(opt.seed), where + ": monte_carlo"));
+            }
+            if (a->samples) opt.samples = *a->samples;
+            if (a->seed) opt.seed = *a->seed;
+            std::string why;
+            if (!opt.Check(&why)) throw UsageError(why);
+            const analysis::BudgetResult r = analysis::RunBudget(*model, sources, opt);
+            io::Json out = cli::MakeReport(kTool, ctx.argc, ctx.argv);
+            cli::AddReportInput(&out, "budget", a->budget_path);
+            out["subcommand"] = "budget";
+            out["solver"] = a->method;
+            out.update(analysis::BudgetResultToJson(*model, sources, opt, r));
+            if (r.failed > 0) {
+              cli::Warn(kTool, ctx.common,
+                        std::to_string(r.failed) + " of " + std::to_string(r.samples) +
+                            " Monte Carlo draws had no solution and were left out");
+            }
+            if (!r.outputs.empty() && !std::isfinite(r.outputs[0].sigma_jacobian)) {
+              cli::Warn(kTool, ctx.common,
+                        "the Jacobian is singular at the nominal point (side-on view: a double root); only Monte "
+                        "Carlo sigmas are given");
+            }
+            io::WriteJson(a->out_path, out);
+            if (!ctx.common.report_path.empty() && ctx.common.report_path != a->out_path)
+              io::WriteJson(ctx.common.report_path, out);
+            if (a->table) {
+              const std::string text = analysis::FormatBudgetTable(*model, sources, r);
+              if (io::IsStdStream(a->out_path)) {
+                std::cerr << text;
+              } else {
+                std::cout << text;
+              }
+            }
+            return 0;
+          }};
+}
+
+RK_REGISTER_SUBCOMMAND(2, AddBudgetCommand);
+
+}  // namespace rk::app

@@ -1,0 +1,423 @@
+// rk-attitude cylinder pipeline; method in cylinder_run.h.
+#include "attitude/cylinder_run.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <sstream>
+
+#include "attitude/cylinder_budget.h"
+#include "geo/angles.h"
+#include "geo/line_of_sight.h"
+#include "io/error.h"
+
+namespace rk::attitude {
+
+const char* CylinderSolutionStatusName(CylinderSolutionStatus s) {
+  switch (s) {
+    case CylinderSolutionStatus::kUnique:
+      return "unique";
+    case CylinderSolutionStatus::kContinuity:
+      return "continuity";
+    case CylinderSolutionStatus::kAmbiguous:
+      return "ambiguous";
+    case CylinderSolutionStatus::kSideOn:
+      return "side_on";
+    case CylinderSolutionStatus::kNearMiss:
+      return "near_miss";
+    case CylinderSolutionStatus::kTailChase:
+      return "tail_chase";
+    case CylinderSolutionStatus::kMissingPoints:
+      return "missing_points";
+    case CylinderSolutionStatus::kOutsideImage:
+      return "outside_image";
+    case CylinderSolutionStatus::kNoTheodolite:
+      return "no_theodolite";
+    case CylinderSolutionStatus::kDegenerate:
+      return "degenerate";
+    case CylinderSolutionStatus::kInconsistent:
+      return "inconsistent";
+    case CylinderSolutionStatus::kNoSolution:
+      return "no_solution";
+  }
+  return "?";
+}
+
+bool CylinderRunOptions::Check(std::string* why) const {
+  if (!solve.Check(why)) return false;
+  auto fail = [&](const char* w) {
+    *why = w;
+    return false;
+  };
+  if (!(max_miss_px >= 0.0) || !std::isfinite(max_miss_px)) return fail("--max-miss-px must be >= 0");
+  if (!(theodolite_max_gap_s > 0.0)) return fail("--theodolite-max-gap must be > 0 s");
+  if (!(continuity_gap_s > 0.0)) return fail("--continuity-gap must be > 0 s");
+  if (!(ambiguity_deg > 0.0) || !std::isfinite(ambiguity_deg)) return fail("--ambiguity-deg must be > 0");
+  if (!(max_asymmetry_px > 0.0)) return fail("--max-asymmetry-px must be > 0");
+  if (!(pixel_sigma_px >= 0.0) || !std::isfinite(pixel_sigma_px)) return fail("--pixel-sigma must be >= 0");
+  if (!(angle_sigma_arcsec >= 0.0) || !std::isfinite(angle_sigma_arcsec)) return fail("--angle-sigma-arcsec must be >= 0");
+  return true;
+}
+
+namespace {
+
+int PointIndex(std::string_view id) {
+  if (id == "nose") return 0;
+  if (id == "tail1") return 1;
+  if (id == "tail2") return 2;
+  return -1;
+}
+
+std::string Num(double v) {
+  std::ostringstream s;
+  s.precision(9);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+CylinderPointsFile ReadCylinderPoints(const io::CsvTable& table) {
+  CylinderPointsFile out;
+  out.source = table.name();
+  const int c_t = table.RequireColumn("t_s");
+  const int c_id = table.RequireColumn("id");
+  const int c_x = table.RequireColumn("x_px");
+  const int c_y = table.RequireColumn("y_px");
+  const int c_frame = table.Column("frame");
+  const int c_status = table.Column("status");
+  out.has_frame = c_frame >= 0;
+  table.RequireNonDecreasing(c_t);
+  std::map<std::int64_t, std::size_t> frame_line;  // frame → first line (contiguity check)
+  std::array<std::size_t, 3> id_line{};
+  for (std::size_t r = 0; r < table.rows(); ++r) {
+    const double t = table.Double(r, c_t);
+    std::optional<std::int64_t> frame;
+    if (c_frame >= 0) {
+      frame = table.Int(r, c_frame);
+      if (*frame < 0) throw table.CellError(r, c_frame, "frame must be >= 0");
+    }
+    const bool new_group = out.frames.empty() || (frame ? out.frames.back().frame != frame : out.frames.back().t_s != t);
+    if (new_group) {
+      if (frame) {
+        const auto it = frame_line.find(*frame);
+        if (it != frame_line.end()) {
+          throw table.CellError(r, c_frame, "frame " + std::to_string(*frame) + " appears again (first at line " +
+                                                std::to_string(it->second) + "): rows of a frame must be together");
+        }
+        frame_line.emplace(*frame, table.Line(r));
+      }
+      CylinderFramePoints f;
+      f.frame = frame;
+      f.t_s = t;
+      f.line = table.Line(r);
+      out.frames.push_back(f);
+      id_line = {0, 0, 0};
+    }
+    CylinderFramePoints& f = out.frames.back();
+    if (t != f.t_s) {
+      throw table.CellError(r, c_t, "t_s " + Num(t) + " differs from " + Num(f.t_s) + " on line " +
+                                        std::to_string(f.line) + " of the same frame");
+    }
+    const std::string_view id = table.Cell(r, c_id);
+    const int k = PointIndex(id);
+    if (k < 0) {
+      throw table.CellError(r, c_id, "unknown point id '" + std::string(id) +
+                                         "': the cylinder model has the points nose, tail1, tail2");
+    }
+    if (id_line[static_cast<std::size_t>(k)] != 0) {
+      throw table.CellError(r, c_id, "point '" + std::string(id) + "' given twice in one frame (also line " +
+                                         std::to_string(id_line[static_cast<std::size_t>(k)]) + ")");
+    }
+    id_line[static_cast<std::size_t>(k)] = table.Line(r);
+    RowStatus st = RowStatus::kOk;
+    if (c_status >= 0 && !table.IsEmpty(r, c_status)) {
+      if (!ParseRowStatus(table.Cell(r, c_status), &st)) {
+        throw table.CellError(r, c_status, "unknown status '" + std::string(table.Cell(r, c_status)) +
+                                               "' (expected ok, reacquired, predicted, lost or invalid)");
+      }
+    }
+    const auto x = table.OptionalDouble(r, c_x);
+    const auto y = table.OptionalDouble(r, c_y);
+    if (x && y && st != RowStatus::kLost && st != RowStatus::kInvalid) {
+      f.px[static_cast<std::size_t>(k)] = Eigen::Vector2d(*x, *y);
+      if (st == RowStatus::kPredicted || (st == RowStatus::kReacquired && f.status == RowStatus::kOk)) f.status = st;
+    }
+  }
+  return out;
+}
+
+io::Json CylinderRunResult::SummaryJson() const {
+  io::Json by_status = io::Json::object();
+  for (int s = 0; s < 5; ++s)
+    by_status[RowStatusName(static_cast<RowStatus>(s))] = rows_by_status[static_cast<std::size_t>(s)];
+  io::Json by_solution = io::Json::object();
+  for (int s = 0; s < kCylinderSolutionStatusCount; ++s)
+    by_solution[CylinderSolutionStatusName(static_cast<CylinderSolutionStatus>(s))] =
+        rows_by_solution[static_cast<std::size_t>(s)];
+  return {{"rows", rows.size()},
+          {"status_counts", by_status},
+          {"solution_counts", by_solution},
+          {"theodolite_duplicate_times", theodolite_duplicate_times},
+          {"solver_evaluations", solver_evaluations}};
+}
+
+CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::TurretLog& theodolite,
+                              const camera::CameraModel& cam, const CylinderTarget& target,
+                              const CylinderRunOptions& options) {
+  std::string why;
+  if (!options.Check(&why)) throw UsageError(why);
+  if (!target.Check(&why)) throw UsageError(why);
+  CylinderRunResult result;
+  result.has_frame = points.has_frame;
+
+  // Theodolite: merge repeated times, azimuth on its unwrapped sequence (as rk-locate).
+  std::vector<double> t_az = theodolite.t_s, t_el = theodolite.t_s;
+  auto az = track::UnwrapAngles(theodolite.az_rad);
+  auto el = theodolite.el_rad;
+  result.theodolite_duplicate_times = track::MergeDuplicateTimes(&t_az, &az);
+  track::MergeDuplicateTimes(&t_el, &el);
+  track::InterpOptions iopt;
+  iopt.method = options.theodolite_method;
+  iopt.max_gap_s = options.theodolite_max_gap_s;
+  iopt.angle = true;
+  const track::TimeSeriesInterpolator az_interp(t_az, az, iopt);
+  iopt.angle = false;
+  const track::TimeSeriesInterpolator el_interp(t_el, el, iopt);
+
+  CylinderSolveOptions solve = options.solve;
+  solve.max_miss_rad = options.max_miss_px / cam.fx();
+  const double tau = geo::DegToRad(options.ambiguity_deg);
+  const double px_var = options.pixel_sigma_px * options.pixel_sigma_px;
+  const double ang = options.angle_sigma_arcsec / geo::kArcsecPerRad;
+  const double ang_var = ang * ang;
+
+  struct History {
+    double t_s;
+    Eigen::Vector3d axis;
+  };
+  constexpr std::size_t kHistory = 5;
+  std::vector<History> history;  // accepted rows, the last kHistory kept
+  std::size_t complete_frames = 0, covered_frames = 0;
+
+  result.rows.reserve(points.frames.size());
+  for (const CylinderFramePoints& f : points.frames) {
+    CylinderRow row;
+    row.frame = f.frame;
+    row.t_s = f.t_s;
+    auto finish = [&](RowStatus st, CylinderSolutionStatus sol) {
+      row.status = st;
+      row.solution = sol;
+      ++result.rows_by_status[static_cast<std::size_t>(row.status)];
+      ++result.rows_by_solution[static_cast<std::size_t>(row.solution)];
+      result.rows.push_back(row);
+    };
+    const bool complete = f.px[0] && f.px[1] && f.px[2];
+    const track::InterpValue a = az_interp.At(f.t_s);
+    const track::InterpValue e = el_interp.At(f.t_s);
+    const bool covered = a.ok() && e.ok();
+    if (covered) {
+      row.boresight_az_rad = geo::WrapTwoPi(a.value);
+      row.boresight_el_rad = e.value;
+    }
+    if (!complete) {
+      finish(RowStatus::kLost, CylinderSolutionStatus::kMissingPoints);
+      continue;
+    }
+    ++complete_frames;
+    bool outside = false;
+    for (const auto& p : f.px) {
+      outside = outside || p->x() < -0.5 || p->y() < -0.5 || p->x() > cam.width_px - 0.5 || p->y() > cam.height_px - 0.5;
+    }
+    if (outside) {
+      finish(RowStatus::kInvalid, CylinderSolutionStatus::kOutsideImage);
+      continue;
+    }
+    if (!covered) {
+      finish(RowStatus::kInvalid, CylinderSolutionStatus::kNoTheodolite);
+      continue;
+    }
+    ++covered_frames;
+    const RowStatus ok_status = f.status;  // ok, or predicted / reacquired from the points file
+    CylinderInputs x;
+    x << a.value, e.value, f.px[0]->x(), f.px[0]->y(), f.px[1]->x(), f.px[1]->y(), f.px[2]->x(), f.px[2]->y(),
+        target.length_m, target.diameter_m;
+    const CylinderRays rays = RaysFromInputs(cam, x);
+    const double bc = AxisAngle(rays.tail1, rays.tail2);
+    if (!(bc > 0.0) || (*f.px[1] - *f.px[2]).norm() < 1e-9) {
+      finish(RowStatus::kInvalid, CylinderSolutionStatus::kDegenerate);
+      continue;
+    }
+    const Eigen::Vector3d mid = (rays.tail1 + rays.tail2).normalized();
+    if (AxisAngle(rays.nose, mid) <= 0.5 * bc) {
+      // Tail chase: the nose image lies within the tail rim's; the axis is along the line of sight.
+      const geo::AzEl los = geo::AzElFromEnu(mid);
+      row.yaw_rad = los.az_rad;
+      row.pitch_rad = los.el_rad;
+      row.axis_enu = mid;
+      const double bound = std::atan2(0.5 * target.diameter_m, target.length_m);
+      row.sigma_yaw_rad = bound / std::max(std::cos(los.el_rad), 1e-9);
+      row.sigma_pitch_rad = bound;
+      history.push_back({f.t_s, mid});
+      if (history.size() > kHistory) history.erase(history.begin());
+      finish(ok_status, CylinderSolutionStatus::kTailChase);
+      continue;
+    }
+    row.asymmetry_px = std::abs(AxisAngle(rays.nose, rays.tail1) - AxisAngle(rays.nose, rays.tail2)) * cam.fx();
+    // Inconsistent: beyond the absolute limit and beyond a quarter of the tail diameter's image (a mislabelled
+    // or foreign point is off by about the diameter or more; reading noise by much less).
+    if (*row.asymmetry_px > std::max(options.max_asymmetry_px, 0.25 * bc * cam.fx())) {
+      finish(RowStatus::kInvalid, CylinderSolutionStatus::kInconsistent);
+      continue;
+    }
+    const CylinderSolveResult sr = SolveCylinder(rays, target, solve);
+    result.solver_evaluations += sr.function_evaluations;
+    std::vector<CylinderSolution> sols = sr.solutions;
+    if (sols.size() > 2) {
+      // Keep the two most nearly edge-on, in nose-range order.
+      std::sort(sols.begin(), sols.end(),
+                [](const CylinderSolution& p, const CylinderSolution& q) { return p.edge_tilt_rad < q.edge_tilt_rad; });
+      sols.resize(2);
+      std::sort(sols.begin(), sols.end(),
+                [](const CylinderSolution& p, const CylinderSolution& q) { return p.range_m(0) < q.range_m(0); });
+    }
+    if (sols.empty()) {
+      finish(RowStatus::kInvalid, CylinderSolutionStatus::kNoSolution);
+      continue;
+    }
+    // History within the continuity gap → predicted axis.
+    while (!history.empty() && f.t_s - history.back().t_s > options.continuity_gap_s) history.clear();
+    std::optional<Eigen::Vector3d> predicted;
+    if (history.size() >= 2) {
+      // Straight-line least-squares fit of the axis components over the history (up to kHistory rows), so
+      // that one noisy row does not throw the prediction (two-point extrapolation doubles the noise).
+      const double t_ref = history.back().t_s;
+      double sw = 0, st = 0, stt = 0;
+      Eigen::Vector3d sa = Eigen::Vector3d::Zero(), sta = Eigen::Vector3d::Zero();
+      for (const History& h : history) {
+        const double t = h.t_s - t_ref;
+        sw += 1;
+        st += t;
+        stt += t * t;
+        sa += h.axis;
+        sta += t * h.axis;
+      }
+      const double det = sw * stt - st * st;
+      if (det > 1e-12 * std::max(1.0, stt * sw)) {
+        const Eigen::Vector3d slope = (sw * sta - st * sa) / det;
+        const Eigen::Vector3d icept = (sa - slope * st) / sw;
+        predicted = (icept + slope * (f.t_s - t_ref)).normalized();
+      } else {
+        predicted = (sa / sw).normalized();
+      }
+    } else if (history.size() == 1) {
+      predicted = history.back().axis;
+    }
+    std::size_t primary = 0;
+    CylinderSolutionStatus sol_status = CylinderSolutionStatus::kUnique;
+    if (sols.size() == 2) {
+      const double sep = AxisAngle(sols[0].axis_enu, sols[1].axis_enu);
+      row.separation_rad = sep;
+      if (predicted) {
+        const double d0 = AxisAngle(sols[0].axis_enu, *predicted), d1 = AxisAngle(sols[1].axis_enu, *predicted);
+        primary = d1 < d0 ? 1 : 0;
+        if (sep < tau) {
+          sol_status = CylinderSolutionStatus::kSideOn;
+        } else if (std::abs(d0 - d1) < tau) {
+          sol_status = CylinderSolutionStatus::kAmbiguous;
+        } else {
+          sol_status = CylinderSolutionStatus::kContinuity;
+        }
+      } else {
+        primary = 0;  // SPEC.md §3: no history → the nose-nearer
+        sol_status = sep < tau ? CylinderSolutionStatus::kSideOn : CylinderSolutionStatus::kAmbiguous;
+      }
+      const CylinderSolution& alt = sols[1 - primary];
+      row.alt_yaw_rad = alt.yaw_rad;
+      row.alt_pitch_rad = alt.pitch_rad;
+    }
+    const CylinderSolution& p = sols[primary];
+    if (!p.exact) sol_status = CylinderSolutionStatus::kNearMiss;
+    row.yaw_rad = p.yaw_rad;
+    row.pitch_rad = p.pitch_rad;
+    row.range_m = p.range_m;
+    row.edge_tilt_rad = p.edge_tilt_rad;
+    row.axis_enu = p.axis_enu;
+    CylinderJacobianMatrix J;
+    if (CylinderJacobian(cam, x, p.range_m, &J)) {
+      auto sigma = [&](int k) {
+        double v = 0.0;
+        for (int i = 2; i < 8; ++i) v += J(k, i) * J(k, i) * px_var;
+        v += (J(k, 0) * J(k, 0) + J(k, 1) * J(k, 1)) * ang_var;
+        return std::sqrt(v);
+      };
+      row.sigma_yaw_rad = sigma(0);
+      row.sigma_pitch_rad = sigma(1);
+    }
+    history.push_back({f.t_s, p.axis_enu});
+    if (history.size() > kHistory) history.erase(history.begin());
+    finish(ok_status, sol_status);
+  }
+
+  if (complete_frames == 0) {
+    throw ProcessingError("no frame of " + points.source + " has all three points nose, tail1, tail2");
+  }
+  if (covered_frames == 0 && result.rows_by_solution[static_cast<std::size_t>(CylinderSolutionStatus::kNoTheodolite)] > 0) {
+    const std::string span = az_interp.usable_samples() == 0
+                                 ? std::string("has no usable sample")
+                                 : "covers t_s " + Num(az_interp.first_time()) + " .. " + Num(az_interp.last_time());
+    throw DataError(theodolite.source, 0, 0,
+                    "theodolite log " + span + " but no frame time of " + points.source + " (t_s " +
+                        Num(points.frames.front().t_s) + " .. " + Num(points.frames.back().t_s) +
+                        ") is covered within the --theodolite-max-gap limit");
+  }
+  return result;
+}
+
+io::CsvWriter CylinderCsv(const CylinderRunResult& result) {
+  std::vector<std::string> cols;
+  if (result.has_frame) cols.push_back("frame");
+  for (const char* c : {"t_s", "yaw_deg", "pitch_deg", "status", "alt_yaw_deg", "alt_pitch_deg", "solution",
+                        "range_nose_m", "range_tail1_m", "range_tail2_m", "sigma_yaw_deg", "sigma_pitch_deg",
+                        "separation_deg", "asymmetry_px", "edge_tilt_deg", "boresight_az_deg", "boresight_el_deg"}) {
+    cols.push_back(c);
+  }
+  io::CsvWriter w(cols);
+  constexpr int kAngleDecimals = 9;
+  constexpr int kLengthDecimals = 6;
+  auto deg = [](const std::optional<double>& rad) {
+    return rad ? std::optional<double>(geo::RadToDeg(*rad)) : std::nullopt;
+  };
+  for (const CylinderRow& row : result.rows) {
+    const bool values = row.status != RowStatus::kLost && row.status != RowStatus::kInvalid;
+    auto val = [&](const std::optional<double>& v) { return values ? v : std::nullopt; };
+    if (result.has_frame) {
+      if (row.frame) {
+        w.Add(*row.frame);
+      } else {
+        w.AddEmpty();
+      }
+    }
+    w.Add(row.t_s, 9);
+    w.Add(deg(val(row.yaw_rad)), kAngleDecimals);
+    w.Add(deg(val(row.pitch_rad)), kAngleDecimals);
+    w.Add(RowStatusName(row.status));
+    w.Add(deg(val(row.alt_yaw_rad)), kAngleDecimals);
+    w.Add(deg(val(row.alt_pitch_rad)), kAngleDecimals);
+    w.Add(CylinderSolutionStatusName(row.solution));
+    for (int i = 0; i < 3; ++i)
+      w.Add(values && row.range_m ? std::optional<double>((*row.range_m)(i)) : std::nullopt, kLengthDecimals);
+    w.Add(deg(val(row.sigma_yaw_rad)), kAngleDecimals);
+    w.Add(deg(val(row.sigma_pitch_rad)), kAngleDecimals);
+    w.Add(deg(val(row.separation_rad)), 6);
+    w.Add(row.asymmetry_px, 6);  // a data-quality figure: also written for `inconsistent` rows
+    w.Add(deg(val(row.edge_tilt_rad)), 6);
+    w.Add(deg(row.boresight_az_rad), kAngleDecimals);
+    w.Add(deg(row.boresight_el_rad), kAngleDecimals);
+    w.EndRow();
+  }
+  return w;
+}
+
+}  // namespace rk::attitude

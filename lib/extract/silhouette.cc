@@ -1,0 +1,609 @@
+// Silhouette points of a cylindrical target; method in silhouette.h.
+#include "extract/silhouette.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+namespace rk::extract {
+
+const char* SilhouetteStatusName(SilhouetteStatus s) {
+  switch (s) {
+    case SilhouetteStatus::kOk:
+      return "ok";
+    case SilhouetteStatus::kNotFound:
+      return "not_found";
+    case SilhouetteStatus::kTouchesBorder:
+      return "touches_border";
+    case SilhouetteStatus::kTooSmall:
+      return "too_small";
+    case SilhouetteStatus::kBadFit:
+      return "bad_fit";
+  }
+  return "?";
+}
+
+bool SilhouetteOptions::Check(std::string* why) const {
+  auto fail = [&](const char* w) {
+    *why = w;
+    return false;
+  };
+  if (!(k_detect >= 2.0 && k_detect <= 100.0)) return fail("--k-detect must be in [2, 100]");
+  if (min_area_px < 4 || min_area_px > 10000000) return fail("--min-area must be in [4, 1e7] px");
+  if (border_px < 2 || border_px > 200) return fail("--border must be in [2, 200] px");
+  if (!(psf_sigma_px >= 0.0 && psf_sigma_px <= 10.0)) return fail("--psf-sigma must be in [0, 10] px");
+  if (!(min_width_px >= 1.0 && min_width_px <= 1e4)) return fail("--min-width must be in [1, 1e4] px");
+  if (!(min_length_ratio >= 1.0 && std::isfinite(min_length_ratio))) return fail("--min-length-ratio must be >= 1");
+  return true;
+}
+
+namespace {
+
+struct Plane {
+  double a = 0, b = 0, c = 0;
+  double At(double x, double y) const { return a + b * x + c * y; }
+};
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+// Least-squares plane through (x, y, value) samples, 3σ-clipped twice (σ from the MAD). False if too few.
+bool FitPlane(const std::vector<Eigen::Vector3d>& s, Plane* p, double* sigma) {
+  std::vector<char> use(s.size(), 1);
+  for (int pass = 0; pass < 3; ++pass) {
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d rhs = Eigen::Vector3d::Zero();
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      if (!use[i]) continue;
+      const Eigen::Vector3d row(1.0, s[i].x(), s[i].y());
+      A += row * row.transpose();
+      rhs += row * s[i].z();
+      ++n;
+    }
+    if (n < 10) return false;
+    const Eigen::Vector3d q = A.ldlt().solve(rhs);
+    *p = {q(0), q(1), q(2)};
+    std::vector<double> res;
+    res.reserve(s.size());
+    for (std::size_t i = 0; i < s.size(); ++i)
+      if (use[i]) res.push_back(std::abs(s[i].z() - p->At(s[i].x(), s[i].y())));
+    *sigma = std::max(1.4826 * Median(res), 1e-6);
+    if (pass == 2) break;
+    for (std::size_t i = 0; i < s.size(); ++i) use[i] = std::abs(s[i].z() - p->At(s[i].x(), s[i].y())) <= 3.0 * *sigma;
+  }
+  return true;
+}
+
+// Bilinear sample of a CV_32FC1 image; outside the image → 0 (the sky of an α image).
+inline double Bilinear(const cv::Mat& m, double x, double y) {
+  const double fx = std::floor(x), fy = std::floor(y);
+  const int x0 = static_cast<int>(fx), y0 = static_cast<int>(fy);
+  const double tx = x - fx, ty = y - fy;
+  auto at = [&](int xx, int yy) -> double {
+    if (xx < 0 || yy < 0 || xx >= m.cols || yy >= m.rows) return 0.0;
+    return m.ptr<float>(yy)[xx];
+  };
+  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) + ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+}
+
+struct Frame2 {
+  Eigen::Vector2d o, d, n;  // origin (α-image coordinates), unit axis, unit left normal (d.y, −d.x)
+  Eigen::Vector2d At(double u, double v) const { return o + u * d + v * n; }
+};
+
+struct Profile {
+  std::vector<double> u, S, C;
+};
+
+constexpr double kStep = 0.5;  // sampling step along and across the axis (px)
+
+// Profiles across the axis. Without `prior`: every profile spans v ∈ [−V, V] and is integrated as is.
+// With `prior` (a first pass on the same u grid): profile i spans its own target extent plus `margin`,
+// [C_i − S_i/2 − margin, C_i + S_i/2 + margin], and a straight sky baseline through the mean α of its outer
+// 1.5 px on either side is subtracted before integrating. The narrow window keeps the integrated sky
+// error (noise, 8-bit steps of a sky gradient, a slightly tilted sky plane) small; without it C is biased
+// by ∝ V³/S as the nose narrows.
+Profile Sample(const cv::Mat& alpha, const Frame2& f, double u0, double u1, double V, const Profile* prior = nullptr,
+               double margin = 0.0, bool subtract_baseline = false) {
+  Profile p;
+  const int nu = static_cast<int>(std::ceil((u1 - u0) / kStep)) + 1;
+  std::vector<double> a;
+  p.u.reserve(static_cast<std::size_t>(nu));
+  for (int i = 0; i < nu; ++i) {
+    const double u = u0 + kStep * i;
+    double vc = 0.0, half = V;
+    if (prior) {
+      vc = prior->C[static_cast<std::size_t>(i)];
+      half = std::max(prior->S[static_cast<std::size_t>(i)], 0.0) / 2.0 + margin;
+    }
+    const int nv = static_cast<int>(std::ceil(2.0 * half / kStep)) + 1;
+    const double v0 = vc - half;
+    a.resize(static_cast<std::size_t>(nv));
+    for (int j = 0; j < nv; ++j) {
+      const Eigen::Vector2d q = f.At(u, v0 + kStep * j);
+      a[static_cast<std::size_t>(j)] = Bilinear(alpha, q.x(), q.y());
+    }
+    double lo = 0, slope = 0, v_lo = v0;
+    if (prior && subtract_baseline) {
+      const int nb = std::min(3, nv / 4);
+      double hi = 0;
+      for (int j = 0; j < nb; ++j) {
+        lo += a[static_cast<std::size_t>(j)];
+        hi += a[static_cast<std::size_t>(nv - 1 - j)];
+      }
+      lo /= std::max(nb, 1);
+      hi /= std::max(nb, 1);
+      v_lo = v0 + kStep * 0.5 * (nb - 1);
+      const double v_hi = v0 + kStep * (nv - 1 - 0.5 * (nb - 1));
+      slope = (hi - lo) / (v_hi - v_lo);
+    }
+    double s = 0.0, sv = 0.0;
+    for (int j = 0; j < nv; ++j) {
+      const double v = v0 + kStep * j;
+      const double x = a[static_cast<std::size_t>(j)] - (lo + slope * (v - v_lo));
+      s += x;
+      sv += x * v;
+    }
+    s *= kStep;
+    sv *= kStep;
+    p.u.push_back(u);
+    p.S.push_back(s);
+    p.C.push_back(std::abs(s) > 1e-9 ? sv / s : vc);
+  }
+  return p;
+}
+
+struct Line {
+  double a = 0, b = 0, rms = 0;  // y = a + b x
+  int n = 0;
+};
+
+// Least-squares line, 3σ-clipped twice. n = 0 if fewer than 3 points.
+Line FitLine(const std::vector<double>& x, const std::vector<double>& y) {
+  Line L;
+  std::vector<char> use(x.size(), 1);
+  for (int pass = 0; pass < 3; ++pass) {
+    double sw = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      if (!use[i]) continue;
+      sw += 1;
+      sx += x[i];
+      sy += y[i];
+      sxx += x[i] * x[i];
+      sxy += x[i] * y[i];
+    }
+    if (sw < 3) {
+      L.n = 0;
+      return L;
+    }
+    const double det = sw * sxx - sx * sx;
+    if (std::abs(det) < 1e-12) {
+      L.n = 0;
+      return L;
+    }
+    L.b = (sw * sxy - sx * sy) / det;
+    L.a = (sy - L.b * sx) / sw;
+    double ss = 0;
+    int n = 0;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      if (!use[i]) continue;
+      const double r = y[i] - L.a - L.b * x[i];
+      ss += r * r;
+      ++n;
+    }
+    L.rms = std::sqrt(ss / n);
+    L.n = n;
+    if (pass == 2) break;
+    const double lim = std::max(3.0 * L.rms, 1e-6);
+    for (std::size_t i = 0; i < x.size(); ++i) use[i] = std::abs(y[i] - L.a - L.b * x[i]) <= lim;
+  }
+  return L;
+}
+
+}  // namespace
+
+SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions& opt) {
+  SilhouetteResult res;
+  CV_Assert(frame.type() == CV_8UC1 || frame.type() == CV_16UC1);
+  const int W = frame.cols, H = frame.rows;
+  const int bw = std::min({opt.border_px, W / 4, H / 4});
+  if (bw < 1) return res;
+  cv::Mat img;
+  frame.convertTo(img, CV_32F);
+
+  // 1. Sky plane on the border band, detection.
+  std::vector<Eigen::Vector3d> samples;
+  const int stride = std::max(1, (W + H) / 1500);
+  for (int y = 0; y < H; y += stride) {
+    const float* row = img.ptr<float>(y);
+    const bool edge_row = y < bw || y >= H - bw;
+    for (int x = 0; x < W; x += edge_row ? stride : 1) {
+      if (!edge_row && x == bw) x = W - bw;  // jump over the interior
+      samples.emplace_back(x, y, row[x]);
+    }
+  }
+  Plane sky;
+  double sigma = 0;
+  if (!FitPlane(samples, &sky, &sigma)) return res;
+  res.sky_sigma_dn = sigma;
+  cv::Mat mask(H, W, CV_8UC1);
+  const double thr = opt.k_detect * sigma;
+  for (int y = 0; y < H; ++y) {
+    const float* row = img.ptr<float>(y);
+    std::uint8_t* m = mask.ptr<std::uint8_t>(y);
+    const double base = sky.a + sky.c * y;
+    for (int x = 0; x < W; ++x) m[x] = std::abs(row[x] - (base + sky.b * x)) > thr ? 255 : 0;
+  }
+  cv::Mat labels, stats, centroids;
+  const int nl = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  int best = -1, best_area = 0;
+  for (int l = 1; l < nl; ++l) {
+    const int a = stats.at<int>(l, cv::CC_STAT_AREA);
+    if (a > best_area) {
+      best_area = a;
+      best = l;
+    }
+  }
+  if (best < 0 || best_area < opt.min_area_px) return res;
+  res.region_area_px = best_area;
+  const cv::Rect box(stats.at<int>(best, cv::CC_STAT_LEFT), stats.at<int>(best, cv::CC_STAT_TOP),
+                     stats.at<int>(best, cv::CC_STAT_WIDTH), stats.at<int>(best, cv::CC_STAT_HEIGHT));
+  if (box.x == 0 || box.y == 0 || box.x + box.width == W || box.y + box.height == H) {
+    res.status = SilhouetteStatus::kTouchesBorder;
+    return res;
+  }
+
+  // 2. Local sky on a ring around the region, coverage α.
+  const int grow = static_cast<int>(std::ceil(3.0 * opt.psf_sigma_px)) + 3;
+  const int margin = grow + 8;
+  cv::Rect roi(box.x - margin, box.y - margin, box.width + 2 * margin, box.height + 2 * margin);
+  roi &= cv::Rect(0, 0, W, H);
+  cv::Mat region = (labels(roi) == best);
+  cv::Mat grown;
+  cv::dilate(region, grown, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * grow + 1, 2 * grow + 1)));
+  samples.clear();
+  for (int y = 0; y < roi.height; ++y) {
+    const float* row = img.ptr<float>(roi.y + y);
+    const std::uint8_t* g = grown.ptr<std::uint8_t>(y);
+    for (int x = 0; x < roi.width; ++x)
+      if (!g[x]) samples.emplace_back(roi.x + x, roi.y + y, row[roi.x + x]);
+  }
+  Plane local;
+  double local_sigma = 0;
+  if (!FitPlane(samples, &local, &local_sigma)) local = sky;
+  // Body level B: median of the frame over the region's interior (the region eroded by 3 σ_psf + 2 px, so
+  // that no edge pixel and no selection by value biases it; for very thin regions the stronger half of the
+  // region by |I − sky|). α = (I − sky)/(B − sky) per pixel: the target has one radiance, the sky a gradient.
+  std::vector<double> inside, level;
+  for (int y = 0; y < roi.height; ++y) {
+    const float* row = img.ptr<float>(roi.y + y);
+    const std::uint8_t* reg = region.ptr<std::uint8_t>(y);
+    for (int x = 0; x < roi.width; ++x)
+      if (reg[x]) inside.push_back(row[roi.x + x] - local.At(roi.x + x, roi.y + y));
+  }
+  const double sign = Median(inside) >= 0 ? 1.0 : -1.0;
+  {
+    const int er = static_cast<int>(std::ceil(3.0 * opt.psf_sigma_px)) + 2;
+    cv::Mat core;
+    cv::erode(region, core, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * er + 1, 2 * er + 1)));
+    for (int y = 0; y < roi.height; ++y) {
+      const float* row = img.ptr<float>(roi.y + y);
+      const std::uint8_t* c = core.ptr<std::uint8_t>(y);
+      for (int x = 0; x < roi.width; ++x)
+        if (c[x]) level.push_back(row[roi.x + x]);
+    }
+  }
+  if (level.size() < 20) {
+    level.clear();
+    std::vector<double> mag;
+    for (double v : inside) mag.push_back(sign * v);
+    const double med = Median(mag);
+    std::size_t i = 0;
+    for (int y = 0; y < roi.height; ++y) {
+      const float* row = img.ptr<float>(roi.y + y);
+      const std::uint8_t* reg = region.ptr<std::uint8_t>(y);
+      for (int x = 0; x < roi.width; ++x)
+        if (reg[x] && mag[i++] >= med) level.push_back(row[roi.x + x]);
+    }
+  }
+  const double body = Median(level);
+  cv::Mat alpha(roi.size(), CV_32FC1);
+  double contrast_sum = 0;
+  for (int y = 0; y < roi.height; ++y) {
+    const float* row = img.ptr<float>(roi.y + y);
+    float* a = alpha.ptr<float>(y);
+    for (int x = 0; x < roi.width; ++x) {
+      const double sk = local.At(roi.x + x, roi.y + y);
+      const double c = body - sk;
+      a[x] = std::abs(c) > 1e-9 ? static_cast<float>((row[roi.x + x] - sk) / c) : 0.0f;
+      contrast_sum += c;
+    }
+  }
+  const double contrast = contrast_sum / std::max(1, roi.area());
+  res.contrast_dn = contrast;
+  if (!(std::abs(contrast) > 3.0 * sigma) || (contrast > 0) != (sign > 0)) return res;
+
+  // 3. Initial axis from the moments of the region's coverage.
+  double m0 = 0, mx = 0, my = 0;
+  for (int y = 0; y < roi.height; ++y) {
+    const float* a = alpha.ptr<float>(y);
+    const std::uint8_t* g = grown.ptr<std::uint8_t>(y);
+    for (int x = 0; x < roi.width; ++x) {
+      if (!g[x]) continue;
+      const double w = std::clamp(static_cast<double>(a[x]), 0.0, 1.5);
+      m0 += w;
+      mx += w * x;
+      my += w * y;
+    }
+  }
+  if (!(m0 > 0)) return res;
+  mx /= m0;
+  my /= m0;
+  double cxx = 0, cxy = 0, cyy = 0;
+  for (int y = 0; y < roi.height; ++y) {
+    const float* a = alpha.ptr<float>(y);
+    const std::uint8_t* g = grown.ptr<std::uint8_t>(y);
+    for (int x = 0; x < roi.width; ++x) {
+      if (!g[x]) continue;
+      const double w = std::clamp(static_cast<double>(a[x]), 0.0, 1.5);
+      cxx += w * (x - mx) * (x - mx);
+      cxy += w * (x - mx) * (y - my);
+      cyy += w * (y - my) * (y - my);
+    }
+  }
+  const double theta = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);
+  Frame2 f;
+  f.o = Eigen::Vector2d(mx, my);
+  f.d = Eigen::Vector2d(std::cos(theta), std::sin(theta));
+  f.n = Eigen::Vector2d(f.d.y(), -f.d.x());
+  double umin = 1e300, umax = -1e300, vmax = 0;
+  for (int y = 0; y < roi.height; ++y) {
+    const std::uint8_t* reg = region.ptr<std::uint8_t>(y);
+    for (int x = 0; x < roi.width; ++x) {
+      if (!reg[x]) continue;
+      const Eigen::Vector2d q = Eigen::Vector2d(x, y) - f.o;
+      umin = std::min(umin, q.dot(f.d));
+      umax = std::max(umax, q.dot(f.d));
+      vmax = std::max(vmax, std::abs(q.dot(f.n)));
+    }
+  }
+  const double mrg = 3.0 * opt.psf_sigma_px + 2.0;
+  const double V = vmax + mrg + 3.0;
+
+  // 4. Profiles; nose end; side lines; refine the axis.
+  Line e1, e2;
+  double width = 0, u_first = 0, u_last = 0, u_cone = 0;
+  Profile p;
+  bool oriented = false;
+  const double local_margin = 3.0 * opt.psf_sigma_px + 3.0;
+  auto profile = [&]() {
+    const Profile first = Sample(alpha, f, umin - mrg - 2.0, umax + mrg + 2.0, V);
+    return Sample(alpha, f, umin - mrg - 2.0, umax + mrg + 2.0, V, &first, local_margin);
+  };
+  for (int iter = 0; iter < 3; ++iter) {
+    p = profile();
+    const double smax = *std::max_element(p.S.begin(), p.S.end());
+    if (!(smax > 0)) return res;
+    std::size_t i0 = 0, i1 = p.S.size() - 1;
+    while (i0 < p.S.size() && p.S[i0] < 0.5 * smax) ++i0;
+    while (i1 > i0 && p.S[i1] < 0.5 * smax) --i1;
+    if (i1 <= i0 + 4) {
+      res.status = SilhouetteStatus::kTooSmall;
+      return res;
+    }
+    if (!oriented) {
+      // Nose end = the narrower end (mean width over the outer 12 % of the extent).
+      const std::size_t k = std::max<std::size_t>(2, (i1 - i0) * 12 / 100);
+      double a = 0, b = 0;
+      for (std::size_t i = 0; i < k; ++i) {
+        a += p.S[i0 + i];
+        b += p.S[i1 - i];
+      }
+      if (a < b) {  // the low-u end is the nose: turn the frame round
+        f.d = -f.d;
+        f.n = -f.n;
+        std::swap(umin, umax);
+        umin = -umin;
+        umax = -umax;
+        p = profile();
+        i0 = 0;
+        i1 = p.S.size() - 1;
+        while (i0 < p.S.size() && p.S[i0] < 0.5 * smax) ++i0;
+        while (i1 > i0 && p.S[i1] < 0.5 * smax) --i1;
+      }
+      oriented = true;
+    }
+    // Landmarks robust to noise: u where S first / last reaches half its maximum. The tail extreme is at
+    // most half a width before u_first (b ≤ w); the nose tip lies beyond u_last.
+    u_first = p.u[i0];
+    u_last = p.u[i1];
+    // Body width: median over 25–55 % of [u_first, u_last] from the tail.
+    std::vector<double> mid;
+    for (std::size_t i = 0; i < p.u.size(); ++i) {
+      const double t = (p.u[i] - u_first) / std::max(u_last - u_first, 1e-9);
+      if (t >= 0.25 && t <= 0.55) mid.push_back(p.S[i]);
+    }
+    width = Median(mid);
+    if (!(width >= opt.min_width_px)) {
+      res.status = SilhouetteStatus::kTooSmall;
+      return res;
+    }
+    // Body region: from past the tail ellipse (b ≤ width/2) to before the cone (S < 0.97 width).
+    const double body_start = u_first + 0.5 * width + mrg;
+    std::size_t ib = 0;
+    while (ib < p.u.size() && p.u[ib] < body_start) ++ib;
+    // Cone start: the running median of S (over 10 px) first falls below W − max(3 % W, 4 σ_S), σ_S the
+    // profile-to-profile scatter of S (MAD); noise alone does not end the body early.
+    const std::size_t half_win = 10;
+    std::vector<double> smooth(p.S.size()), scatter;
+    for (std::size_t i = 0; i < p.S.size(); ++i) {
+      const std::size_t a = i > half_win ? i - half_win : 0, z = std::min(p.S.size() - 1, i + half_win);
+      smooth[i] = Median(std::vector<double>(p.S.begin() + static_cast<std::ptrdiff_t>(a),
+                                             p.S.begin() + static_cast<std::ptrdiff_t>(z) + 1));
+    }
+    for (std::size_t i = 0; i < p.u.size(); ++i) {
+      const double t = (p.u[i] - u_first) / std::max(u_last - u_first, 1e-9);
+      if (t >= 0.25 && t <= 0.55) scatter.push_back(std::abs(p.S[i] - smooth[i]));
+    }
+    const double sigma_s = 1.4826 * Median(scatter);
+    const double drop = std::max(0.03 * width, 4.0 * sigma_s);
+    std::size_t ic = ib;
+    while (ic < p.u.size() && smooth[ic] >= width - drop) ++ic;
+    u_cone = ic < p.u.size() ? p.u[ic] : u_last;
+    const double body_end = u_cone - mrg;
+    std::vector<double> bu, b1, b2;
+    for (std::size_t i = ib; i < p.u.size() && p.u[i] <= body_end; ++i) {
+      bu.push_back(p.u[i]);
+      b1.push_back(p.C[i] + 0.5 * p.S[i]);
+      b2.push_back(p.C[i] - 0.5 * p.S[i]);
+    }
+    if (bu.size() < 8) {
+      res.status = SilhouetteStatus::kTooSmall;
+      return res;
+    }
+    e1 = FitLine(bu, b1);
+    e2 = FitLine(bu, b2);
+    if (e1.n < 3 || e2.n < 3) {
+      res.status = SilhouetteStatus::kBadFit;
+      return res;
+    }
+    res.side_rms_px = std::sqrt(0.5 * (e1.rms * e1.rms + e2.rms * e2.rms));
+    if (iter == 2) break;
+    // Mid-line v = a + b u → new origin and direction.
+    const double am = 0.5 * (e1.a + e2.a), bm = 0.5 * (e1.b + e2.b);
+    const Eigen::Vector2d o2 = f.At(0.0, am);
+    const Eigen::Vector2d d2 = (f.d + bm * f.n).normalized();
+    const double shift = (o2 - f.o).dot(d2);  // keep u ranges consistent
+    f.o = o2;
+    f.d = d2;
+    f.n = Eigen::Vector2d(d2.y(), -d2.x());
+    umin -= shift;
+    umax -= shift;
+  }
+  if (res.side_rms_px > std::max(0.5, 0.1 * width)) {
+    res.status = SilhouetteStatus::kBadFit;
+    return res;
+  }
+
+  // 5. Tail. Body plateau A(v): mean α at offset v from the centre line over the body (blurred near the
+  // edges). Along lines of constant v (|v| ≤ min(0.8 w, w − 3 s), A ≥ 0.5): rough edge e0 = first drop below A/2
+  // walking out of the body; then e = e0 + h − ∫_{e0−h}^{e0+h} α du / A(v), h = 3 σ_psf + 2 (a short window
+  // keeps the integrated sky noise small). Each such edge is the outline averaged over the effective blur
+  // across the lines (PSF, pixel area and resampling, variance s²): e_meas(v) = e(v) + (s²/2) e''(v).
+  // s² is measured on the body's own side edges: for a blurred step, ∫ t (H(−t) − A(w + t)) dt = −s²/2.
+  // Fit e(v) = u0 − b [g(v) + (s²/2) g''(v)], g = sqrt(1 − (v/w)²), linear in (u0, b), b ≥ 0.
+  auto half_width = [&](double u) { return 0.5 * ((e1.a + e1.b * u) - (e2.a + e2.b * u)); };
+  auto centre = [&](double u) { return 0.5 * ((e1.a + e1.b * u) + (e2.a + e2.b * u)); };
+  const double body_u0 = u_first + 0.5 * width + mrg, body_u1 = std::max(body_u0 + 1.0, u_cone - mrg);
+  const double h = 3.0 * opt.psf_sigma_px + 2.0;
+  constexpr double hu = 0.25;
+  // Mean α across the body at offset v from the centre line (averaged along the body).
+  auto plateau = [&](double v) {
+    double A = 0;
+    int na = 0;
+    for (double u = body_u0; u <= body_u1; u += kStep) {
+      const Eigen::Vector2d q = f.At(u, centre(u) + v);
+      A += Bilinear(alpha, q.x(), q.y());
+      ++na;
+    }
+    return A / std::max(na, 1);
+  };
+  double blur2 = 0.0;
+  {
+    const double wb = half_width(0.5 * (body_u0 + body_u1));
+    double m = 0;
+    for (int side = -1; side <= 1; side += 2) {
+      for (double t = -h; t <= h + 1e-9; t += hu) {
+        const double a = plateau(side * (wb + t));
+        m += t * ((t < 0 ? 1.0 : 0.0) - a) * hu;
+      }
+    }
+    blur2 = std::max(0.0, -m);  // each side: ∫ t (H(−t) − A) dt = −s²/2; two sides: −s²
+  }
+  res.edge_blur_px = std::sqrt(blur2);
+  double u0 = u_first, b = 0;
+  for (int iter = 0; iter < 2; ++iter) {
+    const double w = half_width(u0);
+    const double c = centre(u0);
+    double s11 = 0, s12 = 0, s22 = 0, r1 = 0, r2 = 0;
+    int count = 0;
+    // Lines closer to a side edge than 3 s see that edge's blur too (the curvature model then fails).
+    const double vmax = std::min(0.8 * w, w - 3.0 * std::sqrt(blur2));
+    for (double v = -vmax; v <= vmax + 1e-9; v += kStep) {
+      const double A = plateau(v);
+      if (!(A >= 0.5)) continue;
+      auto alpha_at = [&](double u) {
+        const Eigen::Vector2d q = f.At(u, c + v);
+        return Bilinear(alpha, q.x(), q.y());
+      };
+      double e0 = std::nan("");
+      for (double u = u_first + w + mrg; u >= u_first - w - mrg - 2.0; u -= hu) {
+        if (alpha_at(u) < 0.5 * A) {
+          e0 = u + 0.5 * hu;
+          break;
+        }
+      }
+      if (!std::isfinite(e0)) continue;
+      const int n = static_cast<int>(std::ceil(2.0 * h / hu));
+      double integral = 0;
+      for (int i = 0; i <= n; ++i) integral += ((i == 0 || i == n) ? 0.5 : 1.0) * alpha_at(e0 - h + i * hu);
+      const double e = (e0 - h + n * hu) - hu * integral / A;
+      const double q = std::max(1e-3, 1.0 - (v / w) * (v / w));
+      const double g = -(std::sqrt(q) - 0.5 * blur2 / (w * w * q * std::sqrt(q)));  // −(g + (s²/2) g'')
+      s11 += 1;
+      s12 += g;
+      s22 += g * g;
+      r1 += e;
+      r2 += g * e;
+      ++count;
+    }
+    if (count < 3) {
+      res.status = SilhouetteStatus::kTooSmall;
+      return res;
+    }
+    const double det = s11 * s22 - s12 * s12;
+    b = std::abs(det) > 1e-12 ? (s11 * r2 - s12 * r1) / det : 0.0;
+    if (b < 0.0) b = 0.0;
+    u0 = (r1 - b * s12) / s11;
+  }
+  res.tail_b_px = b;
+
+  // 6. Nose: straight S(u) and C(u) over the cone where 0.15 W ≤ S ≤ 0.7 W.
+  std::vector<double> cu, cs, cc;
+  for (std::size_t i = 0; i < p.u.size(); ++i) {
+    if (p.u[i] < u_cone) continue;
+    if (p.S[i] >= 0.15 * width && p.S[i] <= 0.7 * width) {
+      cu.push_back(p.u[i]);
+      cs.push_back(p.S[i]);
+      cc.push_back(p.C[i]);
+    }
+  }
+  const Line ls = FitLine(cu, cs), lc = FitLine(cu, cc);
+  if (ls.n < 3 || !(ls.b < 0.0)) {
+    res.status = SilhouetteStatus::kBadFit;
+    return res;
+  }
+  const double u_tip = -ls.a / ls.b;
+  const double v_tip = lc.a + lc.b * u_tip;
+  res.width_px = 2.0 * half_width(u0);
+  res.length_px = u_tip - u0;
+  if (res.length_px < opt.min_length_ratio * res.width_px) {
+    res.status = SilhouetteStatus::kTooSmall;
+    return res;
+  }
+  const Eigen::Vector2d off(roi.x, roi.y);
+  res.px[0] = f.At(u_tip, v_tip) + off;
+  res.px[1] = f.At(u0, e1.a + e1.b * u0) + off;
+  res.px[2] = f.At(u0, e2.a + e2.b * u0) + off;
+  res.status = SilhouetteStatus::kOk;
+  return res;
+}
+
+}  // namespace rk::extract

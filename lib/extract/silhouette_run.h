@@ -1,0 +1,44 @@
+// `rk-extract silhouette` as a library call: decode the recording (video::FrameSource, segments and
+// image-sequence patterns), time-stamp each frame (FrameClock), extract the three silhouette points of
+// each frame (silhouette.h) and build the image points CSV of SPEC.md §2.1, long format:
+//   frame,t_s,id,x_px,y_px,status,detail,width_px,length_px
+// three rows per decoded frame (ids nose, tail1, tail2). status: ok; lost (no target found: detail
+// not_found); invalid (a target but no measurement: detail touches_border, too_small or bad_fit) with
+// empty x_px, y_px. Rows are never dropped.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "extract/frame_times.h"
+#include "extract/silhouette.h"
+#include "io/csv.h"
+
+namespace rk::extract {
+
+struct SilhouetteFrameRow {
+  std::int64_t frame = 0;
+  double t_s = 0.0;
+  SilhouetteResult result;
+};
+
+struct SilhouetteRunResult {
+  std::vector<SilhouetteFrameRow> rows;
+  std::array<std::int64_t, 5> by_status{};  // indexed by SilhouetteStatus
+  std::int64_t frames = 0;
+  int width_px = 0, height_px = 0, bit_depth = 8;
+  double wall_s = 0.0, extract_s = 0.0;
+};
+
+// Throws DataError for a truncated video (fewer frames than the frames file lists) or a frames file with
+// fewer times than frames, ProcessingError if no frame gives the three points, UsageError for bad options.
+SilhouetteRunResult RunSilhouette(const std::vector<std::string>& videos, const FrameClock& clock,
+                                  const SilhouetteOptions& options,
+                                  const std::function<void(std::int64_t)>& progress = {});
+
+io::CsvWriter SilhouettePointsCsv(const std::vector<SilhouetteFrameRow>& rows);
+
+}  // namespace rk::extract

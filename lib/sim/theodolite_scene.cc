@@ -1,0 +1,284 @@
+// Single-station theodolite scene of seed 004; model in theodolite_scene.h.
+#include "sim/theodolite_scene.h"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <sstream>
+
+#include "geo/angles.h"
+#include "geo/line_of_sight.h"
+#include "io/error.h"
+
+namespace rk::sim {
+namespace {
+
+std::mt19937_64 Stream(std::uint64_t seed, std::uint64_t stream, std::uint64_t index = 0) {
+  std::seed_seq seq{seed, stream, index};
+  return std::mt19937_64(seq);
+}
+
+std::string Num(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+camera::CameraModel Seed004Camera() {
+  camera::CameraModel c;
+  c.width_px = 1536;  // 16.9 mm / 0.011 mm
+  c.height_px = 1536;
+  c.pixel_size_mm = {0.011, 0.011};
+  c.focal_length_mm = 1500.0;
+  c.principal_point_px = {767.5, 767.5};
+  return c;
+}
+
+bool CylinderShape::Check(std::string* why) const {
+  if (!(length_m > 0.0 && std::isfinite(length_m))) {
+    *why = "--length-m must be > 0";
+    return false;
+  }
+  if (!(diameter_m > 0.0 && std::isfinite(diameter_m))) {
+    *why = "--diameter-m must be > 0";
+    return false;
+  }
+  if (!(nose_length_m > 0.0 && nose_length_m < length_m)) {
+    *why = "--nose-length-m must be in (0, length)";
+    return false;
+  }
+  return true;
+}
+
+Eigen::Vector3d CylinderPose::Axis() const { return geo::DirectionFromAzEl(yaw_rad, pitch_rad); }
+
+SilhouettePoints3d SilhouettePointsOf(const CylinderPose& pose, const CylinderShape& shape) {
+  SilhouettePoints3d p;
+  const Eigen::Vector3d a = pose.Axis();
+  p.tail_centre = pose.tail_centre_enu;
+  p.nose = p.tail_centre + shape.length_m * a;
+  const Eigen::Vector3d n = a.cross(p.tail_centre).normalized();
+  p.tail1 = p.tail_centre + 0.5 * shape.diameter_m * n;
+  p.tail2 = p.tail_centre - 0.5 * shape.diameter_m * n;
+  return p;
+}
+
+CylinderPose PoseAt(double range_m, double az_rad, double el_rad, double yaw_rad, double pitch_rad,
+                    const CylinderShape& shape) {
+  CylinderPose pose;
+  pose.yaw_rad = yaw_rad;
+  pose.pitch_rad = pitch_rad;
+  const Eigen::Vector3d mid = range_m * geo::DirectionFromAzEl(az_rad, el_rad);
+  pose.tail_centre_enu = mid - 0.5 * shape.length_m * pose.Axis();
+  return pose;
+}
+
+double ViewAngle(const CylinderPose& pose) {
+  const Eigen::Vector3d a = pose.Axis();
+  const Eigen::Vector3d los = pose.tail_centre_enu.normalized();
+  return std::atan2(a.cross(los).norm(), a.dot(los));
+}
+
+bool TheodoliteSimOptions::Check(std::string* why) const {
+  auto fail = [&](const std::string& w) {
+    *why = w;
+    return false;
+  };
+  if (!shape.Check(why)) return false;
+  if (!(range_m >= 10.0 && range_m <= 1e6)) return fail("--range-m must be in [10, 1e6] m");
+  if (!(el_deg >= -10.0 && el_deg <= 89.0)) return fail("--el-deg must be in [-10, 89]");
+  if (!(pitch_deg >= -90.0 && pitch_deg <= 90.0)) return fail("--pitch-deg must be in [-90, 90]");
+  for (double v : {az_deg, yaw_deg, speed_mps, yaw_rate_deg_s, pitch_rate_deg_s, t0_s}) {
+    if (!std::isfinite(v)) return fail("angles, rates, speed and --t0 must be finite");
+  }
+  if (!(duration_s >= 0.0 && duration_s <= 3600.0)) return fail("--duration must be in [0, 3600] s");
+  if (!(fps > 0.0 && fps <= 1000.0)) return fail("--fps must be in (0, 1000]");
+  if (!(track_error_px >= 0.0 && track_error_px <= 1e4)) return fail("--track-error-px must be in [0, 1e4]");
+  if (!(theodolite_rate_hz > 0.0 && theodolite_rate_hz <= 10000.0))
+    return fail("--theodolite-rate-hz must be in (0, 10000]");
+  if (!std::isfinite(theodolite_offset_s)) return fail("--theodolite-offset must be finite");
+  for (double v : {angle_bias_arcsec, angle_noise_arcsec, encoder_step_arcsec, point_noise_px}) {
+    if (!(v >= 0.0 && std::isfinite(v))) return fail("noise, bias and step options must be >= 0");
+  }
+  return true;
+}
+
+io::Json TheodoliteSimOptionsToJson(const TheodoliteSimOptions& o) {
+  return io::Json{{"camera", camera::CameraModelToJson(o.camera)},
+                  {"target", {{"length_m", o.shape.length_m},
+                              {"diameter_m", o.shape.diameter_m},
+                              {"nose_length_m", o.shape.nose_length_m}}},
+                  {"range_m", o.range_m},
+                  {"az_deg", o.az_deg},
+                  {"el_deg", o.el_deg},
+                  {"yaw_deg", o.yaw_deg},
+                  {"pitch_deg", o.pitch_deg},
+                  {"speed_mps", o.speed_mps},
+                  {"yaw_rate_deg_s", o.yaw_rate_deg_s},
+                  {"pitch_rate_deg_s", o.pitch_rate_deg_s},
+                  {"duration_s", o.duration_s},
+                  {"fps", o.fps},
+                  {"t0_s", o.t0_s},
+                  {"track_error_px", o.track_error_px},
+                  {"theodolite_rate_hz", o.theodolite_rate_hz},
+                  {"theodolite_offset_s", o.theodolite_offset_s},
+                  {"angle_bias_arcsec", o.angle_bias_arcsec},
+                  {"angle_noise_arcsec", o.angle_noise_arcsec},
+                  {"encoder_step_arcsec", o.encoder_step_arcsec},
+                  {"point_noise_px", o.point_noise_px},
+                  {"quantise", o.quantise},
+                  {"seed", o.seed}};
+}
+
+TheodoliteSimulator::TheodoliteSimulator(TheodoliteSimOptions opt) : opt_(std::move(opt)) {
+  std::string why;
+  if (!opt_.Check(&why)) throw UsageError(why);
+  using geo::DegToRad;
+  t_ref_ = opt_.t0_s + 0.5 * opt_.duration_s;
+  pose_ref_ = PoseAt(opt_.range_m, DegToRad(opt_.az_deg), DegToRad(opt_.el_deg), DegToRad(opt_.yaw_deg),
+                     DegToRad(opt_.pitch_deg), opt_.shape);
+  {
+    std::mt19937_64 rng = Stream(opt_.seed, 1);
+    std::uniform_real_distribution<double> phase(0.0, geo::kTwoPi);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    phase_x_ = phase(rng);
+    phase_y_ = phase(rng);
+    const double bias = opt_.angle_bias_arcsec / geo::kArcsecPerRad;
+    bias_az_ = bias * normal(rng);
+    bias_el_ = bias * normal(rng);
+  }
+  std::mt19937_64 point_rng = Stream(opt_.seed, 3);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const camera::CameraModel& cam = opt_.camera;
+  const auto n_frames = static_cast<std::int64_t>(std::floor(opt_.duration_s * opt_.fps + 1e-9)) + 1;
+  frames_.reserve(static_cast<std::size_t>(n_frames));
+  for (std::int64_t k = 0; k < n_frames; ++k) {
+    TheodoliteFrameTruth f;
+    f.frame = k;
+    f.t_s = opt_.t0_s + static_cast<double>(k) / opt_.fps;
+    f.pose = PoseAtTime(f.t_s);
+    if (f.pose.Axis().cross(f.pose.tail_centre_enu.normalized()).norm() < 1e-9) {
+      throw UsageError("the axis points exactly along the line of sight at frame " + std::to_string(k) +
+                       " (tail-chase view): tail1/tail2 are undefined");
+    }
+    f.points = SilhouettePointsOf(f.pose, opt_.shape);
+    TrueBoresight(f.t_s, &f.boresight_az_rad, &f.boresight_el_rad);
+    const Eigen::Vector3d* pts[3] = {&f.points.nose, &f.points.tail1, &f.points.tail2};
+    Eigen::Vector2d* px[3] = {&f.nose_px, &f.tail1_px, &f.tail2_px};
+    for (int i = 0; i < 3; ++i) {
+      const auto p = cam.ProjectEnu(*pts[i], f.boresight_az_rad, f.boresight_el_rad);
+      if (!p) throw UsageError("a silhouette point is behind the camera at frame " + std::to_string(k));
+      *px[i] = *p;
+      if (p->x() < 0.0 || p->y() < 0.0 || p->x() > cam.width_px - 1 ||
+          p->y() > cam.height_px - 1) {
+        f.in_image = false;
+      }
+      Eigen::Vector2d m = *p;
+      if (opt_.point_noise_px > 0.0) {
+        m.x() += opt_.point_noise_px * normal(point_rng);
+        m.y() += opt_.point_noise_px * normal(point_rng);
+      }
+      if (opt_.quantise) m = Eigen::Vector2d(std::round(m.x()), std::round(m.y()));
+      f.measured_px[static_cast<std::size_t>(i)] = m;
+    }
+    if (!f.in_image) {
+      throw UsageError("the target leaves the " + std::to_string(cam.width_px) + "x" + std::to_string(cam.height_px) +
+                       " image at frame " + std::to_string(k) + " (t = " + Num(f.t_s) +
+                       " s); reduce --track-error-px, the speed or the duration, or increase --range-m");
+    }
+    f.view_angle_rad = ViewAngle(f.pose);
+    f.image_length_px = (f.nose_px - 0.5 * (f.tail1_px + f.tail2_px)).norm();
+    // Mirror solution on the exact rays: R2 = R3 = R, c = c12 = c13, R1 = R c ± sqrt(L'² − R² (1 − c²)).
+    {
+      const Eigen::Vector3d u1 = f.points.nose.normalized();
+      const Eigen::Vector3d u2 = f.points.tail1.normalized();
+      const double R = f.points.tail1.norm();
+      const double k = 0.5 * (u1 - u2).squaredNorm();
+      const double c = 1.0 - k;
+      const double s = u1.cross(u2).norm();
+      const double L = std::sqrt(0.25 * opt_.shape.diameter_m * opt_.shape.diameter_m +
+                                 opt_.shape.length_m * opt_.shape.length_m);
+      const double q = L * L - R * R * s * s;
+      if (q > 0.0) {
+        const double r_true = f.points.nose.norm();
+        const double r_a = R * c + std::sqrt(q), r_b = R * c - std::sqrt(q);
+        const double r_alt = std::abs(r_a - r_true) > std::abs(r_b - r_true) ? r_a : r_b;
+        if (r_alt > 0.0) {
+          const geo::AzEl ae = geo::AzElFromEnu(r_alt * u1 - f.points.tail_centre);
+          f.alt_yaw_rad = ae.az_rad;
+          f.alt_pitch_rad = ae.el_rad;
+        }
+      }
+    }
+    frames_.push_back(f);
+  }
+}
+
+CylinderPose TheodoliteSimulator::PoseAtTime(double t_s) const {
+  using geo::DegToRad;
+  const double dt = t_s - t_ref_;
+  const Eigen::Vector3d a_ref = pose_ref_.Axis();
+  const Eigen::Vector3d mid_ref = pose_ref_.tail_centre_enu + 0.5 * opt_.shape.length_m * a_ref;
+  CylinderPose pose;
+  pose.yaw_rad = geo::WrapTwoPi(DegToRad(opt_.yaw_deg + opt_.yaw_rate_deg_s * dt));
+  pose.pitch_rad = DegToRad(std::clamp(opt_.pitch_deg + opt_.pitch_rate_deg_s * dt, -90.0, 90.0));
+  const Eigen::Vector3d mid = mid_ref + opt_.speed_mps * dt * a_ref;
+  pose.tail_centre_enu = mid - 0.5 * opt_.shape.length_m * pose.Axis();
+  return pose;
+}
+
+void TheodoliteSimulator::TrueBoresight(double t_s, double* az_rad, double* el_rad) const {
+  const CylinderPose pose = PoseAtTime(t_s);
+  const Eigen::Vector3d mid = pose.tail_centre_enu + 0.5 * opt_.shape.length_m * pose.Axis();
+  const camera::CameraModel& cam = opt_.camera;
+  const Eigen::Vector2d want =
+      cam.principal_point_px + opt_.track_error_px * Eigen::Vector2d(std::sin(2 * geo::kPi * 0.37 * t_s + phase_x_),
+                                                                     std::cos(2 * geo::kPi * 0.23 * t_s + phase_y_));
+  const geo::AzEl ae = geo::AzElFromEnu(mid);
+  double A = ae.az_rad, E = ae.el_rad;
+  // Fixed-point iteration on the exact projection: moving the boresight right (A up) moves the image left.
+  for (int it = 0; it < 50; ++it) {
+    const auto p = cam.ProjectEnu(mid, A, E);
+    if (!p) break;
+    const Eigen::Vector2d err = *p - want;
+    if (err.norm() < 1e-11) break;
+    A += err.x() / cam.fx() / std::max(std::cos(E), 1e-6);
+    E -= err.y() / cam.fy();
+  }
+  *az_rad = geo::WrapTwoPi(A);
+  *el_rad = E;
+}
+
+std::vector<TheodoliteSample> TheodoliteSimulator::TheodoliteLog() const {
+  std::vector<TheodoliteSample> log;
+  const double t_first = opt_.t0_s - 0.5 + opt_.theodolite_offset_s;
+  const double t_last = frames_.back().t_s + 0.5;
+  const auto n = static_cast<std::int64_t>(std::floor((t_last - t_first) * opt_.theodolite_rate_hz)) + 1;
+  std::mt19937_64 rng = Stream(opt_.seed, 2);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  const double noise = opt_.angle_noise_arcsec / geo::kArcsecPerRad;
+  const double step = opt_.encoder_step_arcsec / geo::kArcsecPerRad;
+  log.reserve(static_cast<std::size_t>(n));
+  for (std::int64_t j = 0; j < n; ++j) {
+    TheodoliteSample s;
+    s.t_s = t_first + static_cast<double>(j) / opt_.theodolite_rate_hz;
+    TrueBoresight(s.t_s, &s.true_az_rad, &s.true_el_rad);
+    double az = s.true_az_rad + bias_az_ + noise * normal(rng);
+    double el = s.true_el_rad + bias_el_ + noise * normal(rng);
+    if (step > 0.0) {
+      az = std::round(az / step) * step;
+      el = std::round(el / step) * step;
+    }
+    s.az_rad = geo::WrapTwoPi(az);
+    s.el_rad = el;
+    log.push_back(s);
+  }
+  return log;
+}
+
+}  // namespace rk::sim

@@ -1,0 +1,190 @@
+// rk-sim theodolite: seed 004 scene geometry, exact projection, theodolite log, rendering, trial files.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "geo/angles.h"
+#include "geo/line_of_sight.h"
+#include "io/csv.h"
+#include "io/error.h"
+#include "sim/theodolite_render.h"
+#include "sim/theodolite_scene.h"
+#include "sim/theodolite_trial.h"
+
+namespace rk::sim {
+namespace {
+
+using geo::DegToRad;
+
+constexpr double kGeomM = 1e-9;   // metres, double precision on ~1e3 m coordinates
+constexpr double kPixel = 1e-7;   // px, projection round trips
+constexpr double kArea = 1e-5;    // px², polygon clipping sums (float coverage)
+
+TEST(TheodoliteScene, Seed004CameraIsThePapersSetUp) {
+  const camera::CameraModel c = Seed004Camera();
+  EXPECT_EQ(c.width_px, 1536);  // 16.9 mm / 0.011 mm
+  EXPECT_NEAR(c.fx(), 1500.0 / 0.011, 1e-9);
+  EXPECT_NEAR(c.principal_point_px.x(), 767.5, 0);
+}
+
+TEST(TheodoliteScene, SilhouettePointsAreTheEdgeOnDiameter) {
+  CylinderShape shape;
+  shape.length_m = 3.0;
+  shape.diameter_m = 0.4;
+  for (double yaw : {0.0, 76.211, 200.0, 359.9}) {
+    const CylinderPose pose = PoseAt(1500.0, DegToRad(326.2), DegToRad(20.0), DegToRad(yaw), DegToRad(31.257), shape);
+    const SilhouettePoints3d p = SilhouettePointsOf(pose, shape);
+    const double slant = std::sqrt(0.04 + 9.0);
+    EXPECT_NEAR((p.nose - p.tail1).norm(), slant, kGeomM);
+    EXPECT_NEAR((p.nose - p.tail2).norm(), slant, kGeomM);
+    EXPECT_NEAR((p.tail1 - p.tail2).norm(), 0.4, kGeomM);
+    EXPECT_NEAR((p.nose - p.tail_centre).norm(), 3.0, kGeomM);
+    // Edge-on: the diameter is perpendicular to the axis and to the line of sight; R2 = R3.
+    EXPECT_NEAR((p.tail1 - p.tail2).dot(pose.Axis()), 0.0, kGeomM);
+    EXPECT_NEAR((p.tail1 - p.tail2).normalized().dot(p.tail_centre.normalized()), 0.0, 1e-12);
+    EXPECT_NEAR(p.tail1.norm(), p.tail2.norm(), kGeomM);
+    // The mid-point is at the requested range and direction.
+    const Eigen::Vector3d mid = p.tail_centre + 1.5 * pose.Axis();
+    EXPECT_NEAR(mid.norm(), 1500.0, kGeomM);
+  }
+}
+
+TEST(TheodoliteScene, ViewAngleConventions) {
+  CylinderShape shape;
+  CylinderPose away;  // axis north, target north of the station: tail chase
+  away.tail_centre_enu = Eigen::Vector3d(0, 1000, 0);
+  away.yaw_rad = 0.0;
+  away.pitch_rad = 0.0;
+  EXPECT_NEAR(ViewAngle(away), 0.0, 1e-12);
+  away.yaw_rad = DegToRad(90.0);
+  EXPECT_NEAR(ViewAngle(away), M_PI / 2, 1e-12);
+}
+
+TEST(TheodoliteSimulator, ExactProjectionTrackingAndLog) {
+  TheodoliteSimOptions o;
+  o.duration_s = 1.0;
+  o.speed_mps = 150.0;
+  o.track_error_px = 25.0;
+  o.theodolite_rate_hz = 50.0;
+  o.encoder_step_arcsec = 1.0;
+  const TheodoliteSimulator sim(o);
+  ASSERT_EQ(sim.frames().size(), 21u);
+  const camera::CameraModel& cam = o.camera;
+  for (const TheodoliteFrameTruth& f : sim.frames()) {
+    // Each pixel's line of sight at the true boresight points at its 3-D point.
+    const Eigen::Vector3d ray = cam.RayEnu(f.nose_px, f.boresight_az_rad, f.boresight_el_rad);
+    EXPECT_LT(ray.cross(f.points.nose.normalized()).norm(), 1e-12);
+    // The tracking offset keeps the mid-point within track_error_px of the principal point.
+    const Eigen::Vector3d mid = f.pose.tail_centre_enu + 0.5 * o.shape.length_m * f.pose.Axis();
+    const Eigen::Vector2d m = *cam.ProjectEnu(mid, f.boresight_az_rad, f.boresight_el_rad);
+    EXPECT_LE((m - cam.principal_point_px).norm(), 25.0 * std::sqrt(2.0) + kPixel);
+    EXPECT_EQ(f.measured_px[0], f.nose_px);  // no noise, no quantisation by default
+    // tail1 is left of the tail → nose direction on the screen (x right, y down).
+    const Eigen::Vector2d dir = f.nose_px - 0.5 * (f.tail1_px + f.tail2_px);
+    const Eigen::Vector2d left(dir.y(), -dir.x());
+    EXPECT_GT((f.tail1_px - f.tail2_px).dot(left), 0.0);
+    ASSERT_TRUE(f.alt_yaw_rad.has_value());
+  }
+  // Moving at 150 m/s along the axis, the elevation changes.
+  EXPECT_GT(std::abs(sim.frames().back().boresight_el_rad - sim.frames().front().boresight_el_rad), 1e-3);
+  const auto log = sim.TheodoliteLog();
+  const double step = DegToRad(1.0 / 3600.0);
+  for (const TheodoliteSample& s : log) {
+    EXPECT_NEAR(std::remainder(s.el_rad, step), 0.0, 1e-12);
+    EXPECT_LE(std::abs(s.el_rad - s.true_el_rad), 0.5 * step + 1e-12);
+    EXPECT_GE(s.az_rad, 0.0);
+    EXPECT_LT(s.az_rad, geo::kTwoPi);
+  }
+  EXPECT_LT(log.front().t_s, sim.frames().front().t_s);
+  EXPECT_GT(log.back().t_s, sim.frames().back().t_s);
+}
+
+TEST(TheodoliteSimulator, QuantisationAndDeterminism) {
+  TheodoliteSimOptions o;
+  o.quantise = true;
+  o.point_noise_px = 0.2;
+  o.seed = 9;
+  const TheodoliteSimulator a(o), b(o);
+  for (std::size_t k = 0; k < a.frames().size(); ++k) {
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector2d& p = a.frames()[k].measured_px[static_cast<std::size_t>(i)];
+      EXPECT_EQ(p.x(), std::round(p.x()));
+      EXPECT_EQ(p, b.frames()[k].measured_px[static_cast<std::size_t>(i)]);
+    }
+  }
+  TheodoliteSimOptions bad = o;
+  bad.range_m = 12.0;  // a 2.5 m target at 12 m does not fit the 1500 mm camera's field
+  EXPECT_THROW(TheodoliteSimulator{bad}, Error);
+  bad = o;
+  bad.shape.nose_length_m = 3.0;
+  std::string why;
+  EXPECT_FALSE(bad.Check(&why));
+}
+
+TEST(TheodoliteRender, CoverageSumsToThePolygonArea) {
+  // A slanted quadrilateral and a thin sliver: per-pixel clipped areas add up to the area.
+  const std::vector<std::vector<Eigen::Vector2d>> polys = {
+      {{10.3, 5.2}, {30.7, 9.9}, {25.1, 28.4}, {8.9, 20.05}},
+      {{3.0, 3.0}, {40.0, 3.4}, {40.0, 3.9}},
+  };
+  for (const auto& poly : polys) {
+    const cv::Mat cov = RasterizeConvexPolygon(poly, cv::Rect(0, 0, 48, 40));
+    EXPECT_NEAR(cv::sum(cov)[0], PolygonArea(poly), kArea);
+  }
+  // Pixel (5, 5) fully inside a big square, pixel (9, 5) half covered.
+  const std::vector<Eigen::Vector2d> sq = {{0.0, 0.0}, {9.0, 0.0}, {9.0, 9.0}, {0.0, 9.0}};
+  const cv::Mat cov = RasterizeConvexPolygon(sq, cv::Rect(0, 0, 12, 12));
+  EXPECT_NEAR(cov.at<float>(5, 5), 1.0, 1e-6);
+  EXPECT_NEAR(cov.at<float>(5, 9), 0.5, 1e-6);
+  EXPECT_NEAR(cov.at<float>(5, 10), 0.0, 1e-6);
+}
+
+TEST(TheodoliteRender, OutlineHasTheTipAndTheTailPoints) {
+  TheodoliteSimOptions o;
+  const TheodoliteSimulator sim(o);
+  const TheodoliteFrameTruth& f = sim.frames().front();
+  const auto poly = SilhouettePolygon(o.camera, f.pose, o.shape, f.boresight_az_rad, f.boresight_el_rad);
+  ASSERT_GE(poly.size(), 8u);
+  double best_tip = 1e9, best_t1 = 1e9, best_t2 = 1e9;
+  for (const auto& p : poly) {
+    best_tip = std::min(best_tip, (p - f.nose_px).norm());
+    best_t1 = std::min(best_t1, (p - f.tail1_px).norm());
+    best_t2 = std::min(best_t2, (p - f.tail2_px).norm());
+  }
+  EXPECT_LT(best_tip, kPixel);  // the tip is a hull vertex
+  // The rim is sampled every 2π/2048: the tail points are within one sample spacing of a hull vertex.
+  const double r_px = 0.5 * (f.tail1_px - f.tail2_px).norm();
+  EXPECT_LT(best_t1, r_px * 2 * M_PI / 2048);
+  EXPECT_LT(best_t2, r_px * 2 * M_PI / 2048);
+}
+
+TEST(TheodoliteTrial, WritesTheFilesAtomically) {
+  namespace fs = std::filesystem;
+  const fs::path dir = fs::temp_directory_path() / "rk_test_theodolite_trial";
+  fs::remove_all(dir);
+  TheodoliteSimOptions o;
+  o.duration_s = 0.1;
+  o.quantise = true;
+  TheodoliteWriteOptions w;
+  w.out_dir = dir.string();
+  const TheodoliteSimulator sim(o);
+  const TheodoliteTrialSummary s = WriteTheodoliteTrial(sim, w);
+  EXPECT_EQ(s.frames, 3);
+  for (const char* f : {"trial.json", "target.json", "theodolite.csv", "points.csv", "theo/camera.json",
+                        "theo/frames.csv", "truth/axis.csv", "truth/points.csv", "truth/theodolite.csv"}) {
+    EXPECT_TRUE(fs::exists(dir / f)) << f;
+  }
+  const io::CsvTable pts = io::CsvTable::Read((dir / "points.csv").string());
+  EXPECT_EQ(pts.rows(), 9u);
+  EXPECT_EQ(pts.Cell(1, pts.RequireColumn("id")), "tail1");
+  // Refuses a non-empty folder without force, and leaves it as it was.
+  EXPECT_THROW(WriteTheodoliteTrial(sim, w), Error);
+  EXPECT_TRUE(fs::exists(dir / "points.csv"));
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace rk::sim
