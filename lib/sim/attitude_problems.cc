@@ -62,8 +62,8 @@ bool PnpProblemOptions::Check(std::string* why) const {
     *why = "pixel noise range must satisfy 0 <= min <= max";
     return false;
   }
-  if (!(max_tilt_rad >= 0.0 && max_tilt_rad < 1.5)) {
-    *why = "largest tilt must be in [0, 1.5) rad";
+  if (!(min_tilt_rad >= 0.0 && max_tilt_rad >= min_tilt_rad && max_tilt_rad < 1.5)) {
+    *why = "tilt range must satisfy 0 <= min <= max < 1.5 rad";
     return false;
   }
   return true;
@@ -115,7 +115,7 @@ PnpProblem MakePnpProblem(const PnpProblemOptions& o, std::uint64_t index) {
       case PnpGeometry::kNarrowPlanar: {
         const double half = narrow ? 0.35 : 2.0;
         for (int i = 0; i < n; ++i) pb.p_body.emplace_back(uni(-half, half), uni(-half, half), 0.0);
-        pb.R_cam_body = TiltedRotation(uni(0.0, o.max_tilt_rad), uni(0, 2 * M_PI), uni(0, 2 * M_PI));
+        pb.R_cam_body = TiltedRotation(uni(o.min_tilt_rad, o.max_tilt_rad), uni(0, 2 * M_PI), uni(0, 2 * M_PI));
         const double depth = narrow ? uni(15, 25) : uni(4, 8);
         const double off = narrow ? 0.005 : 0.1;
         pb.t_cam = depth * Eigen::Vector3d(uni(-off, off), uni(-off, off), 1.0);

@@ -7,8 +7,8 @@
 //                principal point (319.5, 239.5); points uniform in [−2, 2]×[−2, 2]×[4, 8] m of
 //                the camera frame, the body frame a uniformly random rotation about their
 //                centroid (body origin = centroid).
-//   planar       points uniform in the body square [−2, 2]² (z = 0), plane normal tilted up to
-//                max_tilt from the line of sight, body origin at depth uniform in [4, 8] m on a
+//   planar       points uniform in the body square [−2, 2]² (z = 0), plane normal tilted by [min_tilt, max_tilt]
+//                from the line of sight, body origin at depth uniform in [4, 8] m on a
 //                ray within 0.1 rad of the axis; same camera.
 //   narrow       seed 001's attitude camera: 2448×2048, 3.45 µm pixels, 100 mm lens
 //                (f = 28 985.5 px); a target of points uniform in the body box
@@ -38,7 +38,8 @@ struct PnpProblemOptions {
   int max_points = 12;
   double noise_min_px = 0.1;   // σ range (px), 0 ≤ min ≤ max
   double noise_max_px = 1.0;
-  double max_tilt_rad = 1.2217304763960306;  // planar geometries: largest tilt of the normal (70°)
+  double min_tilt_rad = 0.0;                 // planar geometries: tilt of the plane normal from the
+  double max_tilt_rad = 1.2217304763960306;  // line of sight, uniform in [min, max] (default 0–70°)
   std::uint64_t seed = 1;
 
   bool Check(std::string* why) const;
