@@ -111,6 +111,7 @@ PnpSolution PnpSolver::FromStart(const Eigen::Matrix3d& R0, std::span<const Eige
     sse = r.sse_px2;
   } else {
     s.chi2 = ReprojectionChi2(xn, p_body, sigma_px, fx, fy, s.R_cam_body, s.t_cam, &s.in_front, &sse);
+    if (s.in_front) s.information = ReprojectionInformation(xn, p_body, sigma_px, fx, fy, s.R_cam_body, s.t_cam);
   }
   s.rms_px = std::sqrt(sse / static_cast<double>(xn.size()));
   return s;

@@ -7,6 +7,45 @@
 
 namespace rk::pose {
 
+namespace {
+
+// JᵀJ and Jᵀr of the σ-weighted pixel residuals (model in reproj_refine.h).
+void NormalEquations(std::span<const Eigen::Vector2d> xn, std::span<const Eigen::Vector3d> p_body,
+                     std::span<const double> sigma_px, double fx, double fy, const Eigen::Matrix3d& Rc,
+                     const Eigen::Vector3d& tc, Eigen::Matrix<double, 6, 6>* H, Eigen::Matrix<double, 6, 1>* g) {
+  H->setZero();
+  g->setZero();
+  for (std::size_t i = 0; i < xn.size(); ++i) {
+    const Eigen::Vector3d Rp = Rc * p_body[i];
+    const Eigen::Vector3d X = Rp + tc;
+    const double iz = 1.0 / X.z();
+    const double w = sigma_px.empty() ? 1.0 : 1.0 / sigma_px[i];
+    // d(projection)/dX, rows scaled to pixels and by 1/σ.
+    Eigen::Matrix<double, 2, 3> P;
+    P << w * fx * iz, 0.0, -w * fx * X.x() * iz * iz, 0.0, w * fy * iz, -w * fy * X.y() * iz * iz;
+    Eigen::Matrix3d Rx;  // −[Rp]×
+    Rx << 0, Rp.z(), -Rp.y(), -Rp.z(), 0, Rp.x(), Rp.y(), -Rp.x(), 0;
+    Eigen::Matrix<double, 2, 6> J;
+    J.leftCols<3>() = P * Rx;
+    J.rightCols<3>() = P;
+    const Eigen::Vector2d r(w * fx * (X.x() * iz - xn[i].x()), w * fy * (X.y() * iz - xn[i].y()));
+    H->noalias() += J.transpose() * J;
+    g->noalias() += J.transpose() * r;
+  }
+}
+
+}  // namespace
+
+Eigen::Matrix<double, 6, 6> ReprojectionInformation(std::span<const Eigen::Vector2d> xn,
+                                                    std::span<const Eigen::Vector3d> p_body,
+                                                    std::span<const double> sigma_px, double fx, double fy,
+                                                    const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
+  Eigen::Matrix<double, 6, 6> H;
+  Eigen::Matrix<double, 6, 1> g;
+  NormalEquations(xn, p_body, sigma_px, fx, fy, R, t, &H, &g);
+  return H;
+}
+
 Eigen::Matrix3d ExpSo3(const Eigen::Vector3d& w) {
   const double th2 = w.squaredNorm();
   Eigen::Matrix3d K;
@@ -60,25 +99,7 @@ ReprojRefineResult RefineReprojection(std::span<const Eigen::Vector2d> xn, std::
   double mu = 1e-8;
 
   auto normal_equations = [&](const Eigen::Matrix3d& Rc, const Eigen::Vector3d& tc, Mat6* H, Vec6* g) {
-    H->setZero();
-    g->setZero();
-    for (std::size_t i = 0; i < xn.size(); ++i) {
-      const Eigen::Vector3d Rp = Rc * p_body[i];
-      const Eigen::Vector3d X = Rp + tc;
-      const double iz = 1.0 / X.z();
-      const double w = sigma_px.empty() ? 1.0 : 1.0 / sigma_px[i];
-      // d(projection)/dX, rows scaled to pixels and by 1/σ.
-      Eigen::Matrix<double, 2, 3> P;
-      P << w * fx * iz, 0.0, -w * fx * X.x() * iz * iz, 0.0, w * fy * iz, -w * fy * X.y() * iz * iz;
-      Eigen::Matrix3d Rx;  // −[Rp]×
-      Rx << 0, Rp.z(), -Rp.y(), -Rp.z(), 0, Rp.x(), Rp.y(), -Rp.x(), 0;
-      Eigen::Matrix<double, 2, 6> J;
-      J.leftCols<3>() = P * Rx;
-      J.rightCols<3>() = P;
-      const Eigen::Vector2d r(w * fx * (X.x() * iz - xn[i].x()), w * fy * (X.y() * iz - xn[i].y()));
-      H->noalias() += J.transpose() * J;
-      g->noalias() += J.transpose() * r;
-    }
+    NormalEquations(xn, p_body, sigma_px, fx, fy, Rc, tc, H, g);
   };
 
   if (!front || xn.size() < 3) {

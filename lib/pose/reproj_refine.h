@@ -47,6 +47,13 @@ double ReprojectionChi2(std::span<const Eigen::Vector2d> xn, std::span<const Eig
                         std::span<const double> sigma_px, double fx, double fy, const Eigen::Matrix3d& R,
                         const Eigen::Vector3d& t, bool* in_front = nullptr, double* sse_px2 = nullptr);
 
+// JᵀJ of the σ-weighted residuals at a pose (the information matrix, as above), without
+// refining: for a pose that was not polished.
+Eigen::Matrix<double, 6, 6> ReprojectionInformation(std::span<const Eigen::Vector2d> xn,
+                                                    std::span<const Eigen::Vector3d> p_body,
+                                                    std::span<const double> sigma_px, double fx, double fy,
+                                                    const Eigen::Matrix3d& R, const Eigen::Vector3d& t);
+
 // exp([w]×) (Rodrigues).
 Eigen::Matrix3d ExpSo3(const Eigen::Vector3d& w);
 
