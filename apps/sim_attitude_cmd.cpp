@@ -112,7 +112,7 @@ Command AddAttitudeCommand(CLI::App& parent) {
                 "Camera model JSON (SPEC.md section 3) instead of the attitude camera (2448x2048, 3.45 um, 100 mm)");
   s->add_option("--target", c->target_path,
                 "Target model JSON {\"points\": {...}} instead of the default 8-marker layout");
-  s->add_option("--duration", c->o.duration_s, "Trial length (s); the 6 m in / 5 m out profile fills it")
+  s->add_option("--duration", c->o.duration_s, "Trial length (s); the default 22 s covers the approach and the return")
       ->capture_default_str();
   s->add_option("--fps", c->o.fps, "Frame rate (Hz)")->capture_default_str();
   s->add_option("--t0", c->o.t0_s, "Time of frame 0 since the epoch (s)")->capture_default_str();
@@ -123,6 +123,10 @@ Command AddAttitudeCommand(CLI::App& parent) {
   s->add_option("--approach-m", c->o.approach_m, "Distance moved toward the station on the way in (m)")
       ->capture_default_str();
   s->add_option("--return-m", c->o.return_m, "Distance moved back on the way out (m)")->capture_default_str();
+  s->add_option("--leg-in-s", c->o.leg_in_s, "Duration of the approach (s), from the first frame")
+      ->capture_default_str();
+  s->add_option("--leg-out-s", c->o.leg_out_s, "Duration of the return (s), after the approach")
+      ->capture_default_str();
   s->add_option("--path-angle-deg", c->path_deg,
                 "Angle of the (horizontal) motion from the line of sight to the station (deg)")
       ->capture_default_str();

@@ -14,7 +14,6 @@ namespace {
 
 constexpr double kSampleMarginS = 0.5;  // turret log extends this far beyond the frames
 constexpr double kServoMarginS = 1.0;
-constexpr double kFirstLeg = 12.0 / 22.0;  // seed 001: 6 m in, 5 m back at about the same speed
 
 std::mt19937_64 Stream(std::uint64_t seed, std::uint64_t stream, std::uint64_t index = 0) {
   std::seed_seq seq{seed, stream, index};
@@ -112,6 +111,9 @@ bool AttitudeSimOptions::Check(std::string* why) const {
   if (!(elevation_rad >= -0.2 && elevation_rad <= 1.4)) return fail("--elevation-deg must be in [-11.5, 80] degrees");
   if (!std::isfinite(azimuth_rad)) return fail("--azimuth-deg must be finite");
   if (!(approach_m >= 0 && approach_m <= 0.9 * range_m)) return fail("--approach-m must be in [0, 0.9 range]");
+  if (!(leg_in_s > 0 && leg_out_s > 0 && std::isfinite(leg_in_s + leg_out_s))) {
+    return fail("--leg-in-s and --leg-out-s must be > 0 s");
+  }
   if (!(return_m >= 0 && return_m <= approach_m + 0.5 * range_m)) return fail("--return-m out of range");
   if (!(std::abs(path_angle_rad) <= 1.5)) return fail("--path-angle-deg must be within ±86 degrees");
   for (double a : {yaw0_rad, pitch0_rad, roll0_rad, dyaw_rad, dpitch_rad, droll_rad}) {
@@ -161,6 +163,8 @@ io::Json AttitudeSimOptionsToJson(const AttitudeSimOptions& o) {
   j["elevation_deg"] = RadToDeg(o.elevation_rad);
   j["approach_m"] = o.approach_m;
   j["return_m"] = o.return_m;
+  j["leg_in_s"] = o.leg_in_s;
+  j["leg_out_s"] = o.leg_out_s;
   j["path_angle_deg"] = RadToDeg(o.path_angle_rad);
   j["attitude0_deg"] = {RadToDeg(o.yaw0_rad), RadToDeg(o.pitch0_rad), RadToDeg(o.roll0_rad)};
   j["attitude_change_deg"] = {RadToDeg(o.dyaw_rad), RadToDeg(o.dpitch_rad), RadToDeg(o.droll_rad)};
@@ -178,8 +182,7 @@ io::Json AttitudeSimOptionsToJson(const AttitudeSimOptions& o) {
 }
 
 void AttitudeSimulator::Ramps(double t, double* u1, double* u2) const {
-  const double T = std::max(LastFrameTime(opt_) - opt_.t0_s, 1e-9);
-  const double T1 = kFirstLeg * T, T2 = T - T1;
+  const double T1 = opt_.leg_in_s, T2 = opt_.leg_out_s;
   *u1 = Ramp((t - opt_.t0_s) / T1);
   *u2 = Ramp((t - opt_.t0_s - T1) / T2);
 }

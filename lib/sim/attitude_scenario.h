@@ -9,8 +9,10 @@
 // return_m along the same line:
 //   p(t) = p0 + ĥ (approach_m · u1(t) − return_m · u2(t)),  p0 = R0 · dir(A0, E0),
 //   ĥ = horizontal unit vector toward the station, turned by path_angle (clockwise seen from above),
-// with smooth ramps u1 (0 → 1 over the first 12/22 of the run) and u2 (0 → 1 over the last
-// 10/22), u(τ) = (1 − cos πτ)/2, so speed is zero at the ends and at the turn. The attitude
+// with smooth ramps u1 (0 → 1 over the leg_in_s after the first frame) and u2 (0 → 1 over the
+// following leg_out_s), u(τ) = (1 − cos πτ)/2, so speed is zero at the ends and at the turn
+// (defaults 12 s and 10 s: 6 m in, 5 m out at ≤ 0.8 m/s; the default duration, 22 s, covers
+// both legs; a shorter run covers the start of the approach). The attitude
 // follows the paper's "yaw ≈ 10°, pitch ≈ 7°, roll ≈ 5° on the way in, back to the start on the
 // way out": (yaw, pitch, roll)(t) = (yaw0, pitch0, roll0) + (Δyaw, Δpitch, Δroll)·(u1 − u2),
 // R_ned_body = Rz(yaw)·Ry(pitch)·Rx(roll) (geo/body_attitude.h). Yaw and roll are wrapped, so
@@ -80,6 +82,8 @@ struct AttitudeSimOptions {
   double azimuth_rad = 0.5235987755982988;       // A0 (30°)
   double elevation_rad = 0.05235987755982988;    // E0 (3°), [-0.2, 1.4]
   double approach_m = 6.0;                       // [0, 0.9 R0]
+  double leg_in_s = 12.0;                        // duration of the approach (s), > 0
+  double leg_out_s = 10.0;                       // duration of the return (s), > 0
   double return_m = 5.0;                         // [0, approach_m + 0.5 R0]
   double path_angle_rad = 0.5235987755982988;    // 30°, [−1.5, 1.5]
   double yaw0_rad = 5.235987755982989;           // 300°: side-on (the station sees the left side)
