@@ -20,6 +20,10 @@
 //   iterative   cv::solvePnP(SOLVEPNP_ITERATIVE)
 //   epnp-lm     cv::solvePnP(SOLVEPNP_EPNP) + cv::solvePnPRefineLM
 //   ippe-lm     cv::solvePnP(SOLVEPNP_IPPE) + cv::solvePnPRefineLM (planar geometries only)
+//   none        does nothing: the harness's own cost, to subtract from callgrind instruction counts
+// Instruction counts, immune to machine load (docs/benchmarks.md):
+//   valgrind --tool=callgrind --callgrind-out-file=/dev/null build/bench/attitude_pnp_bench \
+//       --problems 1000 --repeats 1 --geometry box --methods oi      (then sqpnp-lm, then none)
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
 
@@ -203,6 +207,8 @@ int main(int argc, char** argv) {
       } else if (mn == "oi-always") {
         opt.second_start = rk::pose::SecondStart::kAlways;
         e.m = OiMethod(opt);
+      } else if (mn == "none") {  // harness only: for instruction counts (callgrind) of the others
+        e.m = [](const Prepared&) { return Estimate{}; };
       } else if (mn == "sqpnp-lm") {
         e.m = CvMethod(cv::SOLVEPNP_SQPNP, true);
       } else if (mn == "sqpnp") {

@@ -338,6 +338,26 @@ TEST(AttitudeOi, RowStatusesForMissingPointsTurretGapsAndOutliers) {
   EXPECT_NE(out.find(",lost,,,3,,,,,,,,,,,,few_points,"), std::string::npos) << out;
 }
 
+TEST(AttitudeOi, PointsOfAMirroredTargetGiveNoPose) {
+  // Frame 1 shows the target's mirror image (body y → −y; what a camera would see of the target
+  // behind it, reflected through its centre): no proper pose in front of the camera fits a
+  // non-planar target's mirror image, so the row is invalid (reprojection), never a wrong pose.
+  Scene s = MakeScene(3, 200.0, 0.0);
+  extract::TargetModel mirrored = s.model;
+  for (auto& p : mirrored.p_body) p.y() = -p.y();
+  const std::string normal = PointsCsv(s.truth, s.cam, s.model, 0.02, 3);
+  const std::string mirror = PointsCsv(s.truth, s.cam, mirrored, 0.02, 3);
+  std::istringstream a(normal), b(mirror);
+  std::string la, lb, csv;
+  while (std::getline(a, la) && std::getline(b, lb)) csv += (la.rfind("1,", 0) == 0 ? lb : la) + "\n";
+  const AttitudeOiResult r = RunScene(s, csv);
+  EXPECT_EQ(r.rows[0].status, RowStatus::kOk);
+  EXPECT_EQ(r.rows[1].status, RowStatus::kInvalid);
+  EXPECT_EQ(r.rows[1].note, PoseNote::kReprojection);
+  EXPECT_GT(r.rows[1].rms_px, 1.0);
+  EXPECT_EQ(r.rows[2].status, RowStatus::kReacquired);
+}
+
 TEST(AttitudeOi, DegenerateFrameIsInvalid) {
   // Four visible points on one line of the body (a degenerate view): invalid, degenerate.
   io::Json j = {{"points",
