@@ -47,7 +47,7 @@ for seed in $SEEDS; do
   c="d['columns']"
   maxabs="'%.4f / %.4f / %.4f' % tuple(max(abs(d['columns'][k]['max']), abs(d['columns'][k]['min'])) for k in ('yaw_deg','pitch_deg','roll_deg'))"
   pos="'%.2f / %.2f / %.2f' % tuple(1000*d['columns'][k]['rms'] for k in ('e_m','n_m','u_m'))"
-  pts=$(awk '/rms/ {printf "%s / %s", $7, $15}' "$d/points_stats.txt")
+  pts=$(awk '/rms/ {printf "%s / %s", $7, $14}' "$d/points_stats.txt")
   ide=$(awk '/identity errors/ {print $5}' "$d/points_stats.txt")
   ok=$(jget "$d/oi.json" "d['counts']['status']['ok'] + d['counts']['status']['reacquired']")
   te=$(python3 -c "print('%.0f' % (1000*$(cat $d.t_extract)/440))")
