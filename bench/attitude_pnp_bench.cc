@@ -15,6 +15,7 @@
 //   oi          rk-attitude oi's solver, default options (second start auto)
 //   oi-pure     orthogonal iteration only (no polish, no second start)
 //   oi-always   default solver with the second start always run
+//   oi-handoff=T  default solver with OI handing over to the polish at ‖ΔR‖ < T
 //   sqpnp-lm    cv::solvePnP(SOLVEPNP_SQPNP) + cv::solvePnPRefineLM   (the reference)
 //   sqpnp       cv::solvePnP(SOLVEPNP_SQPNP)
 //   iterative   cv::solvePnP(SOLVEPNP_ITERATIVE)
@@ -22,7 +23,7 @@
 //   ippe-lm     cv::solvePnP(SOLVEPNP_IPPE) + cv::solvePnPRefineLM (planar geometries only)
 //   none        does nothing: the harness's own cost, to subtract from callgrind instruction counts
 // Instruction counts, immune to machine load (docs/benchmarks.md):
-//   valgrind --tool=callgrind --callgrind-out-file=/dev/null build/bench/attitude_pnp_bench \
+//   valgrind --tool=callgrind --callgrind-out-file=/dev/null build/bench/attitude_pnp_bench
 //       --problems 1000 --repeats 1 --geometry box --methods oi      (then sqpnp-lm, then none)
 #include <opencv2/calib3d.hpp>
 #include <opencv2/core.hpp>
@@ -204,6 +205,9 @@ int main(int argc, char** argv) {
         opt.polish = false;
         opt.second_start = rk::pose::SecondStart::kNever;
         e.m = OiMethod(opt);
+      } else if (mn.rfind("oi-handoff=", 0) == 0) {  // e.g. oi-handoff=1e-4: OI hand-over tolerance
+        opt.oi_handoff_tol = std::atof(mn.c_str() + 11);
+        e.m = OiMethod(opt);
       } else if (mn == "oi-always") {
         opt.second_start = rk::pose::SecondStart::kAlways;
         e.m = OiMethod(opt);
@@ -259,7 +263,7 @@ int main(int argc, char** argv) {
         tr.push_back(100.0 * (es.t - pb.t_cam).norm() / pb.t_cam.norm());
       }
       const Stats sr = Summarise(rot), st = Summarise(tr);
-      std::printf("%-14s %-10s %6d | %9.5f %9.5f %9.5f %9.3f | %9.5f %9.5f %9.5f | %8.2f %9.3f\n", gname.c_str(),
+      std::printf("%-14s %-10s %6d | %9.5f %9.5f %9.5f %9.3f | %9.5g %9.5f %9.5f | %8.2f %9.3f\n", gname.c_str(),
                   e.name.c_str(), fails, sr.mean, sr.median, sr.p95, sr.max, st.mean, st.median, st.p95,
                   1e6 * e.best_s / static_cast<double>(prep.size()), ref_s > 0 ? e.best_s / ref_s : 0.0);
       if (starts > 0) {

@@ -45,7 +45,7 @@ bool PnpOptions::Check(std::string* why) const {
     *why = "refinement needs max_iterations >= 1 and a positive step tolerance";
     return false;
   }
-  if (!(oi_handoff_tol > 0.0)) {
+  if (!(oi_handoff_tol > 0.0) || !(oi_handoff_tol_planar > 0.0)) {
     *why = "OI hand-over tolerance must be > 0";
     return false;
   }
@@ -79,10 +79,16 @@ PnpSolver::PnpSolver(PnpOptions options) : opt_(std::move(options)) {}
 
 PnpSolution PnpSolver::FromStart(const Eigen::Matrix3d& R0, std::span<const Eigen::Vector2d> xn,
                                  std::span<const Eigen::Vector3d> p_body, std::span<const double> sigma_px,
-                                 double fx, double fy) const {
+                                 double fx, double fy, bool full_oi) const {
   PnpSolution s;
   OiOptions oi_opt = opt_.oi;
-  if (opt_.polish) oi_opt.rotation_tol = std::max(oi_opt.rotation_tol, opt_.oi_handoff_tol);
+  // Near-planar targets hand over later: their two minima lie in a flat valley and an early
+  // hand-over can let LM slide into the other one (tests: a 5°-tilted square).
+  if (opt_.polish && !full_oi) {
+    const double handoff =
+        planarity_ < opt_.near_planar_ratio ? opt_.oi_handoff_tol_planar : opt_.oi_handoff_tol;
+    oi_opt.rotation_tol = std::max(oi_opt.rotation_tol, handoff);
+  }
   OiResult oi = oi_.Solve(R0, oi_opt);
   // E(R, t) cannot tell a point from its reflection through the camera centre: for a planar
   // model, X → −X is the rotation by π about the plane normal, and OI may converge to that
@@ -133,6 +139,7 @@ PnpResult PnpSolver::Solve(std::span<const Eigen::Vector2d> xn, std::span<const 
   }
   const Eigen::Vector3d& lambda = oi_.scatter_eigenvalues();
   res.planarity = lambda(2) / lambda(0);
+  planarity_ = res.planarity;
   WeakPerspectiveStart init;
   if (res.planarity < opt_.near_planar_ratio && n >= 4) init = HomographyInit(rays_, p_body);
   if (!init.ok) init = WeakPerspectiveInit(rays_, p_body);
@@ -174,7 +181,12 @@ PnpResult PnpSolver::Solve(std::span<const Eigen::Vector2d> xn, std::span<const 
                             res.best.rms_px > opt_.retry_rms_px));
   if (run_second) {
     res.second_start_run = true;
-    consider(FromStart(init.R_cam_body[1], xn, p_body, sigma_px, fx, fy));
+    PnpSolution second = FromStart(init.R_cam_body[1], xn, p_body, sigma_px, fx, fy);
+    if (opt_.polish && RotationAngle(second.R_cam_body, res.best.R_cam_body) <= geo::DegToRad(opt_.distinct_deg)) {
+      // Landed on the first minimum: was it the early hand-over? Let OI converge fully.
+      second = FromStart(init.R_cam_body[1], xn, p_body, sigma_px, fx, fy, /*full_oi=*/true);
+    }
+    consider(second);
   }
   // Still no solution consistent with the image: the starts fell into wrong basins (small n,
   // strong perspective). Try the first solution turned end over end about the virtual image
