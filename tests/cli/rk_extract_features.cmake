@@ -67,3 +67,17 @@ head -n 6 "$d/att/frames.csv" > "$data/att_frames_short.csv"
 test ! -e "$d/target.json.tmp"
 echo ok
 ]==] REQUIRES sim_attitude_small)
+
+# Image-sequence input (rk-sim --format png) given as two segments: frame numbers count on, the
+# second copy is read as frames 5-9 (10 frames x 8 ids = 80 rows).
+rk_extract_features_script(rk_extract_features_png_segments [==[
+p=$data/att_png
+rk-sim attitude --out "$p" --force --format png --camera "$data/att_cam.json" --range-m 40 --duration 0.5 --fps 10 --quiet
+test -s "$p/att/000004.png"
+rk-extract features --video "$p/att/%06d.png" --video "$p/att/%06d.png" --fps 10 --t0 1 --target "$p/target.json" \
+  -o "$data/att_png_points.csv" --quiet
+test "$(grep -c '' "$data/att_png_points.csv")" = 81
+test "$(tail -n 1 "$data/att_png_points.csv" | cut -d, -f1-3)" = "9,1.900000000,tail"
+test "$(awk -F, 'NR > 1 && $6 != "ok"' "$data/att_png_points.csv" | grep -c '')" = 0
+echo ok
+]==] REQUIRES sim_attitude_small)
