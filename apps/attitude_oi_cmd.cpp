@@ -117,7 +117,7 @@ int RunOi(const OiArgs& a, const Context& ctx) {
               "mean chi-square per degree of freedom is " + std::to_string(c2) +
                   ": the pixel noise is larger than --sigma-px / sigma_px says, so the sigma_* columns are too small");
   }
-  pose::PoseCsv(res, model).Write(a.output);
+  pose::PoseCsv(res).Write(a.output);
 
   if (!ctx.common.report_path.empty()) {
     io::Json r = cli::MakeReport(kTool, ctx.argc, ctx.argv);

@@ -313,8 +313,7 @@ AttitudeOiResult RunAttitudeOi(const extract::ImagePoints& points, const extract
   return res;
 }
 
-io::CsvWriter PoseCsv(const AttitudeOiResult& result, const extract::TargetModel& model) {
-  (void)model;
+io::CsvWriter PoseCsv(const AttitudeOiResult& result) {
   std::vector<std::string> cols;
   if (result.has_frame) cols.push_back("frame");
   for (const char* c :

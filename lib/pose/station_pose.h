@@ -111,7 +111,7 @@ AttitudeOiResult RunAttitudeOi(const extract::ImagePoints& points, const extract
 // ambiguous (0/1), alt_yaw_deg, alt_pitch_deg, alt_roll_deg, sigma_e_m, sigma_n_m, sigma_u_m,
 // sigma_yaw_deg, sigma_pitch_deg, sigma_roll_deg, rejected_id, note, boresight_az_deg,
 // boresight_el_deg.
-io::CsvWriter PoseCsv(const AttitudeOiResult& result, const extract::TargetModel& model);
+io::CsvWriter PoseCsv(const AttitudeOiResult& result);
 
 // The station-frame pose of a camera-frame pose for boresight (A, E): p_enu and R_enu_body.
 void StationPose(const camera::CameraModel& camera, const geo::AzEl& boresight, const Eigen::Matrix3d& R_cam_body,

@@ -232,7 +232,7 @@ TEST(AttitudeOi, RecoversStationPoseAcrossYawAndRollWraps) {
     roll_neg |= RadToDeg(row.attitude.roll_rad) < -179.0;
   }
   EXPECT_TRUE(yaw_hi && yaw_lo && roll_pos && roll_neg);
-  const std::string csv = PoseCsv(r, s.model).str();
+  const std::string csv = PoseCsv(r).str();
   EXPECT_EQ(csv.substr(0, csv.find('\n')),
             "frame,t_s,e_m,n_m,u_m,yaw_deg,pitch_deg,roll_deg,status,reproj_rms_px,reproj_max_px,points_used,"
             "ambiguous,alt_yaw_deg,alt_pitch_deg,alt_roll_deg,sigma_e_m,sigma_n_m,sigma_u_m,sigma_yaw_deg,"
@@ -334,7 +334,7 @@ TEST(AttitudeOi, RowStatusesForMissingPointsTurretGapsAndOutliers) {
   EXPECT_EQ(r2.rows[7].status, RowStatus::kInvalid);
   EXPECT_EQ(r2.rows[7].note, PoseNote::kReprojection);
   EXPECT_GT(r2.rows[7].rms_px, 1.0);
-  const std::string out = PoseCsv(r2, s.model).str();
+  const std::string out = PoseCsv(r2).str();
   EXPECT_NE(out.find(",lost,,,3,,,,,,,,,,,,few_points,"), std::string::npos) << out;
 }
 
