@@ -81,3 +81,14 @@ test "$(tail -n 1 "$data/att_png_points.csv" | cut -d, -f1-3)" = "9,1.900000000,
 test "$(awk -F, 'NR > 1 && $6 != "ok"' "$data/att_png_points.csv" | grep -c '')" = 0
 echo ok
 ]==] REQUIRES sim_attitude_small)
+
+# 16-bit video: the same thresholds in noise sigmas work on 16-bit DN.
+rk_extract_features_script(rk_extract_features_16bit [==[
+p=$data/att_16
+rk-sim attitude --out "$p" --force --bit-depth 16 --camera "$data/att_cam.json" --range-m 40 --duration 0.5 --fps 10 --quiet
+rk-extract features --video "$p/att/video.mkv" --frames "$p/att/frames.csv" --target "$p/target.json" -o "$data/att_16_points.csv" --quiet
+python3 "$src/bench/attitude_points_stats.py" "$data/att_16_points.csv" "$p/truth/points.csv" | tee "$data/att_16_stats.txt"
+grep -q "identity errors 0  status {'ok': 40}" "$data/att_16_stats.txt"
+awk '/rms/ { if ($7 > 0.05 || $14 > 0.05) exit 1 }' "$data/att_16_stats.txt"
+echo ok
+]==] REQUIRES sim_attitude_small)
