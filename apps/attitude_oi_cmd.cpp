@@ -1,0 +1,225 @@
+// rk-attitude oi: target position and attitude in the station frame from image points of known
+// features (seed 001 §2.3, orthogonal iteration). Method: lib/pose/station_pose.h; user page
+// docs/rk-attitude-oi.md.
+#include <cmath>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "camera/camera_model.h"
+#include "extract/features_model.h"
+#include "extract/features_points.h"
+#include "geo/angles.h"
+#include "io/cli.h"
+#include "io/csv.h"
+#include "io/error.h"
+#include "io/file_util.h"
+#include "locate/inputs.h"
+#include "pose/boresight.h"
+#include "pose/station_pose.h"
+#include "subcommand.h"
+
+namespace rk::app {
+namespace {
+
+constexpr const char* kTool = "rk-attitude";
+
+struct OiArgs {
+  std::string points, camera, target, turret, boresight, output;
+  std::string turret_interp = "cubic", second_start = "auto";
+  double turret_max_gap_s = 0.1;
+  double turret_sigma_deg = 0.003 / std::sqrt(12.0);
+  bool pure_oi = false, no_reject = false;
+  pose::AttitudeOiOptions opt;
+};
+
+geo::AzEl ParseBoresight(const std::string& text) {
+  const std::vector<std::string> parts = io::SplitList(text);
+  auto fail = [&]() -> geo::AzEl {
+    throw UsageError("--boresight must be AZ,EL in degrees (e.g. 30,5), not '" + text + "'");
+  };
+  if (parts.size() != 2) return fail();
+  double v[2];
+  for (int k = 0; k < 2; ++k) {
+    try {
+      std::size_t used = 0;
+      v[k] = std::stod(parts[static_cast<std::size_t>(k)], &used);
+      if (used != parts[static_cast<std::size_t>(k)].size() || !std::isfinite(v[k])) return fail();
+    } catch (const std::exception&) {
+      return fail();
+    }
+  }
+  if (v[1] < -90.0 || v[1] > 90.0) throw UsageError("--boresight elevation must be in [-90, 90] degrees");
+  geo::AzEl b;
+  b.az_rad = geo::WrapTwoPi(geo::DegToRad(v[0]));
+  b.el_rad = geo::DegToRad(v[1]);
+  return b;
+}
+
+int RunOi(const OiArgs& a, const Context& ctx) {
+  pose::AttitudeOiOptions opt = a.opt;
+  if (!pose::ParseSecondStart(a.second_start, &opt.pnp.second_start)) {
+    throw UsageError("--second-start must be auto, always or never");
+  }
+  track::InterpMethod turret_method = track::InterpMethod::kCubic;
+  if (!track::ParseInterpMethod(a.turret_interp, &turret_method) ||
+      (turret_method != track::InterpMethod::kLinear && turret_method != track::InterpMethod::kCubic)) {
+    throw UsageError("--turret-interp must be linear or cubic");
+  }
+  if (!(a.turret_max_gap_s > 0.0)) throw UsageError("--turret-max-gap must be > 0 s");
+  opt.turret_sigma_rad = geo::DegToRad(a.turret_sigma_deg);
+  opt.pnp.polish = !a.pure_oi;
+  opt.reject_outlier = !a.no_reject;
+  std::string why;
+  if (!opt.Check(&why)) throw UsageError(why);
+
+  std::vector<std::string> inputs = {a.points, a.camera, a.target};
+  if (!a.turret.empty()) inputs.push_back(a.turret);
+  int n_stdin = 0;
+  for (const auto& in : inputs) n_stdin += io::IsStdStream(in) ? 1 : 0;
+  if (n_stdin > 1) throw UsageError("only one input can be read from stdin ('-')");
+  io::CheckOutputNotInput(a.output, inputs);
+  if (!ctx.common.report_path.empty()) {
+    io::CheckOutputNotInput(ctx.common.report_path, inputs);
+    if (io::IsStdStream(ctx.common.report_path) && io::IsStdStream(a.output)) {
+      throw UsageError("--report and -o cannot both be stdout");
+    }
+  }
+  std::optional<geo::AzEl> fixed;
+  if (!a.boresight.empty()) fixed = ParseBoresight(a.boresight);
+
+  const extract::TargetModel model = extract::LoadTargetModel(a.target);
+  const camera::CameraModel camera = camera::LoadCameraModel(a.camera);
+  const extract::ImagePoints points = extract::ReadImagePoints(io::CsvTable::Read(a.points), model);
+  if (points.frames.empty()) throw DataError(points.source, 0, 0, "no image points (header only)");
+  std::optional<locate::TurretLog> turret_log;
+  if (!a.turret.empty()) turret_log = locate::ReadTurretLog(io::CsvTable::Read(a.turret));
+  const pose::BoresightSource boresight =
+      fixed ? pose::BoresightSource::Fixed(fixed->az_rad, fixed->el_rad)
+            : pose::BoresightSource::FromLog(*turret_log, turret_method, a.turret_max_gap_s);
+
+  const pose::AttitudeOiResult res = pose::RunAttitudeOi(points, model, camera, boresight, opt);
+  const std::size_t n = res.rows.size();
+  if (res.turret_not_covered > 0 && !fixed) {
+    cli::Warn(kTool, ctx.common,
+              std::to_string(res.turret_not_covered) + " of " + std::to_string(n) + " frame times are not covered by " +
+                  a.turret + " (rows with enough points written as invalid)");
+  }
+  if (res.ambiguous > 0) {
+    cli::Warn(kTool, ctx.common,
+              std::to_string(res.ambiguous) + " of " + std::to_string(n) +
+                  " frames have two poses that fit equally well (column ambiguous; the other is in alt_*)");
+  }
+  const double c2 = res.MeanChi2PerDof();
+  if (std::isfinite(c2) && c2 > 4.0) {
+    cli::Warn(kTool, ctx.common,
+              "mean chi-square per degree of freedom is " + std::to_string(c2) +
+                  ": the pixel noise is larger than --sigma-px / sigma_px says, so the sigma_* columns are too small");
+  }
+  pose::PoseCsv(res).Write(a.output);
+
+  if (!ctx.common.report_path.empty()) {
+    io::Json r = cli::MakeReport(kTool, ctx.argc, ctx.argv);
+    r["subcommand"] = "oi";
+    cli::AddReportInput(&r, "points", a.points);
+    cli::AddReportInput(&r, "camera", a.camera);
+    cli::AddReportInput(&r, "target", a.target);
+    if (!a.turret.empty()) cli::AddReportInput(&r, "turret", a.turret);
+    r["output"] = a.output;
+    io::Json status = io::Json::object();
+    for (int s = 0; s < 5; ++s) status[RowStatusName(static_cast<RowStatus>(s))] = res.rows_by_status[static_cast<std::size_t>(s)];
+    r["counts"] = {{"frames", n},
+                   {"status", status},
+                   {"few_points", res.few_points},
+                   {"turret_not_covered", res.turret_not_covered},
+                   {"degenerate", res.degenerate},
+                   {"behind_camera", res.behind_camera},
+                   {"reprojection", res.reprojection},
+                   {"outliers_rejected", res.outliers_rejected},
+                   {"ambiguous", res.ambiguous},
+                   {"second_starts", res.second_starts},
+                   {"turret_duplicate_times", res.turret_duplicate_times},
+                   {"unusable_point_rows", points.unusable_rows}};
+    r["mean_chi2_per_dof"] = std::isfinite(c2) ? io::Json(c2) : io::Json(nullptr);
+    r["target"] = {{"points", model.size()}, {"planarity", model.Planarity()}};
+    r["options"] = {{"boresight", fixed ? io::Json{geo::RadToDeg(fixed->az_rad), geo::RadToDeg(fixed->el_rad)}
+                                        : io::Json(nullptr)},
+                    {"turret_interp", a.turret_interp},
+                    {"turret_max_gap_s", a.turret_max_gap_s},
+                    {"turret_sigma_deg", a.turret_sigma_deg},
+                    {"sigma_px", opt.sigma_px},
+                    {"min_points", opt.min_points},
+                    {"max_rms_px", opt.max_rms_px},
+                    {"reject_outlier", opt.reject_outlier},
+                    {"second_start", pose::SecondStartName(opt.pnp.second_start)},
+                    {"ambiguity_chi2", opt.pnp.ambiguity_chi2},
+                    {"near_planar_ratio", opt.pnp.near_planar_ratio},
+                    {"continuity_s", opt.continuity_s},
+                    {"polish", opt.pnp.polish}};
+    io::WriteJson(ctx.common.report_path, r);
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command AddOiCommand(CLI::App& parent) {
+  auto a = std::make_shared<OiArgs>();
+  CLI::App* s = parent.add_subcommand(
+      "oi",
+      "Target position and attitude (yaw, pitch, roll) in the station frame from image points of known "
+      "features: orthogonal iteration (Lu, Hager & Mjolsness 2000) + reprojection polish, camera on the turret. "
+      "Writes t_s,e_m,n_m,u_m,yaw_deg,pitch_deg,roll_deg,status,reproj_rms_px,... (one row per frame).");
+  s->add_option("--points", a->points, "Image points CSV: frame,t_s,id,x_px,y_px[,status][,sigma_px] ('-' = stdin)")
+      ->required();
+  s->add_option("--camera", a->camera, "Attitude camera model JSON (SPEC.md section 3, with mount_deg)")->required();
+  s->add_option("--target", a->target, "Target model JSON {\"points\": {\"<id>\": [x, y, z], ...}} (body metres)")
+      ->required();
+  auto* o_turret = s->add_option("--turret", a->turret, "Turret log CSV t_s,az_deg,el_deg (the camera rides on the turret)");
+  auto* o_bore = s->add_option("--boresight", a->boresight, "Fixed boresight AZ,EL (degrees) instead of a turret log");
+  o_turret->excludes(o_bore);
+  s->add_option("-o,--output", a->output, "Pose CSV ('-' = stdout)")->required();
+  s->add_option("--turret-interp", a->turret_interp, "Turret angle interpolation to frame times: linear or cubic")
+      ->capture_default_str();
+  s->add_option("--turret-max-gap", a->turret_max_gap_s,
+                "Longest turret-log interval (s) interpolated across; frames in longer gaps are invalid")
+      ->capture_default_str();
+  s->add_option("--turret-sigma-deg", a->turret_sigma_deg,
+                "1-sigma turret angle noise (deg) in the sigma_* columns (default: 0.003 deg step / sqrt 12)")
+      ->capture_default_str();
+  s->add_option("--sigma-px", a->opt.sigma_px, "1-sigma pixel noise of points without a sigma_px column (px)")
+      ->capture_default_str();
+  s->add_option("--min-points", a->opt.min_points, "Fewest usable points for a pose (>= 4)")->capture_default_str();
+  s->add_option("--max-rms-px", a->opt.max_rms_px,
+                "Largest accepted RMS reprojection error (px); larger rows are invalid (after trying to reject one "
+                "point)")
+      ->capture_default_str();
+  s->add_flag("--no-reject", a->no_reject, "Never leave a point out to bring the RMS under --max-rms-px");
+  s->add_option("--second-start", a->second_start,
+                "Second OI start from the mirrored pose: auto (near-planar targets, or a poor first fit), always, never")
+      ->capture_default_str();
+  s->add_option("--ambiguity-chi2", a->opt.pnp.ambiguity_chi2,
+                "Two minima whose chi-square differ by less are flagged ambiguous")
+      ->capture_default_str();
+  s->add_option("--near-planar", a->opt.pnp.near_planar_ratio,
+                "Targets with scatter eigenvalue ratio lambda3/lambda1 below this are near-planar (second start, "
+                "homography start)")
+      ->capture_default_str();
+  s->add_option("--continuity", a->opt.continuity_s,
+                "Ambiguous frames take the pose nearest the previous row's if it is at most this old (s)")
+      ->capture_default_str();
+  s->add_flag("--pure-oi", a->pure_oi,
+              "Orthogonal iteration only, without the reprojection polish (object-space optimum; for comparison)");
+  return {s, [a, s](const Context& ctx) {
+            if (a->turret.empty() && a->boresight.empty()) {
+              throw UsageError("give the camera's pointing: --turret turret.csv or --boresight AZ,EL");
+            }
+            (void)s;
+            return RunOi(*a, ctx);
+          }};
+}
+
+RK_REGISTER_SUBCOMMAND(2, AddOiCommand);
+
+}  // namespace rk::app

@@ -1,0 +1,365 @@
+// Marker detection and least-squares correlation; model in features_detect.h.
+#include "extract/features_detect.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+namespace rk::extract {
+namespace {
+
+constexpr double kInvSqrt2 = 0.70710678118654752440;
+constexpr double kInvSqrt2Pi = 0.39894228040143267794;
+
+double Median(std::vector<double>* v) {
+  if (v->empty()) return 0.0;
+  auto mid = v->begin() + static_cast<std::ptrdiff_t>(v->size() / 2);
+  std::nth_element(v->begin(), mid, v->end());
+  return *mid;
+}
+
+}  // namespace
+
+bool MarkerDetectOptions::Check(std::string* why) const {
+  auto fail = [&](const char* w) {
+    *why = w;
+    return false;
+  };
+  if (!(min_radius_px >= 0.0 && max_radius_px > min_radius_px && max_radius_px <= 500.0)) {
+    return fail("marker radius range must satisfy 0 <= min < max <= 500 px");
+  }
+  if (downsample < 1 || downsample > 8) return fail("--downsample must be in [1, 8]");
+  if (!(k_detect > 0.0)) return fail("--k-detect must be > 0");
+  if (!(min_contrast_dn >= 0.0)) return fail("--min-contrast must be >= 0");
+  if (!(ncc_min > -1.0 && ncc_min < 1.0)) return fail("--ncc-min must be in (-1, 1)");
+  if (max_candidates < 4 || max_candidates > 1000) return fail("--max-candidates must be in [4, 1000]");
+  if (max_iterations < 1) return fail("fit iterations must be >= 1");
+  if (!(sigma_floor_px >= 0.0)) return fail("sigma floor must be >= 0");
+  return true;
+}
+
+MarkerDetector::MarkerDetector(const MarkerDetectOptions& opt) : opt_(opt) {}
+
+void MarkerDetector::SetFrame(const cv::Mat& frame) {
+  CV_Assert(frame.type() == CV_8UC1 || frame.type() == CV_16UC1);
+  frame.convertTo(image_, CV_32F);
+  if (opt_.dark) {
+    const double full = frame.depth() == CV_16U ? 65535.0 : 255.0;
+    image_ = full - image_;
+  }
+  // Level: median of a sparse grid; noise: MAD of horizontal neighbour differences / √2
+  // (insensitive to the smooth background, the body and the few marker pixels).
+  std::vector<double> lv, dv;
+  const int stride = 16;
+  for (int y = stride / 2; y < image_.rows; y += stride) {
+    const float* row = image_.ptr<float>(y);
+    for (int x = stride / 2; x + 1 < image_.cols; x += stride) {
+      lv.push_back(row[x]);
+      dv.push_back(row[x + 1] - row[x]);
+    }
+  }
+  level_dn_ = Median(&lv);
+  const double md = Median(&dv);
+  for (double& d : dv) d = std::abs(d - md);
+  noise_dn_ = std::max(1.4826 * Median(&dv) / std::sqrt(2.0), 0.3);
+}
+
+void MarkerDetector::MakeTemplate(double radius_px, double edge_px, int half) {
+  templ_.create(2 * half + 1, 2 * half + 1, CV_32FC1);
+  const double k = kInvSqrt2 / edge_px;
+  for (int y = -half; y <= half; ++y) {
+    float* row = templ_.ptr<float>(y + half);
+    for (int x = -half; x <= half; ++x) {
+      row[x + half] = static_cast<float>(0.5 * std::erfc((std::hypot(x, y) - radius_px) * k));
+    }
+  }
+}
+
+MarkerMeasurement MarkerDetector::Measure(const Eigen::Vector2d& predicted, double search_px, double radius_px,
+                                          double edge_px) {
+  MarkerMeasurement m;
+  radius_px = std::clamp(radius_px, 0.0, opt_.max_radius_px);
+  edge_px = std::clamp(edge_px, 0.5, 10.0);
+  const int half = static_cast<int>(std::ceil(radius_px + 3.0 * edge_px + 2.0));
+  const int S = std::max(1, static_cast<int>(std::ceil(search_px)));
+  const int ix = static_cast<int>(std::lround(predicted.x())), iy = static_cast<int>(std::lround(predicted.y()));
+  const cv::Rect want(ix - half - S, iy - half - S, 2 * (half + S) + 1, 2 * (half + S) + 1);
+  const cv::Rect region = want & cv::Rect(0, 0, image_.cols, image_.rows);
+  if (region.width < 2 * half + 2 || region.height < 2 * half + 2) {
+    m.why = "at the image border";
+    return m;
+  }
+  MakeTemplate(radius_px, edge_px, half);
+  cv::matchTemplate(image_(region), templ_, ncc_map_, cv::TM_CCOEFF_NORMED);
+  double best = -2.0;
+  for (int y = 0; y < ncc_map_.rows; ++y) {
+    const float* row = ncc_map_.ptr<float>(y);
+    for (int x = 0; x < ncc_map_.cols; ++x) best = std::max(best, static_cast<double>(row[x]));
+  }
+  if (!(best >= opt_.ncc_min)) {
+    m.ncc = best;
+    m.why = "low correlation";
+    return m;
+  }
+  // The local maximum nearest the prediction among those nearly as good as the best.
+  double best_d2 = 1e300, score = best;
+  Eigen::Vector2d peak = predicted;
+  for (int y = 0; y < ncc_map_.rows; ++y) {
+    const float* row = ncc_map_.ptr<float>(y);
+    for (int x = 0; x < ncc_map_.cols; ++x) {
+      const double v = row[x];
+      if (v < best - 0.05) continue;
+      bool is_max = true;
+      for (int dy = -1; dy <= 1 && is_max; ++dy) {
+        for (int dx = -1; dx <= 1; ++dx) {
+          const int yy = y + dy, xx = x + dx;
+          if ((dx || dy) && yy >= 0 && xx >= 0 && yy < ncc_map_.rows && xx < ncc_map_.cols &&
+              ncc_map_.at<float>(yy, xx) > v) {
+            is_max = false;
+            break;
+          }
+        }
+      }
+      if (!is_max) continue;
+      const Eigen::Vector2d p(region.x + x + half, region.y + y + half);
+      const double d2 = (p - predicted).squaredNorm();
+      if (d2 < best_d2) {
+        best_d2 = d2;
+        peak = p;
+        score = v;
+      }
+    }
+  }
+  return Fit(peak, radius_px, edge_px, score);
+}
+
+MarkerMeasurement MarkerDetector::Fit(const Eigen::Vector2d& start, double radius_px, double edge_px, double ncc) {
+  using Vec8 = Eigen::Matrix<double, 8, 1>;
+  using Mat8 = Eigen::Matrix<double, 8, 8>;
+  MarkerMeasurement m;
+  m.ncc = ncc;
+  const int half = static_cast<int>(std::ceil(radius_px + 3.0 * edge_px + 3.0));
+  const int x0 = static_cast<int>(std::lround(start.x())), y0 = static_cast<int>(std::lround(start.y()));
+  if (x0 - half < 0 || y0 - half < 0 || x0 + half >= image_.cols || y0 + half >= image_.rows) {
+    m.why = "at the image border";
+    return m;
+  }
+  // Background start: median of the window's border.
+  std::vector<double> ring;
+  for (int k = -half; k <= half; ++k) {
+    ring.push_back(image_.at<float>(y0 - half, x0 + k));
+    ring.push_back(image_.at<float>(y0 + half, x0 + k));
+    ring.push_back(image_.at<float>(y0 + k, x0 - half));
+    ring.push_back(image_.at<float>(y0 + k, x0 + half));
+  }
+  const double b_start = Median(&ring);
+  // θ = (cx, cy, ρ, s, a, b0, bx, by); the plane is about (x0, y0).
+  Vec8 th;
+  const double phi0 = 0.5 * std::erfc(-radius_px / std::max(edge_px, 0.3) * kInvSqrt2);
+  th << start.x(), start.y(), radius_px, std::max(edge_px, 0.5),
+      (image_.at<float>(static_cast<int>(std::lround(start.y())), static_cast<int>(std::lround(start.x()))) -
+       b_start) / std::max(phi0, 0.05),
+      b_start, 0.0, 0.0;
+
+  auto eval = [&](const Vec8& t, Mat8* H, Vec8* g) {
+    double sse = 0.0;
+    if (H) {
+      H->setZero();
+      g->setZero();
+    }
+    const double k = 1.0 / t(3);
+    for (int y = y0 - half; y <= y0 + half; ++y) {
+      const float* row = image_.ptr<float>(y);
+      const double dy = y - t(1);
+      for (int x = x0 - half; x <= x0 + half; ++x) {
+        const double dx = x - t(0);
+        const double r = std::sqrt(dx * dx + dy * dy);
+        const double z = (t(2) - r) * k;
+        const double Phi = 0.5 * std::erfc(-z * kInvSqrt2);
+        const double model = t(5) + t(6) * (x - x0) + t(7) * (y - y0) + t(4) * Phi;
+        const double res = model - row[x];
+        sse += res * res;
+        if (H) {
+          const double aphi = t(4) * kInvSqrt2Pi * std::exp(-0.5 * z * z) * k;  // a φ(z) / s
+          Vec8 J;
+          J(0) = r > 1e-12 ? aphi * dx / r : 0.0;
+          J(1) = r > 1e-12 ? aphi * dy / r : 0.0;
+          J(2) = aphi;
+          J(3) = -aphi * z;
+          J(4) = Phi;
+          J(5) = 1.0;
+          J(6) = x - x0;
+          J(7) = y - y0;
+          H->selfadjointView<Eigen::Upper>().rankUpdate(J);
+          *g += J * res;
+        }
+      }
+    }
+    if (H) *H = H->selfadjointView<Eigen::Upper>();
+    return sse;
+  };
+
+  Mat8 H;
+  Vec8 g;
+  double sse = eval(th, &H, &g);
+  double mu = 1e-3;
+  int it = 0;
+  bool converged = false;
+  for (; it < opt_.max_iterations; ++it) {
+    bool accepted = false;
+    Vec8 step = Vec8::Zero();
+    for (int tries = 0; tries < 8 && !accepted; ++tries) {
+      Mat8 A = H;
+      for (int q = 0; q < 8; ++q) A(q, q) += mu * std::max(H(q, q), 1e-12);
+      step = -A.ldlt().solve(g);
+      if (!step.allFinite()) break;
+      Vec8 cand = th + step;
+      cand(2) = std::max(cand(2), 0.0);
+      cand(3) = std::clamp(cand(3), 0.3, 10.0);
+      const double c = eval(cand, nullptr, nullptr);
+      if (c < sse) {
+        th = cand;
+        sse = c;
+        mu = std::max(mu * 0.2, 1e-9);
+        accepted = true;
+      } else {
+        mu *= 10.0;
+      }
+    }
+    if (!accepted) {
+      converged = true;
+      break;
+    }
+    eval(th, &H, &g);
+    if (step.head<2>().norm() < 1e-5) {
+      converged = true;
+      break;
+    }
+  }
+  m.iterations = it;
+  const int npx = (2 * half + 1) * (2 * half + 1);
+  const double var = sse / std::max(1, npx - 8);
+  m.rms_dn = std::sqrt(var);
+  m.px = th.head<2>();
+  m.radius_px = th(2);
+  m.edge_px = th(3);
+  m.amplitude_dn = th(4);
+  const Mat8 cov = var * H.ldlt().solve(Mat8::Identity());
+  const double s2 = 0.5 * (cov(0, 0) + cov(1, 1));
+  m.sigma_px = std::sqrt(std::max(s2, 0.0) + opt_.sigma_floor_px * opt_.sigma_floor_px);
+  const double min_a = opt_.min_contrast_dn > 0 ? opt_.min_contrast_dn : 5.0 * noise_dn_;
+  if (!converged) {
+    m.why = "fit did not converge";
+  } else if (!(m.amplitude_dn >= min_a)) {
+    m.why = "too faint";
+  } else if (m.radius_px > 1.5 * opt_.max_radius_px || m.radius_px + m.edge_px < 0.5 * opt_.min_radius_px) {
+    m.why = "wrong size";
+  } else if ((m.px - start).norm() > 0.5 * half || !cov.allFinite() || !(s2 >= 0)) {
+    m.why = "fit left its window";
+  } else {
+    m.ok = true;
+  }
+  return m;
+}
+
+std::vector<MarkerMeasurement> MarkerDetector::DetectAll() {
+  std::vector<MarkerMeasurement> out;
+  const int D = opt_.downsample;
+  cv::Mat small;
+  if (D > 1) {
+    cv::resize(image_, small, cv::Size(image_.cols / D, image_.rows / D), 0, 0, cv::INTER_AREA);
+  } else {
+    small = image_;
+  }
+  const int k = 2 * static_cast<int>(std::ceil(opt_.max_radius_px / D)) + 3;
+  cv::Mat opened, tophat;
+  cv::morphologyEx(small, opened, cv::MORPH_OPEN, cv::getStructuringElement(cv::MORPH_RECT, cv::Size(k, k)));
+  tophat = small - opened;
+  // Threshold from the top-hat's own noise.
+  std::vector<double> s;
+  for (int y = 2; y < tophat.rows; y += 4) {
+    for (int x = 2; x < tophat.cols; x += 4) s.push_back(tophat.at<float>(y, x));
+  }
+  const double med = Median(&s);
+  for (double& v : s) v = std::abs(v - med);
+  const double sig = std::max(1.4826 * Median(&s), noise_dn_ / D * 0.5);
+  cv::Mat mask = tophat > (med + opt_.k_detect * sig);
+  cv::Mat labels, stats, centroids;
+  const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  struct Blob {
+    double flux;
+    Eigen::Vector2d c;
+    double radius;
+  };
+  std::vector<Blob> blobs;
+  const double max_area = M_PI * std::pow(opt_.max_radius_px / D + 1.5, 2);
+  const double thr = med + opt_.k_detect * sig;
+  // Each component is thresholded again at half its own peak: a blurred disc's half-peak
+  // contour is its edge (so the area gives the radius), and a marker fused with a remnant of
+  // the body outline or with a touching marker splits into its bright cores. The cores must be
+  // marker-shaped (compact, not too large).
+  auto marker_shaped = [&](int area, int w, int h) {
+    if (area > max_area || std::max(w, h) > 3 * std::min(w, h) + 1) return false;
+    return area <= 4 || static_cast<double>(area) / (w * h) >= 0.5;  // a disc fills π/4 of its box
+  };
+  auto add_blob = [&](const cv::Mat& lab, int id, const cv::Rect& box, int area) {
+    double flux = 0, sx = 0, sy = 0;
+    for (int y = box.y; y < box.y + box.height; ++y) {
+      for (int x = box.x; x < box.x + box.width; ++x) {
+        if (lab.at<int>(y - box.y, x - box.x) != id) continue;
+        const double v = tophat.at<float>(y, x);
+        flux += v;
+        sx += v * x;
+        sy += v * y;
+      }
+    }
+    if (!(flux > 0)) return;
+    Blob b;
+    b.flux = flux;
+    b.c = Eigen::Vector2d((sx / flux + 0.5) * D - 0.5, (sy / flux + 0.5) * D - 0.5);
+    b.radius = std::max(opt_.min_radius_px, std::sqrt(area / M_PI) * D);
+    blobs.push_back(b);
+  };
+  for (int i = 1; i < n; ++i) {
+    const int area = stats.at<int>(i, cv::CC_STAT_AREA);
+    const int w = stats.at<int>(i, cv::CC_STAT_WIDTH), h = stats.at<int>(i, cv::CC_STAT_HEIGHT);
+    const cv::Rect box(stats.at<int>(i, cv::CC_STAT_LEFT), stats.at<int>(i, cv::CC_STAT_TOP), w, h);
+    if (area > 16 * max_area) continue;  // a large bright object (sun glint, the body in poor light)
+    double peak = thr;
+    for (int y = box.y; y < box.y + h; ++y) {
+      for (int x = box.x; x < box.x + w; ++x) {
+        if (labels.at<int>(y, x) == i) peak = std::max(peak, static_cast<double>(tophat.at<float>(y, x)));
+      }
+    }
+    const double thr2 = med + 0.5 * (peak - med);
+    cv::Mat sub = (tophat(box) > thr2) & (labels(box) == i);
+    cv::Mat sl, ss, sc;
+    const int m2 = cv::connectedComponentsWithStats(sub, sl, ss, sc, 8, CV_32S);
+    for (int j = 1; j < m2; ++j) {
+      const int a2 = ss.at<int>(j, cv::CC_STAT_AREA);
+      const int w2 = ss.at<int>(j, cv::CC_STAT_WIDTH), h2 = ss.at<int>(j, cv::CC_STAT_HEIGHT);
+      if (!marker_shaped(a2, w2, h2)) continue;
+      add_blob(sl, j, box, a2);
+    }
+  }
+  std::sort(blobs.begin(), blobs.end(), [](const Blob& a, const Blob& b) { return a.flux > b.flux; });
+  if (blobs.size() > static_cast<std::size_t>(opt_.max_candidates)) blobs.resize(static_cast<std::size_t>(opt_.max_candidates));
+  for (const Blob& b : blobs) {
+    MarkerMeasurement m = Measure(b.c, D + 2.0, b.radius, 1.0);
+    if (!m.ok) continue;
+    bool dup = false;
+    for (auto& o : out) {
+      if ((o.px - m.px).norm() < std::max(2.0, 0.5 * std::max(o.radius_px, m.radius_px))) {
+        dup = true;
+        if (m.ncc > o.ncc) o = m;
+        break;
+      }
+    }
+    if (!dup) out.push_back(m);
+  }
+  return out;
+}
+
+}  // namespace rk::extract

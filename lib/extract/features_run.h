@@ -1,0 +1,40 @@
+// `rk-extract features` as a library call: decode the attitude-camera recording frame by frame
+// (video::FrameSource), time-stamp each frame (FrameClock), track the target's markers with
+// their model ids (FeatureTracker) and build the image-points CSV (SPEC.md §2.1, long format):
+//   frame,t_s,id,x_px,y_px,status,sigma_px,ncc,radius_px
+// one row per frame and model id, ids in the target model's order; x/y empty when the marker
+// was not measured (status lost) or was rejected (invalid). sigma_px is the 1σ of each
+// coordinate from the least-squares correlation fit.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "extract/features_model.h"
+#include "extract/features_tracker.h"
+#include "extract/frame_times.h"
+#include "io/csv.h"
+
+namespace rk::extract {
+
+struct FeatureRunResult {
+  std::vector<FeatureFrameResult> rows;
+  FeatureTrackSummary summary;
+  std::int64_t frames = 0;
+  int width_px = 0, height_px = 0, bit_depth = 8;
+  double wall_s = 0.0;     // decode + extraction
+  double extract_s = 0.0;  // tracker only
+};
+
+// Throws DataError for a frames file that lists fewer frames than the video has (and for a
+// truncated video), ProcessingError if the target was never identified, UsageError for bad
+// options. progress(frames) is called every 20 frames when set.
+FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const FrameClock& clock, const TargetModel& model,
+                             const FeatureTrackOptions& options,
+                             const std::function<void(std::int64_t)>& progress = {});
+
+io::CsvWriter FeaturePointsCsv(const std::vector<FeatureFrameResult>& rows, const TargetModel& model);
+
+}  // namespace rk::extract

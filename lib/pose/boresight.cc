@@ -1,0 +1,60 @@
+// Turret boresight at frame times; see boresight.h.
+#include "pose/boresight.h"
+
+#include <cmath>
+
+#include "geo/angles.h"
+#include "io/error.h"
+
+namespace rk::pose {
+
+BoresightSource BoresightSource::Fixed(double az_rad, double el_rad) {
+  BoresightSource b;
+  b.fixed_ = true;
+  b.fixed_dir_.az_rad = geo::WrapTwoPi(az_rad);
+  b.fixed_dir_.el_rad = el_rad;
+  return b;
+}
+
+BoresightSource BoresightSource::FromLog(const locate::TurretLog& log, track::InterpMethod method, double max_gap_s) {
+  if (!(max_gap_s > 0.0)) throw UsageError("--turret-max-gap must be > 0 s");
+  BoresightSource b;
+  b.fixed_ = false;
+  b.source_ = log.source;
+  std::vector<double> t_az = log.t_s, t_el = log.t_s;
+  auto az = track::UnwrapAngles(log.az_rad);
+  auto el = log.el_rad;
+  b.duplicates_ = track::MergeDuplicateTimes(&t_az, &az);
+  track::MergeDuplicateTimes(&t_el, &el);
+  track::InterpOptions o;
+  o.method = method;
+  o.max_gap_s = max_gap_s;
+  o.angle = true;
+  b.az_.emplace(t_az, az, o);
+  o.angle = false;
+  b.el_.emplace(t_el, el, o);
+  return b;
+}
+
+std::optional<geo::AzEl> BoresightSource::At(double t_s, track::InterpStatus* status) const {
+  if (fixed_) {
+    if (status) *status = track::InterpStatus::kOk;
+    return fixed_dir_;
+  }
+  const track::InterpValue a = az_->At(t_s);
+  const track::InterpValue e = el_->At(t_s);
+  if (!a.ok() || !e.ok()) {
+    if (status) *status = !a.ok() ? a.status : e.status;
+    return std::nullopt;
+  }
+  if (status) *status = track::InterpStatus::kOk;
+  geo::AzEl d;
+  d.az_rad = geo::WrapTwoPi(a.value);
+  d.el_rad = e.value;
+  return d;
+}
+
+double BoresightSource::first_time() const { return fixed_ ? std::nan("") : az_->first_time(); }
+double BoresightSource::last_time() const { return fixed_ ? std::nan("") : az_->last_time(); }
+
+}  // namespace rk::pose

@@ -1,0 +1,47 @@
+// Turret boresight (A, E) at a frame time, for the camera that rides on the turret (seed 001:
+// "the camera's extrinsics are updated each frame from the turret angles").
+//
+// From a turret log (SPEC.md §2.1 `t_s,az_deg,el_deg`, read by locate::ReadTurretLog): samples
+// with repeated time stamps are merged (track::MergeDuplicateTimes), azimuth is interpolated on
+// its unwrapped sequence and wrapped back to [0, 2π) (a pass through north is continuous),
+// elevation directly, by track::TimeSeriesInterpolator (linear or 4-point cubic). No
+// extrapolation; no interpolation across a log interval longer than max_gap_s or across an
+// empty sample: such times have no boresight (the caller marks the frame invalid). This is the
+// same treatment rk-locate gives its turret log (lib/locate/locate.h, step 1).
+// Or a fixed boresight (a camera that does not move during the recording).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "geo/line_of_sight.h"
+#include "locate/inputs.h"
+#include "track/interp.h"
+
+namespace rk::pose {
+
+class BoresightSource {
+ public:
+  static BoresightSource Fixed(double az_rad, double el_rad);
+  // Throws UsageError if max_gap_s is not > 0.
+  static BoresightSource FromLog(const locate::TurretLog& log, track::InterpMethod method, double max_gap_s);
+
+  // Boresight at t, or nullopt (with the reason in *status when given).
+  std::optional<geo::AzEl> At(double t_s, track::InterpStatus* status = nullptr) const;
+
+  bool fixed() const { return fixed_; }
+  const std::string& source() const { return source_; }  // the log's name ("" when fixed)
+  std::size_t duplicate_times() const { return duplicates_; }
+  // Time span of the usable samples (NaN for a fixed boresight or an empty log).
+  double first_time() const;
+  double last_time() const;
+
+ private:
+  bool fixed_ = true;
+  std::string source_;
+  geo::AzEl fixed_dir_;
+  std::optional<track::TimeSeriesInterpolator> az_, el_;
+  std::size_t duplicates_ = 0;
+};
+
+}  // namespace rk::pose

@@ -1,0 +1,182 @@
+// Attitude trial folder; layout in attitude_trial.h.
+#include "sim/attitude_trial.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <regex>
+
+#include "camera/camera_model.h"
+#include "geo/angles.h"
+#include "io/csv.h"
+#include "io/error.h"
+#include "io/file_util.h"
+#include "sim/staged_dir.h"
+#include "video/frame_sink.h"
+
+namespace rk::sim {
+namespace {
+
+constexpr int kTimeDecimals = 9;
+constexpr int kAngleDecimals = 9;
+constexpr int kMetreDecimals = 6;
+constexpr int kPixelDecimals = 4;
+
+double Deg(double rad) { return geo::RadToDeg(rad); }
+
+}  // namespace
+
+bool AttitudeTrialWriteOptions::Check(std::string* why) const {
+  if (out_dir.empty() || out_dir == "-") {
+    *why = "--out must name a folder";
+    return false;
+  }
+  if (format != "mkv" && format != "png") {
+    *why = "--format must be 'mkv' or 'png'";
+    return false;
+  }
+  static const std::regex iso(R"(\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}(\.\d+)?Z)");
+  if (!std::regex_match(epoch_utc, iso)) {
+    *why = "epoch must be ISO-8601 UTC, e.g. 2026-01-01T00:00:00Z";
+    return false;
+  }
+  return true;
+}
+
+io::Json AttitudeTrialSummary::ToJson() const {
+  return {{"frames", frames},
+          {"turret_rows", turret_rows},
+          {"hidden_marker_rows", hidden_marker_rows},
+          {"min_range_m", min_range_m},
+          {"max_range_m", max_range_m},
+          {"min_marker_radius_px", min_marker_radius_px},
+          {"max_marker_radius_px", max_marker_radius_px},
+          {"min_marker_separation_px", min_separation_px},
+          {"yaw_span_deg", yaw_span_deg},
+          {"pitch_span_deg", pitch_span_deg},
+          {"roll_span_deg", roll_span_deg}};
+}
+
+AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const AttitudeTrialWriteOptions& opt) {
+  std::string why;
+  if (!opt.Check(&why)) throw UsageError(why);
+  const AttitudeSimOptions& so = sim.options();
+  StagedDir dir(opt.out_dir, opt.force);
+  io::MakeDirectories(dir.Path("att"));
+  io::MakeDirectories(dir.Path("truth"));
+
+  AttitudeTrialSummary sum;
+  io::WriteJson(dir.Path("att/camera.json"), camera::CameraModelToJson(so.camera));
+  {
+    io::Json pts = io::Json::object();
+    for (std::size_t i = 0; i < so.marker_ids.size(); ++i) {
+      pts[so.marker_ids[i]] = {so.markers_body[i].x(), so.markers_body[i].y(), so.markers_body[i].z()};
+    }
+    io::WriteJson(dir.Path("target.json"), io::Json{{"points", pts}, {"marker_radius_m", so.marker_radius_m}});
+  }
+
+  io::CsvWriter frames_csv({"frame", "t_s"});
+  io::CsvWriter pose_csv({"frame", "t_s", "e_m", "n_m", "u_m", "yaw_deg", "pitch_deg", "roll_deg", "range_m",
+                          "boresight_az_deg", "boresight_el_deg"});
+  io::CsvWriter points_csv({"frame", "t_s", "id", "x_px", "y_px", "status", "radius_px"});
+  sum.min_range_m = sum.min_marker_radius_px = sum.min_separation_px = std::numeric_limits<double>::infinity();
+  // Attitude spans on unwrapped sequences (yaw and roll may wrap).
+  double yaw_lo = 1e300, yaw_hi = -1e300, pit_lo = 1e300, pit_hi = -1e300, rol_lo = 1e300, rol_hi = -1e300;
+  double yaw_ref = 0, roll_ref = 0;
+  for (const AttitudeFrameTruth& f : sim.frames()) {
+    frames_csv.Add(f.frame).Add(f.t_s, kTimeDecimals).EndRow();
+    const double range = f.p_enu.norm();
+    pose_csv.Add(f.frame)
+        .Add(f.t_s, kTimeDecimals)
+        .Add(f.p_enu.x(), kMetreDecimals)
+        .Add(f.p_enu.y(), kMetreDecimals)
+        .Add(f.p_enu.z(), kMetreDecimals)
+        .Add(Deg(f.attitude.yaw_rad), kAngleDecimals)
+        .Add(Deg(f.attitude.pitch_rad), kAngleDecimals)
+        .Add(Deg(f.attitude.roll_rad), kAngleDecimals)
+        .Add(range, kMetreDecimals)
+        .Add(Deg(f.boresight.az_rad), kAngleDecimals)
+        .Add(Deg(f.boresight.el_rad), kAngleDecimals)
+        .EndRow();
+    for (std::size_t i = 0; i < so.marker_ids.size(); ++i) {
+      points_csv.Add(f.frame).Add(f.t_s, kTimeDecimals).Add(so.marker_ids[i]);
+      if (f.visible[i]) {
+        points_csv.Add(f.marker_px[i].x(), kPixelDecimals).Add(f.marker_px[i].y(), kPixelDecimals).Add("ok");
+      } else {
+        points_csv.AddEmpty().AddEmpty().Add("lost");
+        ++sum.hidden_marker_rows;
+      }
+      points_csv.Add(f.marker_radius_px[i], 3).EndRow();
+      sum.min_marker_radius_px = std::min(sum.min_marker_radius_px, f.marker_radius_px[i]);
+      sum.max_marker_radius_px = std::max(sum.max_marker_radius_px, f.marker_radius_px[i]);
+    }
+    ++sum.frames;
+    sum.min_range_m = std::min(sum.min_range_m, range);
+    sum.max_range_m = std::max(sum.max_range_m, range);
+    if (std::isfinite(f.min_separation_px)) sum.min_separation_px = std::min(sum.min_separation_px, f.min_separation_px);
+    if (f.frame == 0) {
+      yaw_ref = f.attitude.yaw_rad;
+      roll_ref = f.attitude.roll_rad;
+    }
+    yaw_ref += geo::AngleDiff(f.attitude.yaw_rad, yaw_ref);
+    roll_ref += geo::AngleDiff(f.attitude.roll_rad, roll_ref);
+    yaw_lo = std::min(yaw_lo, yaw_ref), yaw_hi = std::max(yaw_hi, yaw_ref);
+    rol_lo = std::min(rol_lo, roll_ref), rol_hi = std::max(rol_hi, roll_ref);
+    pit_lo = std::min(pit_lo, f.attitude.pitch_rad), pit_hi = std::max(pit_hi, f.attitude.pitch_rad);
+  }
+  if (!std::isfinite(sum.min_separation_px)) sum.min_separation_px = 0;
+  sum.yaw_span_deg = Deg(yaw_hi - yaw_lo);
+  sum.pitch_span_deg = Deg(pit_hi - pit_lo);
+  sum.roll_span_deg = Deg(rol_hi - rol_lo);
+  frames_csv.Write(dir.Path("att/frames.csv"));
+  pose_csv.Write(dir.Path("truth/pose.csv"));
+  points_csv.Write(dir.Path("truth/points.csv"));
+
+  io::CsvWriter turret_csv({"t_s", "az_deg", "el_deg"}), turret_truth({"t_s", "az_deg", "el_deg"});
+  for (const AttitudeTurretSample& s : sim.TurretLog()) {
+    turret_csv.Add(s.t_s, kTimeDecimals).Add(Deg(s.az_rad), kAngleDecimals).Add(Deg(s.el_rad), kAngleDecimals).EndRow();
+    turret_truth.Add(s.t_s, kTimeDecimals)
+        .Add(Deg(geo::WrapTwoPi(s.true_az_rad)), kAngleDecimals)
+        .Add(Deg(s.true_el_rad), kAngleDecimals)
+        .EndRow();
+    ++sum.turret_rows;
+  }
+  turret_csv.Write(dir.Path("turret.csv"));
+  turret_truth.Write(dir.Path("truth/turret.csv"));
+
+  const std::string video_rel = opt.format == "mkv" ? "att/video.mkv" : "att/%06d.png";
+  if (opt.video) {
+    video::FrameSink sink(dir.Path(video_rel), so.camera.width_px, so.camera.height_px, so.sensor.bit_depth, so.fps);
+    for (std::size_t k = 0; k < sim.frame_count(); ++k) {
+      sink.Write(sim.RenderFrame(k));
+      if (opt.progress) opt.progress(k + 1, sim.frame_count());
+    }
+    sink.Close();
+  }
+
+  io::Json m;
+  m["name"] = opt.name.empty() ? dir.name() : opt.name;
+  m["epoch_utc"] = opt.epoch_utc;
+  m["station"] = {{"lat_deg", 0.0}, {"lon_deg", 0.0}, {"h_m", 0.0}};
+  io::Json att = {{"frames", "att/frames.csv"}, {"model", "att/camera.json"}, {"role", "features"}, {"target", "target.json"}};
+  att["video"] = opt.video ? io::Json::array({video_rel}) : io::Json::array();
+  m["cameras"] = {{"att", att}};
+  m["turret"] = "turret.csv";
+  m["range"] = nullptr;
+  m["theodolite"] = nullptr;
+  m["radar"] = nullptr;
+  m["steps"] = io::Json::object();
+  io::Json simj;
+  simj["generator"] = "rk-sim attitude";
+  simj["seed"] = so.seed;
+  simj["format"] = opt.video ? opt.format : "none";
+  simj["options"] = AttitudeSimOptionsToJson(so);
+  simj["truth"] = {{"pose", "truth/pose.csv"}, {"points", "truth/points.csv"}, {"turret", "truth/turret.csv"}};
+  simj["summary"] = sum.ToJson();
+  m["sim"] = simj;
+  io::WriteJson(dir.Path("trial.json"), m);
+  dir.Commit();
+  return sum;
+}
+
+}  // namespace rk::sim
