@@ -159,8 +159,13 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
   m["epoch_utc"] = opt.epoch_utc;
   m["station"] = {{"lat_deg", 0.0}, {"lon_deg", 0.0}, {"h_m", 0.0}};
   io::Json att = {{"frames", "att/frames.csv"}, {"model", "att/camera.json"}, {"role", "features"}, {"target", "target.json"}};
-  att["video"] = opt.video ? io::Json::array({video_rel}) : io::Json::array();
-  m["cameras"] = {{"att", att}};
+  // Without video there is nothing for rk-extract to read: the camera is left out of the manifest
+  // (SPEC.md §6 wants a non-empty video list), the model and frame times are still written.
+  m["cameras"] = io::Json::object();
+  if (opt.video) {
+    att["video"] = io::Json::array({video_rel});
+    m["cameras"]["att"] = att;
+  }
   m["turret"] = "turret.csv";
   m["range"] = nullptr;
   m["theodolite"] = nullptr;

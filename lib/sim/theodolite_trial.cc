@@ -127,11 +127,10 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
   io::Json camera_entry = {{"frames", "theo/frames.csv"},
                            {"model", "theo/camera.json"},
                            {"role", "silhouette"},
-                           {"target", "target.json"},
-                           {"video", io::Json::array()}};
+                           {"target", "target.json"}};
   if (opt.images != "none") {
     const std::string video_rel = opt.images == "mkv" ? "theo/video.mkv" : "theo/%06d.png";
-    camera_entry["video"].push_back(video_rel);
+    camera_entry["video"] = io::Json::array({video_rel});
     video::FrameSink sink(dir.Path(video_rel), so.camera.width_px, so.camera.height_px, opt.render.sensor.bit_depth,
                           so.fps);
     for (std::size_t k = 0; k < sim.frames().size(); ++k) {
@@ -146,7 +145,10 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
   m["name"] = opt.name.empty() ? dir.stem() : opt.name;
   m["epoch_utc"] = opt.epoch_utc;
   m["station"] = {{"lat_deg", 0.0}, {"lon_deg", 0.0}, {"h_m", 0.0}};
-  m["cameras"] = {{"theo", camera_entry}};
+  // Without images there is nothing for rk-extract to read: the camera is left out of the manifest
+  // (SPEC.md §6 wants a non-empty video list); rk-attitude cylinder can still run on points.csv.
+  m["cameras"] = io::Json::object();
+  if (opt.images != "none") m["cameras"]["theo"] = camera_entry;
   m["turret"] = nullptr;
   m["range"] = nullptr;
   m["theodolite"] = "theodolite.csv";

@@ -233,11 +233,11 @@ echo ok
 # Steps of tools that other issues add (features, silhouette, radar): registered only when the tool and
 # its simulator subcommand exist. Each simulates a trial with rk-sim <kind> (which writes trial.json as
 # rk-sim beacon does, SPEC.md §6) and checks that rk-run runs that unit's steps to "ok".
-function(rk_run_other_unit name tool sim_cmd_file sim_sub unit_steps)
+function(rk_run_other_unit name tool sim_cmd_file sim_args unit_steps)
   if(TARGET ${tool} AND EXISTS ${PROJECT_SOURCE_DIR}/apps/${sim_cmd_file})
     rk_run_script(${name} "
 t=$data/run/${name}; rm -rf \"$t\"
-rk-sim ${sim_sub} --out \"$t\" --quiet
+rk-sim ${sim_args} --out \"$t\" --quiet
 rk-run \"$t\" --no-plots > \"$data/run/${name}.out\"; cat \"$data/run/${name}.out\"
 for s in ${unit_steps}; do
   grep -Eq \"^[^ ]*/$s +ok\" \"$data/run/${name}.out\" || { echo \"step $s did not run ok\"; exit 1; }
@@ -245,11 +245,16 @@ done
 check_out --no-temporaries \"$t\"
 rk-run \"$t\" --no-plots | grep -q up-to-date
 echo ok
-")
+" ${ARGN})
   endif()
 endfunction()
-rk_run_other_unit(rk_run_features_oi rk-attitude sim_attitude_cmd.cpp attitude "extract-features attitude-oi")
-rk_run_other_unit(rk_run_silhouette_cylinder rk-attitude sim_theodolite_cmd.cpp theodolite
+# Small trials: the attitude camera of the sim_attitude_small fixture (1000x800, 40 m), 1 s at 10 fps;
+# 0.5 s of 640x640 theodolite frames.
+rk_run_other_unit(rk_run_features_oi rk-attitude sim_attitude_cmd.cpp
+  "attitude --camera $data/att_cam.json --range-m 40 --duration 1 --fps 10" "extract-features attitude-oi"
+  REQUIRES sim_attitude_small)
+rk_run_other_unit(rk_run_silhouette_cylinder rk-attitude sim_theodolite_cmd.cpp
+  "theodolite --images png --sensor-px 640 --duration 0.5 --speed-mps 50 --track-error-px 10"
   "extract-silhouette attitude-cylinder")
 rk_run_other_unit(rk_run_radar_register rk-register sim_radar_cmd.cpp radar "register register-batch")
 

@@ -44,6 +44,8 @@ awk -F, 'NR > 1 { if ($6 < 0 || $6 >= 360 || $8 <= -180 || $8 > 180) bad = 1;
                   if ($6 < 5) ylo = 1; if ($6 > 355) yhi = 1; if ($8 > 177) rp = 1; if ($8 < -178) rn = 1 }
          END { exit !(ylo && yhi && rp && rn && !bad) }' "$d/a/truth/pose.csv"
 test ! -e "$d/a/att/video.mkv"
+# No video, no camera in the manifest (SPEC.md §6 wants a non-empty video list): rk-run has nothing to extract
+python3 -c "import json,sys; m = json.load(open(sys.argv[1])); assert m['cameras'] == {}, m['cameras']" "$d/a/trial.json"
 echo ok
 ]==])
 
