@@ -20,7 +20,7 @@
 namespace rk::app {
 namespace {
 
-const char* const kTool = "rk-analyze";
+const char* const kBudgetTool = "rk-analyze";
 
 struct BudgetArgs {
   std::string budget_path, out_path, method = "p3p";
@@ -95,18 +95,18 @@ Command AddBudgetCommand(CLI::App& parent) {
             std::string why;
             if (!opt.Check(&why)) throw UsageError(why);
             const analysis::BudgetResult r = analysis::RunBudget(*model, sources, opt);
-            io::Json out = cli::MakeReport(kTool, ctx.argc, ctx.argv);
+            io::Json out = cli::MakeReport(kBudgetTool, ctx.argc, ctx.argv);
             cli::AddReportInput(&out, "budget", a->budget_path);
             out["subcommand"] = "budget";
             out["solver"] = a->method;
             out.update(analysis::BudgetResultToJson(*model, sources, opt, r));
             if (r.failed > 0) {
-              cli::Warn(kTool, ctx.common,
+              cli::Warn(kBudgetTool, ctx.common,
                         std::to_string(r.failed) + " of " + std::to_string(r.samples) +
                             " Monte Carlo draws had no solution and were left out");
             }
             if (!r.outputs.empty() && !std::isfinite(r.outputs[0].sigma_jacobian)) {
-              cli::Warn(kTool, ctx.common,
+              cli::Warn(kBudgetTool, ctx.common,
                         "the Jacobian is singular at the nominal point (side-on view: a double root); only Monte "
                         "Carlo sigmas are given");
             }

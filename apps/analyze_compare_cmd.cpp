@@ -14,7 +14,7 @@
 namespace rk::app {
 namespace {
 
-const char* const kTool = "rk-analyze";
+const char* const kCompareTool = "rk-analyze";
 
 struct CompareArgs {
   std::string est_path, ref_path, columns_arg, out_path, errors_path, interp = "linear";
@@ -110,7 +110,7 @@ Command AddCompareCommand(CLI::App& parent) {
         const rk::analysis::CompareResult result = rk::analysis::Compare(estimate, reference, opt);
         for (const auto& cc : result.columns) {
           if (!cc.stats) {
-            rk::cli::Warn(kTool, common,
+            rk::cli::Warn(kCompareTool, common,
                           "column " + cc.column + ": no comparable row (estimate empty " +
                               std::to_string(cc.skipped_estimate_empty) + ", reference outside " +
                               std::to_string(cc.skipped_reference_outside) + ", reference gap " +
@@ -119,7 +119,7 @@ Command AddCompareCommand(CLI::App& parent) {
           }
         }
 
-        rk::io::Json report = rk::cli::MakeReport(kTool, argc, argv);
+        rk::io::Json report = rk::cli::MakeReport(kCompareTool, argc, argv);
         rk::cli::AddReportInput(&report, "estimate", est_path);
         rk::cli::AddReportInput(&report, "reference", ref_path);
         report["options"] = {

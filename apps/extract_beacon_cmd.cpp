@@ -15,7 +15,7 @@
 namespace rk::app {
 namespace {
 
-const char* const kTool = "rk-extract";
+const char* const kBeaconTool = "rk-extract";
 
 struct BeaconArgs {
   extract::BeaconTrackOptions opt;
@@ -127,7 +127,7 @@ Command AddBeaconCommand(CLI::App& parent) {
             if (!opt.Check(&why)) throw rk::UsageError(why);
             if (a->decode_only) {
               const rk::extract::DecodeResult r = rk::extract::DecodeOnly(videos);
-              std::cerr << kTool << ": decoded " << r.frames << " frames in " << r.wall_s << " s ("
+              std::cerr << kBeaconTool << ": decoded " << r.frames << " frames in " << r.wall_s << " s ("
                         << (r.frames ? 1e3 * r.wall_s / static_cast<double>(r.frames) : 0.0)
                         << " ms/frame)\n";
               return 0;
@@ -146,14 +146,14 @@ Command AddBeaconCommand(CLI::App& parent) {
             const bool progress = rk::cli::ShowProgress(common);
             const rk::extract::BeaconRunResult res =
                 rk::extract::RunBeacon(videos, clock, opt, [&](std::int64_t n) {
-                  if (progress) std::cerr << "\r" << kTool << ": " << n << " frames" << std::flush;
+                  if (progress) std::cerr << "\r" << kBeaconTool << ": " << n << " frames" << std::flush;
                 });
             if (progress) std::cerr << "\r";
             rk::extract::BeaconTrackCsv(res.rows, res.bit_depth).Write(out_path);
 
             const auto& s = res.summary;
             if (!common.report_path.empty()) {
-              rk::io::Json rep = rk::cli::MakeReport(kTool, argc, argv);
+              rk::io::Json rep = rk::cli::MakeReport(kBeaconTool, argc, argv);
               for (std::size_t i = 0; i < videos.size(); ++i)
                 rk::cli::AddReportInput(&rep, "video_" + std::to_string(i), videos[i]);
               if (!frames_path.empty()) rk::cli::AddReportInput(&rep, "frames", frames_path);
@@ -206,7 +206,7 @@ Command AddBeaconCommand(CLI::App& parent) {
               rk::io::WriteJson(common.report_path, rep);
             }
             if (progress) {
-              std::cerr << kTool << ": " << res.frames << " frames: " << s.ok << " ok, " << s.reacquired
+              std::cerr << kBeaconTool << ": " << res.frames << " frames: " << s.ok << " ok, " << s.reacquired
                         << " reacquired, " << s.lost << " lost, " << s.predicted << " predicted, "
                         << s.invalid << " invalid\n";
             }

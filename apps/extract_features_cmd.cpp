@@ -19,7 +19,7 @@
 namespace rk::app {
 namespace {
 
-const char* const kTool = "rk-extract";
+const char* const kFeaturesTool = "rk-extract";
 
 struct FeaturesArgs {
   extract::FeatureTrackOptions opt;
@@ -50,19 +50,19 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
                                                           : extract::FrameClock::FromCsv(a.frames_path);
   const bool progress = cli::ShowProgress(ctx.common);
   const extract::FeatureRunResult res = extract::RunFeatures(a.videos, clock, model, opt, [&](std::int64_t n) {
-    if (progress) std::cerr << "\r" << kTool << ": " << n << " frames" << std::flush;
+    if (progress) std::cerr << "\r" << kFeaturesTool << ": " << n << " frames" << std::flush;
   });
   if (progress) std::cerr << "\r";
   const auto& s = res.summary;
   if (s.ambiguous > 0) {
-    cli::Warn(kTool, ctx.common,
+    cli::Warn(kFeaturesTool, ctx.common,
               std::to_string(s.ambiguous) + " frames had an ambiguous identification and got no points "
                                             "(a symmetric marker layout cannot be identified without tracking)");
   }
   extract::FeaturePointsCsv(res.rows, model).Write(a.out_path);
 
   if (!ctx.common.report_path.empty()) {
-    io::Json rep = cli::MakeReport(kTool, ctx.argc, ctx.argv);
+    io::Json rep = cli::MakeReport(kFeaturesTool, ctx.argc, ctx.argv);
     for (std::size_t i = 0; i < a.videos.size(); ++i) cli::AddReportInput(&rep, "video_" + std::to_string(i), a.videos[i]);
     cli::AddReportInput(&rep, "target", a.target_path);
     if (!a.frames_path.empty()) cli::AddReportInput(&rep, "frames", a.frames_path);
@@ -103,7 +103,7 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
     io::WriteJson(ctx.common.report_path, rep);
   }
   if (progress) {
-    std::cerr << kTool << ": " << res.frames << " frames, " << s.frames_with_4 << " with >= 4 markers, "
+    std::cerr << kFeaturesTool << ": " << res.frames << " frames, " << s.frames_with_4 << " with >= 4 markers, "
               << s.acquisitions_ok << " identifications\n";
   }
   return 0;

@@ -15,7 +15,7 @@
 namespace rk::app {
 namespace {
 
-const char* const kTool = "rk-extract";
+const char* const kSilhouetteTool = "rk-extract";
 
 struct SilhouetteArgs {
   extract::SilhouetteOptions opt;
@@ -66,7 +66,7 @@ Command AddSilhouetteCommand(CLI::App& parent) {
                                                   : extract::FrameClock::FromCsv(a->frames_path);
             const bool progress = cli::ShowProgress(ctx.common);
             const extract::SilhouetteRunResult res = extract::RunSilhouette(a->videos, clock, a->opt, [&](std::int64_t n) {
-              if (progress) std::cerr << "\r" << kTool << ": " << n << " frames" << std::flush;
+              if (progress) std::cerr << "\r" << kSilhouetteTool << ": " << n << " frames" << std::flush;
             });
             if (progress) std::cerr << "\r";
             extract::SilhouettePointsCsv(res.rows).Write(a->out_path);
@@ -74,14 +74,14 @@ Command AddSilhouetteCommand(CLI::App& parent) {
             const auto n = [&](S s) { return res.by_status[static_cast<std::size_t>(s)]; };
             const std::int64_t bad = res.frames - n(S::kOk);
             if (bad > 0) {
-              cli::Warn(kTool, ctx.common,
+              cli::Warn(kSilhouetteTool, ctx.common,
                         std::to_string(bad) + " of " + std::to_string(res.frames) + " frames without points (not_found " +
                             std::to_string(n(S::kNotFound)) + ", touches_border " + std::to_string(n(S::kTouchesBorder)) +
                             ", too_small " + std::to_string(n(S::kTooSmall)) + ", bad_fit " +
                             std::to_string(n(S::kBadFit)) + ")");
             }
             if (!ctx.common.report_path.empty()) {
-              io::Json rep = cli::MakeReport(kTool, ctx.argc, ctx.argv);
+              io::Json rep = cli::MakeReport(kSilhouetteTool, ctx.argc, ctx.argv);
               for (std::size_t i = 0; i < a->videos.size(); ++i)
                 cli::AddReportInput(&rep, "video_" + std::to_string(i), a->videos[i]);
               if (!a->frames_path.empty()) cli::AddReportInput(&rep, "frames", a->frames_path);

@@ -21,7 +21,7 @@
 namespace rk::app {
 namespace {
 
-constexpr const char* kTool = "rk-sim";
+constexpr const char* kAttitudeTool = "rk-sim";
 
 struct AttitudeCli {
   sim::AttitudeTrialWriteOptions w;
@@ -73,13 +73,13 @@ int RunAttitude(AttitudeCli& c, const Context& ctx) {
   const bool progress = cli::ShowProgress(ctx.common);
   if (progress) {
     c.w.progress = [](std::size_t done, std::size_t total) {
-      std::cerr << "\r" << kTool << ": frame " << done << "/" << total << std::flush;
+      std::cerr << "\r" << kAttitudeTool << ": frame " << done << "/" << total << std::flush;
     };
   }
   const sim::AttitudeTrialSummary sum = sim::WriteAttitudeTrial(simulator, c.w);
   if (progress) std::cerr << "\n";
   if (!ctx.common.report_path.empty()) {
-    io::Json r = cli::MakeReport(kTool, ctx.argc, ctx.argv);
+    io::Json r = cli::MakeReport(kAttitudeTool, ctx.argc, ctx.argv);
     r["subcommand"] = "attitude";
     if (!c.camera_path.empty()) cli::AddReportInput(&r, "camera", c.camera_path);
     if (!c.target_path.empty()) cli::AddReportInput(&r, "target", c.target_path);

@@ -19,7 +19,7 @@
 namespace rk::app {
 namespace {
 
-constexpr const char* kTool = "rk-sim";
+constexpr const char* kBeaconTool = "rk-sim";
 
 // Options as given on the command line.
 struct BeaconCli {
@@ -216,7 +216,7 @@ Command AddBeaconCommand(CLI::App& parent) {
             }
             const rk::sim::TrialSummary sum = rk::sim::WriteBeaconTrial(sim, c.w);
             if (!common.report_path.empty()) {
-              rk::io::Json r = rk::cli::MakeReport(kTool, argc, argv);
+              rk::io::Json r = rk::cli::MakeReport(kBeaconTool, argc, argv);
               if (!c.camera_path.empty()) rk::cli::AddReportInput(&r, "camera", c.camera_path);
               r["subcommand"] = "beacon";
               r["out"] = c.w.out_dir;

@@ -14,7 +14,7 @@
 namespace rk::app {
 namespace {
 
-constexpr const char* kTool = "rk-sim";
+constexpr const char* kPosetrackTool = "rk-sim";
 
 // rk-sim posetrack: options as given on the command line (NaN = scenario default).
 struct PosetrackCli {
@@ -83,7 +83,7 @@ int RunPosetrack(const PosetrackCli& p, const CLI::App& sub, const rk::cli::Comm
   const rk::sim::PoseTrackSimulator sim(o);
   const rk::sim::PoseTrackSummary sum = rk::sim::WritePoseTrack(sim, p.w);
   if (!common.report_path.empty()) {
-    rk::io::Json r = rk::cli::MakeReport(kTool, argc, argv);
+    rk::io::Json r = rk::cli::MakeReport(kPosetrackTool, argc, argv);
     r["subcommand"] = "posetrack";
     r["out"] = p.w.out_dir;
     r["options"] = rk::sim::PoseTrackOptionsToJson(o);

@@ -15,7 +15,7 @@
 namespace rk::app {
 namespace {
 
-constexpr const char* kTool = "rk-sim";
+constexpr const char* kTheodoliteTool = "rk-sim";
 
 struct TheodoliteCli {
   sim::TheodoliteSimOptions s;
@@ -114,14 +114,14 @@ Command AddTheodoliteCommand(CLI::App& parent) {
             const bool progress = cli::ShowProgress(ctx.common);
             if (progress) {
               w.progress = [](std::size_t done, std::size_t total) {
-                std::cerr << "\r" << kTool << ": frame " << done << "/" << total << std::flush;
+                std::cerr << "\r" << kTheodoliteTool << ": frame " << done << "/" << total << std::flush;
               };
             }
             const sim::TheodoliteSimulator simulator(s);
             const sim::TheodoliteTrialSummary sum = sim::WriteTheodoliteTrial(simulator, w);
             if (progress) std::cerr << "\n";
             if (!ctx.common.report_path.empty()) {
-              io::Json r = cli::MakeReport(kTool, ctx.argc, ctx.argv);
+              io::Json r = cli::MakeReport(kTheodoliteTool, ctx.argc, ctx.argv);
               r["subcommand"] = "theodolite";
               r["out"] = w.out_dir;
               r["options"] = sim::TheodoliteSimOptionsToJson(s);

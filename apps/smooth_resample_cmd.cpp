@@ -34,7 +34,7 @@ struct ResampleArgs {
   CLI::Option* gap_opt = nullptr;
 };
 
-constexpr int kDecimals = 9;
+constexpr int kResampleDecimals = 9;
 
 int RunResample(const ResampleArgs& args, const Context& ctx) {
   const bool have_at = args.at_opt->count() > 0, have_rate = args.rate_opt->count() > 0;
@@ -128,7 +128,7 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
   io::CsvWriter w(header);
   const std::string kind = opt.method == filter::ResampleMethod::kKalman ? "smoothed" : "estimate";
   for (std::size_t i = 0; i < targets.size(); ++i) {
-    w.Add(targets[i], kDecimals);
+    w.Add(targets[i], kResampleDecimals);
     for (int pc : pass_cols) w.Add(at_table.Cell(i, pc));
     w.Add(kind);
     for (std::size_t c = 0; c < nc; ++c) {
@@ -137,9 +137,9 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
         w.AddEmpty();
       } else if (series.is_angle[c]) {
         const double deg = geo::RadToDeg(v);
-        w.Add(is360[c] ? geo::WrapDeg360(deg) : geo::WrapDeg180(deg), kDecimals);
+        w.Add(is360[c] ? geo::WrapDeg360(deg) : geo::WrapDeg180(deg), kResampleDecimals);
       } else {
-        w.Add(v, kDecimals);
+        w.Add(v, kResampleDecimals);
       }
     }
     switch (res.reason[i]) {
@@ -157,7 +157,7 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
     if (with_sigmas) {
       for (std::size_t c = 0; c < nc; ++c) {
         const double u = series.is_angle[c] ? geo::RadToDeg(1.0) : 1.0;
-        w.Add(res.sigmas[c][i] * u, kDecimals);
+        w.Add(res.sigmas[c][i] * u, kResampleDecimals);
       }
     }
     w.EndRow();

@@ -17,6 +17,7 @@
 #include "capture/emulator_ptu.h"
 #include "capture/ptu.h"
 #include "geo/angles.h"
+#include "test_temp_dir.h"
 
 namespace rk::capture {
 namespace {
@@ -26,13 +27,6 @@ namespace fs = std::filesystem;
 // loaded 2-core machine a thread can wait tens of ms for the CPU; 100 ms bounds that with margin
 // and is still far below the 200 ms between two 5 Hz range samples.
 constexpr double kArrivalTolS = 0.1;
-
-std::string TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("rk_capture_dev_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d.string();
-}
 
 struct TruthLine {
   double mono_s = 0;

@@ -19,17 +19,11 @@
 #include "io/json_util.h"
 #include "video/frame_sink.h"
 #include "video/frame_source.h"
+#include "test_temp_dir.h"
 
 namespace rk::capture {
 namespace {
 namespace fs = std::filesystem;
-
-std::string TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("rk_capture_rec_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d.string();
-}
 
 std::string WriteConfig(const std::string& dir, const io::Json& j) {
   const std::string path = dir + "/station.json";

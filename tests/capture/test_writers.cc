@@ -17,17 +17,11 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "video/frame_source.h"
+#include "test_temp_dir.h"
 
 namespace rk::capture {
 namespace {
 namespace fs = std::filesystem;
-
-std::string TempDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("rk_capture_test_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d.string();
-}
 
 cv::Mat RandomFrame(int w, int h, int depth, std::uint64_t seed) {
   cv::Mat m(h, w, depth == 16 ? CV_16UC1 : CV_8UC1);

@@ -12,6 +12,9 @@
 
 namespace rk::extract::testing {
 
+// Issue 2 target: moving-scene centroid RMS error ≤ 0.05 px.
+inline constexpr double kMovingRmsPx = 0.05;
+
 // Lamp offsets (px) of the cluster: a centre lamp and four around it, a few
 // pixels apart (separate local maxima, merged by region growing).
 inline std::vector<sim::Spot> Cluster(double cx, double cy, double amplitude_dn = 200.0, double scale = 1.0) {

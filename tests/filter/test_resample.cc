@@ -13,21 +13,10 @@
 #include "filter/singer_series.h"
 #include "geo/angles.h"
 #include "sim/trajectory.h"
+#include "test_series_util.h"
 
 namespace rk::filter {
 namespace {
-
-Series MakeSeries(const std::string& column, const std::vector<double>& t, const std::vector<double>& v) {
-  Series s;
-  s.source = "test";
-  s.columns = {column};
-  s.is_angle = {IsAngleColumn(column)};
-  s.t_s = t;
-  s.values.resize(static_cast<Eigen::Index>(t.size()), 1);
-  for (std::size_t i = 0; i < t.size(); ++i) s.values(static_cast<Eigen::Index>(i), 0) = v[i];
-  s.line.assign(t.size(), 0);
-  return s;
-}
 
 double RmsError(const ResampleResult& r, const std::function<double(double)>& truth, std::size_t* n) {
   double ss = 0.0;

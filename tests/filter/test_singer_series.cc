@@ -14,21 +14,10 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "track/singer.h"
+#include "test_series_util.h"
 
 namespace rk::filter {
 namespace {
-
-Series MakeSeries(const std::string& column, const std::vector<double>& t, const std::vector<double>& v) {
-  Series s;
-  s.source = "test";
-  s.columns = {column};
-  s.is_angle = {IsAngleColumn(column)};
-  s.t_s = t;
-  s.values.resize(static_cast<Eigen::Index>(t.size()), 1);
-  for (std::size_t i = 0; i < t.size(); ++i) s.values(static_cast<Eigen::Index>(i), 0) = v[i];
-  s.line.assign(t.size(), 0);
-  return s;
-}
 
 // NEES consistency on data drawn from the Singer model itself.
 TEST(SingerSeries, ConsistentOnSingerProcessAndSmootherBeatsFilter) {
