@@ -175,3 +175,28 @@ echo ok
 # 12 MB tmpfs in a private mount namespace (needs CAP_SYS_ADMIN; the test is skipped otherwise).
 rk_cli_test(rk_capture_disk_full COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/capture_disk_full.sh ${RK_CLI_DATA})
 set_tests_properties(rk_capture_disk_full PROPERTIES SKIP_RETURN_CODE 77)
+
+# The live status line: on a terminal (a pty from script(1)), rewritten in place with frames, drops, range
+# rate and turret angles; not printed when stderr is not a terminal.
+rk_capture_script(rk_capture_status_line [==[
+command -v script > /dev/null || { echo "script(1) not installed: skipped"; exit 0; }
+d=$data/capture_status; rm -rf "$d"; mkdir -p "$d"; cd "$d"
+rk-sim device dimetix --link "$d/dls" --rate-hz 5 --duration 20 > /dev/null &
+dls=$!
+rk-sim device ptu --link "$d/ptu" --duration 20 > /dev/null &
+ptu=$!
+trap 'kill $dls $ptu 2>/dev/null || true' EXIT
+wait_links "$d/dls" "$d/ptu"
+cat > station.json <<EOF
+{"cameras": [{"name": "az", "source": "synthetic:160x120", "fps": 20}],
+ "rangefinder": {"port": "dls", "baud": 115200, "mode": "tracking", "rate_hz": 5},
+ "turret": {"port": "ptu", "baud": 115200, "rate_hz": 50}}
+EOF
+cap=$(command -v rk-capture)
+script -qfec "$cap --config station.json --out tty --duration 2.5" tty.log > /dev/null
+grep -aq $'\r''rk-capture [0-9.]* s | az [0-9]* fr [0-9]* drop' tty.log || { echo "no status line"; cat -v tty.log; exit 1; }
+grep -aq 'range [0-9.]* Hz | turret [0-9.]* Hz az [0-9.-]* el [0-9.-]*' tty.log || { echo "status line lacks range/turret"; cat -v tty.log; exit 1; }
+rk-capture --config station.json --out notty --duration 1.5 2> notty.err
+if grep -aq $'\r' notty.err; then echo "status line written to a non-terminal"; cat -v notty.err; exit 1; fi
+echo ok
+]==])
