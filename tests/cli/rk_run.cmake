@@ -164,6 +164,9 @@ t=$d/syntax; fresh "$t"; printf '{"name": "x",\n "cameras": {\n' > "$t/trial.jso
 t=$d/role; fresh "$t"; sed -i 's/"role": "beacon"/"role": "beakon"/' "$t/trial.json"
 line=$(grep -n beakon "$t/trial.json" | cut -d: -f1)
 "$expect" 3 "$t/out" "trial.json:$line:[0-9]+: cameras.az.role: 'beakon' is not one of" -- rk-run "$t"
+t=$d/novideo; fresh "$t"
+python3 -c "import json,sys; p=sys.argv[1]; m=json.load(open(p)); m['cameras']['az']['video']=[]; json.dump(m,open(p,'w'),indent=1)" "$t/trial.json"
+"$expect" 3 "$t/out" 'trial.json:[0-9]+:[0-9]+: cameras.az.video: must be a path or a non-empty list of paths' -- rk-run "$t"
 t=$d/step; fresh "$t"; sed -i 's/"steps": {}/"steps": {"locat": {}}/' "$t/trial.json"
 "$expect" 3 "$t/out" "trial.json:[0-9]+:[0-9]+: steps.locat: unknown step 'locat'" -- rk-run "$t"
 t=$d/reserved; fresh "$t"; sed -i 's/"steps": {}/"steps": {"locate": {"turret": "other.csv"}}/' "$t/trial.json"
