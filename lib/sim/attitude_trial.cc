@@ -11,7 +11,7 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "sim/staged_dir.h"
+#include "sim/trial_folder.h"
 #include "video/frame_sink.h"
 
 namespace rk::sim {
@@ -61,7 +61,7 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
   const AttitudeSimOptions& so = sim.options();
-  StagedDir dir(opt.out_dir, opt.force);
+  TrialFolder dir(opt.out_dir, opt.force);
   io::MakeDirectories(dir.Path("att"));
   io::MakeDirectories(dir.Path("truth"));
 
@@ -155,7 +155,7 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
   }
 
   io::Json m;
-  m["name"] = opt.name.empty() ? dir.name() : opt.name;
+  m["name"] = opt.name.empty() ? dir.stem() : opt.name;
   m["epoch_utc"] = opt.epoch_utc;
   m["station"] = {{"lat_deg", 0.0}, {"lon_deg", 0.0}, {"h_m", 0.0}};
   io::Json att = {{"frames", "att/frames.csv"}, {"model", "att/camera.json"}, {"role", "features"}, {"target", "target.json"}};

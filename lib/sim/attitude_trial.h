@@ -10,7 +10,7 @@
 //   truth/points.csv      frame,t_s,id,x_px,y_px,status,radius_px  (projected marker centres at
 //                         the true boresight; status ok, or lost with empty x/y when hidden)
 //   truth/turret.csv      the true boresight at the turret log times
-// Atomic (sim/staged_dir.h): a failed run leaves nothing behind; an existing non-empty folder
+// Atomic (sim/trial_folder.h): a failed run leaves nothing behind; an existing non-empty folder
 // is refused unless force.
 #pragma once
 

@@ -11,7 +11,7 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "sim/trial_dir.h"
+#include "sim/trial_folder.h"
 #include "video/frame_sink.h"
 
 namespace rk::sim {
@@ -58,7 +58,7 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
   const TheodoliteSimOptions& so = sim.options();
-  TrialDir dir(opt.out_dir, opt.force);
+  TrialFolder dir(opt.out_dir, opt.force);
   io::MakeDirectories(dir.Path("theo"));
   io::MakeDirectories(dir.Path("truth"));
   using geo::RadToDeg;

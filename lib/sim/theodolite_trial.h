@@ -11,7 +11,7 @@
 //                             boresight_az_deg,boresight_el_deg
 //   truth/points.csv          exact projections (same columns as points.csv)
 //   truth/theodolite.csv      true boresight at the log times
-// Atomic (sim::TrialDir): a failed run leaves nothing behind.
+// Atomic (sim::TrialFolder): a failed run leaves nothing behind.
 #pragma once
 
 #include <cstdint>

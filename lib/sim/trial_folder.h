@@ -1,8 +1,9 @@
-// Writing a simulated trial folder atomically (the protocol of sim/beacon_trial.cc and
-// sim/posetrack.cc, as a reusable class): the files are written into a fresh temporary sibling
-// folder "<parent>/.<name>.XXXXXX", which Commit() renames onto the output. An existing
-// non-empty output is refused (UsageError) unless `force`, which replaces it as a whole; a
-// failure before Commit() leaves the output untouched and removes the temporary folder.
+// Writing a simulated trial folder atomically (SPEC.md §2 "writes are atomic", applied to a trial
+// directory; every rk-sim subcommand that writes a folder uses it): the files are written into a
+// fresh temporary sibling folder "<parent>/.<name>.XXXXXX", which Commit() renames onto the output.
+// An existing non-empty output is refused (UsageError) unless `force`, which replaces it as a whole
+// (moved aside, removed after the switch, put back if the switch fails); a failure before Commit()
+// leaves the output untouched and removes the temporary folder.
 #pragma once
 
 #include <string>
@@ -22,6 +23,8 @@ class TrialFolder {
   // Creates a sub-folder of the temporary folder.
   void MakeSubfolder(const std::string& relative) const;
   const std::string& out() const { return out_; }
+  // Last path component of the output (the default trial name).
+  const std::string& stem() const { return stem_; }
   // Moves the folder into place (IoError on failure; the old output is then kept).
   void Commit();
 

@@ -15,7 +15,7 @@
 #include "sim/attitude_render.h"
 #include "sim/attitude_scenario.h"
 #include "sim/attitude_trial.h"
-#include "sim/staged_dir.h"
+#include "sim/trial_folder.h"
 
 namespace rk::sim {
 namespace {
@@ -209,21 +209,21 @@ TEST(PnpProblems, ExactPixelsAndDeterminism) {
   }
 }
 
-TEST(StagedDir, AtomicAndRefusesToOverwrite) {
+TEST(TrialFolder, AtomicAndRefusesToOverwrite) {
   namespace fs = std::filesystem;
   const fs::path base = fs::temp_directory_path() / ("rk_staged_" + std::to_string(::getpid()));
   fs::remove_all(base);
   fs::create_directories(base / "keep");
   std::ofstream(base / "keep" / "precious.txt") << "x";
-  EXPECT_THROW(StagedDir((base / "keep").string(), false), Error);
+  EXPECT_THROW(TrialFolder((base / "keep").string(), false), Error);
   {
-    StagedDir d((base / "new").string(), false);
+    TrialFolder d((base / "new").string(), false);
     std::ofstream(d.Path("a.txt")) << "a";
     // Destroyed without Commit: nothing appears.
   }
   EXPECT_FALSE(fs::exists(base / "new"));
   {
-    StagedDir d((base / "keep").string(), true);
+    TrialFolder d((base / "keep").string(), true);
     std::ofstream(d.Path("b.txt")) << "b";
     d.Commit();
   }
