@@ -1,4 +1,4 @@
-// Frame loop of `rk-extract beacon`; see beacon_run.h.
+// `rk-extract beacon` over the shared frame loop (frame_loop.h); see beacon_run.h.
 #include "extract/beacon_run.h"
 
 #include <chrono>
@@ -17,34 +17,14 @@ BeaconRunResult RunBeacon(const std::vector<std::string>& videos, const FrameClo
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
   BeaconRunResult res;
-  video::FrameSource source(videos);
   BeaconTracker tracker(opt);
-  cv::Mat frame;
-  const auto t_start = Clock::now();
-  std::int64_t k = 0;
-  while (source.Read(&frame)) {
-    const double t_s = clock.TimeOf(k);
-    if (k == 0) {
-      res.width_px = frame.cols;
-      res.height_px = frame.rows;
-      res.bit_depth = frame.depth() == CV_16U ? 16 : 8;
-    }
-    const auto t0 = Clock::now();
-    res.rows.push_back(tracker.Process(frame, k, t_s));
-    res.extract_s += Seconds(t0, Clock::now());
-    ++k;
-    if (progress && k % 100 == 0) progress(k);
-  }
-  res.wall_s = Seconds(t_start, Clock::now());
-  res.frames = k;
+  static_cast<VideoRunStats&>(res) = ForEachFrame(
+      videos, clock,
+      [&](const cv::Mat& frame, std::int64_t k, double t_s) { res.rows.push_back(tracker.Process(frame, k, t_s)); },
+      progress, 100);
   res.summary = tracker.summary();
-  if (clock.from_file() && clock.size() > k) {
-    throw DataError(videos.back(), 0, 0,
-                    "video is truncated: it has " + std::to_string(k) + " frames but " + clock.path() + " lists " +
-                        std::to_string(clock.size()));
-  }
   if (res.summary.ok + res.summary.reacquired == 0) {
-    throw ProcessingError("nothing detected: no beacon found in any of the " + std::to_string(k) + " frames");
+    throw ProcessingError("nothing detected: no beacon found in any of the " + std::to_string(res.frames) + " frames");
   }
   return res;
 }

@@ -12,18 +12,15 @@
 #include <vector>
 
 #include "extract/beacon_tracker.h"
+#include "extract/frame_loop.h"
 #include "extract/frame_times.h"
 #include "io/csv.h"
 
 namespace rk::extract {
 
-struct BeaconRunResult {
+struct BeaconRunResult : VideoRunStats {  // frames, size, bit depth, wall and extraction time
   std::vector<BeaconFrameResult> rows;
   BeaconTrackSummary summary;
-  std::int64_t frames = 0;
-  int width_px = 0, height_px = 0, bit_depth = 8;
-  double wall_s = 0.0;     // decode + extraction
-  double extract_s = 0.0;  // time spent in the tracker only
 };
 
 // Runs the tracker over all frames of `videos`. Throws DataError naming the

@@ -14,18 +14,15 @@
 
 #include "extract/features_model.h"
 #include "extract/features_tracker.h"
+#include "extract/frame_loop.h"
 #include "extract/frame_times.h"
 #include "io/csv.h"
 
 namespace rk::extract {
 
-struct FeatureRunResult {
+struct FeatureRunResult : VideoRunStats {  // frames, size, bit depth, wall and extraction time
   std::vector<FeatureFrameResult> rows;
   FeatureTrackSummary summary;
-  std::int64_t frames = 0;
-  int width_px = 0, height_px = 0, bit_depth = 8;
-  double wall_s = 0.0;     // decode + extraction
-  double extract_s = 0.0;  // tracker only
 };
 
 // Throws DataError for a frames file that lists fewer frames than the video has (and for a

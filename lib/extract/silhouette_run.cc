@@ -1,52 +1,28 @@
-// Frame loop of `rk-extract silhouette`; see silhouette_run.h.
+// `rk-extract silhouette` over the shared frame loop (frame_loop.h); see silhouette_run.h.
 #include "extract/silhouette_run.h"
 
-#include <chrono>
-
 #include "io/error.h"
-#include "video/frame_source.h"
 
 namespace rk::extract {
-namespace {
-using Clock = std::chrono::steady_clock;
-double Seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
-}  // namespace
 
 SilhouetteRunResult RunSilhouette(const std::vector<std::string>& videos, const FrameClock& clock,
                                   const SilhouetteOptions& opt, const std::function<void(std::int64_t)>& progress) {
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
   SilhouetteRunResult res;
-  video::FrameSource source(videos);
-  cv::Mat frame;
-  const auto t_start = Clock::now();
-  std::int64_t k = 0;
-  while (source.Read(&frame)) {
-    SilhouetteFrameRow row;
-    row.frame = k;
-    row.t_s = clock.TimeOf(k);
-    if (k == 0) {
-      res.width_px = frame.cols;
-      res.height_px = frame.rows;
-      res.bit_depth = frame.depth() == CV_16U ? 16 : 8;
-    }
-    const auto t0 = Clock::now();
-    row.result = ExtractSilhouette(frame, opt);
-    res.extract_s += Seconds(t0, Clock::now());
-    ++res.by_status[static_cast<std::size_t>(row.result.status)];
-    res.rows.push_back(row);
-    ++k;
-    if (progress && k % 20 == 0) progress(k);
-  }
-  res.wall_s = Seconds(t_start, Clock::now());
-  res.frames = k;
-  if (clock.from_file() && clock.size() > k) {
-    throw DataError(videos.back(), 0, 0,
-                    "video is truncated: it has " + std::to_string(k) + " frames but " + clock.path() + " lists " +
-                        std::to_string(clock.size()));
-  }
+  static_cast<VideoRunStats&>(res) = ForEachFrame(
+      videos, clock,
+      [&](const cv::Mat& frame, std::int64_t k, double t_s) {
+        SilhouetteFrameRow row;
+        row.frame = k;
+        row.t_s = t_s;
+        row.result = ExtractSilhouette(frame, opt);
+        ++res.by_status[static_cast<std::size_t>(row.result.status)];
+        res.rows.push_back(row);
+      },
+      progress, 20);
   if (res.by_status[static_cast<std::size_t>(SilhouetteStatus::kOk)] == 0) {
-    throw ProcessingError("nothing detected: no frame of the " + std::to_string(k) +
+    throw ProcessingError("nothing detected: no frame of the " + std::to_string(res.frames) +
                           " gave the nose and tail points of a cylindrical target");
   }
   return res;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "extract/frame_loop.h"
 #include "extract/frame_times.h"
 #include "extract/silhouette.h"
 #include "io/csv.h"
@@ -25,12 +26,9 @@ struct SilhouetteFrameRow {
   SilhouetteResult result;
 };
 
-struct SilhouetteRunResult {
+struct SilhouetteRunResult : VideoRunStats {  // frames, size, bit depth, wall and extraction time
   std::vector<SilhouetteFrameRow> rows;
   std::array<std::int64_t, 5> by_status{};  // indexed by SilhouetteStatus
-  std::int64_t frames = 0;
-  int width_px = 0, height_px = 0, bit_depth = 8;
-  double wall_s = 0.0, extract_s = 0.0;
 };
 
 // Throws DataError for a truncated video (fewer frames than the frames file lists) or a frames file with

@@ -1,0 +1,46 @@
+// Frame loop of the rk-extract subcommands; see frame_loop.h.
+#include "extract/frame_loop.h"
+
+#include <chrono>
+
+#include "io/error.h"
+#include "video/frame_source.h"
+
+namespace rk::extract {
+namespace {
+using Clock = std::chrono::steady_clock;
+double Seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+}  // namespace
+
+VideoRunStats ForEachFrame(const std::vector<std::string>& videos, const FrameClock& clock,
+                           const std::function<void(const cv::Mat& frame, std::int64_t k, double t_s)>& process,
+                           const std::function<void(std::int64_t)>& progress, std::int64_t progress_every) {
+  VideoRunStats st;
+  video::FrameSource source(videos);
+  cv::Mat frame;
+  const auto t_start = Clock::now();
+  std::int64_t k = 0;
+  while (source.Read(&frame)) {
+    const double t_s = clock.TimeOf(k);
+    if (k == 0) {
+      st.width_px = frame.cols;
+      st.height_px = frame.rows;
+      st.bit_depth = frame.depth() == CV_16U ? 16 : 8;
+    }
+    const auto t0 = Clock::now();
+    process(frame, k, t_s);
+    st.extract_s += Seconds(t0, Clock::now());
+    ++k;
+    if (progress && progress_every > 0 && k % progress_every == 0) progress(k);
+  }
+  st.wall_s = Seconds(t_start, Clock::now());
+  st.frames = k;
+  if (clock.from_file() && clock.size() > k) {
+    throw DataError(videos.back(), 0, 0,
+                    "video is truncated: it has " + std::to_string(k) + " frames but " + clock.path() + " lists " +
+                        std::to_string(clock.size()));
+  }
+  return st;
+}
+
+}  // namespace rk::extract
