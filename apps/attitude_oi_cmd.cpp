@@ -16,7 +16,7 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "locate/inputs.h"
-#include "pose/boresight.h"
+#include "locate/boresight.h"
 #include "pose/station_pose.h"
 #include "subcommand.h"
 
@@ -95,9 +95,9 @@ int RunOi(const OiArgs& a, const Context& ctx) {
   if (points.frames.empty()) throw DataError(points.source, 0, 0, "no image points (header only)");
   std::optional<locate::TurretLog> turret_log;
   if (!a.turret.empty()) turret_log = locate::ReadTurretLog(io::CsvTable::Read(a.turret));
-  const pose::BoresightSource boresight =
-      fixed ? pose::BoresightSource::Fixed(fixed->az_rad, fixed->el_rad)
-            : pose::BoresightSource::FromLog(*turret_log, turret_method, a.turret_max_gap_s);
+  const locate::BoresightSource boresight =
+      fixed ? locate::BoresightSource::Fixed(fixed->az_rad, fixed->el_rad)
+            : locate::BoresightSource::FromLog(*turret_log, turret_method, a.turret_max_gap_s);
 
   const pose::AttitudeOiResult res = pose::RunAttitudeOi(points, model, camera, boresight, opt);
   const std::size_t n = res.rows.size();

@@ -11,6 +11,7 @@
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
 #include "io/error.h"
+#include "locate/boresight.h"
 
 namespace rk::attitude {
 
@@ -172,19 +173,10 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
   CylinderRunResult result;
   result.has_frame = points.has_frame;
 
-  // Theodolite: merge repeated times, azimuth on its unwrapped sequence (as rk-locate).
-  std::vector<double> t_az = theodolite.t_s, t_el = theodolite.t_s;
-  auto az = track::UnwrapAngles(theodolite.az_rad);
-  auto el = theodolite.el_rad;
-  result.theodolite_duplicate_times = track::MergeDuplicateTimes(&t_az, &az);
-  track::MergeDuplicateTimes(&t_el, &el);
-  track::InterpOptions iopt;
-  iopt.method = options.theodolite_method;
-  iopt.max_gap_s = options.theodolite_max_gap_s;
-  iopt.angle = true;
-  const track::TimeSeriesInterpolator az_interp(t_az, az, iopt);
-  iopt.angle = false;
-  const track::TimeSeriesInterpolator el_interp(t_el, el, iopt);
+  // Theodolite: merge repeated times, azimuth on its unwrapped sequence (locate/boresight.h, as rk-locate).
+  const locate::BoresightSource theo =
+      locate::BoresightSource::FromLog(theodolite, options.theodolite_method, options.theodolite_max_gap_s);
+  result.theodolite_duplicate_times = theo.duplicate_times();
 
   CylinderSolveOptions solve = options.solve;
   solve.max_miss_rad = options.max_miss_px / cam.fx();
@@ -214,12 +206,11 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
       result.rows.push_back(row);
     };
     const bool complete = f.px[0] && f.px[1] && f.px[2];
-    const track::InterpValue a = az_interp.At(f.t_s);
-    const track::InterpValue e = el_interp.At(f.t_s);
-    const bool covered = a.ok() && e.ok();
+    const std::optional<geo::AzEl> boresight = theo.At(f.t_s);
+    const bool covered = boresight.has_value();
     if (covered) {
-      row.boresight_az_rad = geo::WrapTwoPi(a.value);
-      row.boresight_el_rad = e.value;
+      row.boresight_az_rad = boresight->az_rad;
+      row.boresight_el_rad = boresight->el_rad;
     }
     if (!complete) {
       finish(RowStatus::kLost, CylinderSolutionStatus::kMissingPoints);
@@ -241,7 +232,7 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
     ++covered_frames;
     const RowStatus ok_status = f.status;  // ok, or predicted / reacquired from the points file
     CylinderInputs x;
-    x << a.value, e.value, f.px[0]->x(), f.px[0]->y(), f.px[1]->x(), f.px[1]->y(), f.px[2]->x(), f.px[2]->y(),
+    x << boresight->az_rad, boresight->el_rad, f.px[0]->x(), f.px[0]->y(), f.px[1]->x(), f.px[1]->y(), f.px[2]->x(), f.px[2]->y(),
         target.length_m, target.diameter_m;
     const CylinderRays rays = RaysFromInputs(cam, x);
     const double bc = AxisAngle(rays.tail1, rays.tail2);
@@ -364,11 +355,8 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
     throw ProcessingError("no frame of " + points.source + " has all three points nose, tail1, tail2");
   }
   if (covered_frames == 0 && result.rows_by_solution[static_cast<std::size_t>(CylinderSolutionStatus::kNoTheodolite)] > 0) {
-    const std::string span = az_interp.usable_samples() == 0
-                                 ? std::string("has no usable sample")
-                                 : "covers t_s " + Num(az_interp.first_time()) + " .. " + Num(az_interp.last_time());
     throw DataError(theodolite.source, 0, 0,
-                    "theodolite log " + span + " but no frame time of " + points.source + " (t_s " +
+                    "theodolite log " + theo.CoverageText() + " but no frame time of " + points.source + " (t_s " +
                         Num(points.frames.front().t_s) + " .. " + Num(points.frames.back().t_s) +
                         ") is covered within the --theodolite-max-gap limit");
   }

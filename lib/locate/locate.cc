@@ -7,6 +7,7 @@
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
 #include "io/error.h"
+#include "locate/boresight.h"
 
 namespace rk::locate {
 
@@ -77,19 +78,9 @@ LocateResult Locate(const Track& track, const camera::CameraModel& camera, const
   LocateResult result;
   result.has_frame = track.has_frame;
 
-  // Turret: merge repeated time stamps, interpolate az on the unwrapped sequence.
-  std::vector<double> t_az = turret.t_s, t_el = turret.t_s;
-  auto az = track::UnwrapAngles(turret.az_rad);
-  auto el = turret.el_rad;
-  result.turret_duplicate_times = track::MergeDuplicateTimes(&t_az, &az);
-  track::MergeDuplicateTimes(&t_el, &el);
-  track::InterpOptions turret_opt;
-  turret_opt.method = options.turret_method;
-  turret_opt.max_gap_s = options.turret_max_gap_s;
-  turret_opt.angle = true;
-  const track::TimeSeriesInterpolator az_interp(t_az, az, turret_opt);
-  turret_opt.angle = false;
-  const track::TimeSeriesInterpolator el_interp(t_el, el, turret_opt);
+  // Turret: merge repeated time stamps, interpolate az on the unwrapped sequence (boresight.h).
+  const BoresightSource boresight = BoresightSource::FromLog(turret, options.turret_method, options.turret_max_gap_s);
+  result.turret_duplicate_times = boresight.duplicate_times();
 
   std::optional<track::TimeSeriesInterpolator> range_interp;
   if (range != nullptr) {
@@ -110,12 +101,11 @@ LocateResult Locate(const Track& track, const camera::CameraModel& camera, const
     out.frame = in.frame;
     out.t_s = in.t_s;
     out.status = in.status;
-    const track::InterpValue a = az_interp.At(in.t_s);
-    const track::InterpValue e = el_interp.At(in.t_s);
-    const bool turret_ok = a.ok() && e.ok();
+    const std::optional<geo::AzEl> b = boresight.At(in.t_s);
+    const bool turret_ok = b.has_value();
     if (turret_ok) {
-      out.boresight_az_rad = geo::WrapTwoPi(a.value);
-      out.boresight_el_rad = e.value;
+      out.boresight_az_rad = b->az_rad;
+      out.boresight_el_rad = b->el_rad;
     } else {
       ++result.rows_turret_not_covered;
     }
@@ -123,7 +113,7 @@ LocateResult Locate(const Track& track, const camera::CameraModel& camera, const
       ++result.measured_rows_turret_not_covered;
       out.status = TrackStatus::kInvalid;
     } else if (in.px) {
-      const Eigen::Vector3d ray_enu = camera.RayEnu(*in.px, a.value, e.value).normalized();
+      const Eigen::Vector3d ray_enu = camera.RayEnu(*in.px, b->az_rad, b->el_rad).normalized();
       const geo::AzEl los = geo::AzElFromEnu(ray_enu);
       out.az_rad = los.az_rad;
       out.el_rad = los.el_rad;
@@ -146,11 +136,8 @@ LocateResult Locate(const Track& track, const camera::CameraModel& camera, const
   }
 
   if (!track.rows.empty() && result.rows_turret_not_covered == track.rows.size()) {
-    std::string span = az_interp.usable_samples() == 0 ? std::string("has no usable sample")
-                                                       : "covers t_s " + Num(az_interp.first_time()) +
-                                                             " .. " + Num(az_interp.last_time());
     throw DataError(turret.source, 0, 0,
-                    "turret log " + span + " but no frame time of " + track.source + " (t_s " +
+                    "turret log " + boresight.CoverageText() + " but no frame time of " + track.source + " (t_s " +
                         Num(track.rows.front().t_s) + " .. " + Num(track.rows.back().t_s) +
                         ") is covered within the --turret-max-gap limit");
   }

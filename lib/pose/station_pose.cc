@@ -90,7 +90,7 @@ void StationPose(const camera::CameraModel& camera, const geo::AzEl& boresight, 
 }
 
 AttitudeOiResult RunAttitudeOi(const extract::ImagePoints& points, const extract::TargetModel& model,
-                               const camera::CameraModel& camera, const BoresightSource& boresight,
+                               const camera::CameraModel& camera, const locate::BoresightSource& boresight,
                                const AttitudeOiOptions& options) {
   std::string why;
   if (!options.Check(&why)) throw UsageError(why);

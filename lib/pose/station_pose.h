@@ -5,7 +5,7 @@
 // Per frame (one output row per frame of the points file, never dropped):
 //   1. Usable points (x, y given; status ok/reacquired), at least min_points (≥ 4) of them,
 //      else status `lost` (note few_points).
-//   2. Boresight (A, E) at the frame time (pose/boresight.h); none → `invalid` (note turret).
+//   2. Boresight (A, E) at the frame time (locate/boresight.h); none → `invalid` (note turret).
 //   3. Pixels → undistorted normalised rays m = (x, y, 1) (camera::CameraModel::NormalisedRay,
 //      the OpenCV distortion inverted exactly), pose R_cam_body, t_cam by pose::PnpSolver
 //      (weak-perspective or homography start → orthogonal iteration → LM polish of the
@@ -45,7 +45,7 @@
 #include "geo/line_of_sight.h"
 #include "io/csv.h"
 #include "io/row_status.h"
-#include "pose/boresight.h"
+#include "locate/boresight.h"
 #include "pose/pnp.h"
 
 namespace rk::pose {
@@ -103,7 +103,7 @@ struct AttitudeOiResult {
 // turret log if it covers no frame time; ProcessingError if no frame gets a pose; UsageError
 // for bad options.
 AttitudeOiResult RunAttitudeOi(const extract::ImagePoints& points, const extract::TargetModel& model,
-                               const camera::CameraModel& camera, const BoresightSource& boresight,
+                               const camera::CameraModel& camera, const locate::BoresightSource& boresight,
                                const AttitudeOiOptions& options);
 
 // Pose CSV (SPEC.md §2.1 `t_s,e_m,n_m,u_m,yaw_deg,pitch_deg,roll_deg,status` + reproj_rms_px)

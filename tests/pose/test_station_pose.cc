@@ -16,7 +16,7 @@
 #include "geo/body_attitude.h"
 #include "io/csv.h"
 #include "io/error.h"
-#include "pose/boresight.h"
+#include "locate/boresight.h"
 #include "pose/station_pose.h"
 
 namespace rk::pose {
@@ -203,7 +203,7 @@ AttitudeOiResult RunScene(const Scene& s, const std::string& points_csv, Attitud
   const io::CsvTable pts = io::CsvTable::Parse(points_csv, "points.csv");
   const extract::ImagePoints ip = extract::ReadImagePoints(pts, s.model);
   const locate::TurretLog log = locate::ReadTurretLog(io::CsvTable::Parse(s.turret_csv, "turret.csv"));
-  const BoresightSource b = BoresightSource::FromLog(log, track::InterpMethod::kCubic, 0.1);
+  const locate::BoresightSource b = locate::BoresightSource::FromLog(log, track::InterpMethod::kCubic, 0.1);
   return RunAttitudeOi(ip, s.model, s.cam, b, opt);
 }
 
@@ -265,7 +265,7 @@ TEST(AttitudeOi, SigmaColumnsMatchTheScatter) {
   opt.sigma_px = 0.3;
   opt.turret_sigma_rad = 0.0;
   const AttitudeOiResult r =
-      RunAttitudeOi(ip, s.model, s.cam, BoresightSource::Fixed(tr.boresight.az_rad, tr.boresight.el_rad), opt);
+      RunAttitudeOi(ip, s.model, s.cam, locate::BoresightSource::Fixed(tr.boresight.az_rad, tr.boresight.el_rad), opt);
   Eigen::Matrix<double, 6, 1> sq = Eigen::Matrix<double, 6, 1>::Zero(), sig = sq;
   for (const PoseRow& row : r.rows) {
     ASSERT_TRUE(row.has_pose);

@@ -1,13 +1,13 @@
-// Turret boresight (A, E) at a frame time, for the camera that rides on the turret (seed 001:
-// "the camera's extrinsics are updated each frame from the turret angles").
+// Turret or theodolite boresight (A, E) at a frame time, for the camera that rides on it (seed 001:
+// "the camera's extrinsics are updated each frame from the turret angles"): used by rk-locate,
+// rk-attitude oi and rk-attitude cylinder alike.
 //
 // From a turret log (SPEC.md §2.1 `t_s,az_deg,el_deg`, read by locate::ReadTurretLog): samples
 // with repeated time stamps are merged (track::MergeDuplicateTimes), azimuth is interpolated on
 // its unwrapped sequence and wrapped back to [0, 2π) (a pass through north is continuous),
 // elevation directly, by track::TimeSeriesInterpolator (linear or 4-point cubic). No
 // extrapolation; no interpolation across a log interval longer than max_gap_s or across an
-// empty sample: such times have no boresight (the caller marks the frame invalid). This is the
-// same treatment rk-locate gives its turret log (lib/locate/locate.h, step 1).
+// empty sample: such times have no boresight (the caller marks the frame invalid).
 // Or a fixed boresight (a camera that does not move during the recording).
 #pragma once
 
@@ -18,13 +18,13 @@
 #include "locate/inputs.h"
 #include "track/interp.h"
 
-namespace rk::pose {
+namespace rk::locate {
 
 class BoresightSource {
  public:
   static BoresightSource Fixed(double az_rad, double el_rad);
   // Throws UsageError if max_gap_s is not > 0.
-  static BoresightSource FromLog(const locate::TurretLog& log, track::InterpMethod method, double max_gap_s);
+  static BoresightSource FromLog(const TurretLog& log, track::InterpMethod method, double max_gap_s);
 
   // Boresight at t, or nullopt (with the reason in *status when given).
   std::optional<geo::AzEl> At(double t_s, track::InterpStatus* status = nullptr) const;
@@ -35,6 +35,8 @@ class BoresightSource {
   // Time span of the usable samples (NaN for a fixed boresight or an empty log).
   double first_time() const;
   double last_time() const;
+  // "covers t_s A .. B" or "has no usable sample", for messages about frames the log does not cover.
+  std::string CoverageText() const;
 
  private:
   bool fixed_ = true;
@@ -44,4 +46,4 @@ class BoresightSource {
   std::size_t duplicates_ = 0;
 };
 
-}  // namespace rk::pose
+}  // namespace rk::locate

@@ -1,12 +1,13 @@
 // Turret boresight at frame times; see boresight.h.
-#include "pose/boresight.h"
+#include "locate/boresight.h"
 
 #include <cmath>
+#include <sstream>
 
 #include "geo/angles.h"
 #include "io/error.h"
 
-namespace rk::pose {
+namespace rk::locate {
 
 BoresightSource BoresightSource::Fixed(double az_rad, double el_rad) {
   BoresightSource b;
@@ -16,7 +17,7 @@ BoresightSource BoresightSource::Fixed(double az_rad, double el_rad) {
   return b;
 }
 
-BoresightSource BoresightSource::FromLog(const locate::TurretLog& log, track::InterpMethod method, double max_gap_s) {
+BoresightSource BoresightSource::FromLog(const TurretLog& log, track::InterpMethod method, double max_gap_s) {
   if (!(max_gap_s > 0.0)) throw UsageError("--turret-max-gap must be > 0 s");
   BoresightSource b;
   b.fixed_ = false;
@@ -57,4 +58,13 @@ std::optional<geo::AzEl> BoresightSource::At(double t_s, track::InterpStatus* st
 double BoresightSource::first_time() const { return fixed_ ? std::nan("") : az_->first_time(); }
 double BoresightSource::last_time() const { return fixed_ ? std::nan("") : az_->last_time(); }
 
-}  // namespace rk::pose
+std::string BoresightSource::CoverageText() const {
+  if (fixed_) return "is a fixed boresight";
+  if (az_->usable_samples() == 0) return "has no usable sample";
+  std::ostringstream s;
+  s.precision(9);
+  s << "covers t_s " << az_->first_time() << " .. " << az_->last_time();
+  return s.str();
+}
+
+}  // namespace rk::locate
