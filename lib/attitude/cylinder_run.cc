@@ -355,10 +355,8 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
     throw ProcessingError("no frame of " + points.source + " has all three points nose, tail1, tail2");
   }
   if (covered_frames == 0 && result.rows_by_solution[static_cast<std::size_t>(CylinderSolutionStatus::kNoTheodolite)] > 0) {
-    throw DataError(theodolite.source, 0, 0,
-                    "theodolite log " + theo.CoverageText() + " but no frame time of " + points.source + " (t_s " +
-                        Num(points.frames.front().t_s) + " .. " + Num(points.frames.back().t_s) +
-                        ") is covered within the --theodolite-max-gap limit");
+    theo.ThrowNoFrameCovered("theodolite", points.source, points.frames.front().t_s, points.frames.back().t_s,
+                             "--theodolite-max-gap");
   }
   return result;
 }

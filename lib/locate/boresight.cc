@@ -67,4 +67,13 @@ std::string BoresightSource::CoverageText() const {
   return s.str();
 }
 
+void BoresightSource::ThrowNoFrameCovered(const std::string& kind, const std::string& frames_source, double t_first,
+                                          double t_last, const std::string& gap_option) const {
+  std::ostringstream s;
+  s.precision(9);
+  s << kind << " log " << CoverageText() << " but no frame time of " << frames_source << " (t_s " << t_first << " .. "
+    << t_last << ") is covered within the " << gap_option << " limit";
+  throw DataError(source_, 0, 0, s.str());
+}
+
 }  // namespace rk::locate

@@ -35,10 +35,16 @@ class BoresightSource {
   // Time span of the usable samples (NaN for a fixed boresight or an empty log).
   double first_time() const;
   double last_time() const;
-  // "covers t_s A .. B" or "has no usable sample", for messages about frames the log does not cover.
-  std::string CoverageText() const;
+  // The error for a run none of whose frame times (t_first .. t_last, from `frames_source`) the log
+  // covers: DataError naming the log, e.g. "turret log covers t_s A .. B but no frame time of F (t_s C ..
+  // D) is covered within the --turret-max-gap limit". `kind` = "turret" / "theodolite".
+  [[noreturn]] void ThrowNoFrameCovered(const std::string& kind, const std::string& frames_source, double t_first,
+                                        double t_last, const std::string& gap_option) const;
 
  private:
+  // "covers t_s A .. B" or "has no usable sample".
+  std::string CoverageText() const;
+
   bool fixed_ = true;
   std::string source_;
   geo::AzEl fixed_dir_;

@@ -2,7 +2,6 @@
 #include "locate/locate.h"
 
 #include <cmath>
-#include <sstream>
 
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
@@ -62,13 +61,6 @@ static RangeStatus FromInterpStatus(track::InterpStatus s) {
       return RangeStatus::kDeviceError;
   }
   return RangeStatus::kOutside;
-}
-
-static std::string Num(double v) {
-  std::ostringstream s;
-  s.precision(9);
-  s << v;
-  return s.str();
 }
 
 LocateResult Locate(const Track& track, const camera::CameraModel& camera, const TurretLog& turret,
@@ -136,10 +128,8 @@ LocateResult Locate(const Track& track, const camera::CameraModel& camera, const
   }
 
   if (!track.rows.empty() && result.rows_turret_not_covered == track.rows.size()) {
-    throw DataError(turret.source, 0, 0,
-                    "turret log " + boresight.CoverageText() + " but no frame time of " + track.source + " (t_s " +
-                        Num(track.rows.front().t_s) + " .. " + Num(track.rows.back().t_s) +
-                        ") is covered within the --turret-max-gap limit");
+    boresight.ThrowNoFrameCovered("turret", track.source, track.rows.front().t_s, track.rows.back().t_s,
+                                  "--turret-max-gap");
   }
   return result;
 }
