@@ -528,6 +528,38 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
     blur2 = std::max(0.0, -m);  // each side: ∫ t (H(−t) − A) dt = −s²/2; two sides: −s²
   }
   res.edge_blur_px = std::sqrt(blur2);
+  // 5a. Side lines again from the edges alone. A profile's S integrates the whole interior too, whose noise
+  // carries no width information (≈ 2× the variance of the edge windows on a 28-px body) and whose mean
+  // error (the body level B) scales with the width. Each edge: e = v_e ∓ h ± ∫_{v_e−h}^{v_e+h} α dv / A_±,
+  // A_± = the plateau just inside that edge (a shaded body has a different level on either side); the window
+  // is n·hu ≥ 2h long, from v_e − h.
+  {
+    const double wb = half_width(0.5 * (body_u0 + body_u1));
+    const double A_hi = plateau(wb - h), A_lo = plateau(-(wb - h));
+    if (A_hi >= 0.5 && A_lo >= 0.5 && wb >= 2.0 * h) {  // narrower: the windows span the profile anyway
+      const int n = static_cast<int>(std::ceil(2.0 * h / hu));
+      auto window = [&](double u, double v_e) {  // ∫_{v_e−h}^{v_e+h} α dv along the profile at u (trapezoid)
+        double integral = 0;
+        for (int i = 0; i <= n; ++i) {
+          const Eigen::Vector2d q = f.At(u, v_e - h + i * hu);
+          integral += ((i == 0 || i == n) ? 0.5 : 1.0) * Bilinear(alpha, q.x(), q.y());
+        }
+        return integral * hu;
+      };
+      std::vector<double> bu, b1, b2;
+      for (double u = body_u0; u <= body_u1; u += kStep) {
+        const double v_hi = e1.a + e1.b * u, v_lo = e2.a + e2.b * u;
+        bu.push_back(u);
+        b1.push_back(v_hi - h + window(u, v_hi) / A_hi);
+        b2.push_back(v_lo - h + n * hu - window(u, v_lo) / A_lo);  // window end minus the covered part
+      }
+      const Line f1 = FitLine(bu, b1), f2 = FitLine(bu, b2);
+      if (f1.n >= 3 && f2.n >= 3) {
+        e1 = f1;
+        e2 = f2;
+      }
+    }
+  }
   double u0 = u_first, b = 0;
   for (int iter = 0; iter < 2; ++iter) {
     const double w = half_width(u0);
@@ -575,20 +607,37 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
   }
   res.tail_b_px = b;
 
-  // 6. Nose: straight S(u) and C(u) over the cone where 0.15 W ≤ S ≤ 0.7 W.
-  std::vector<double> cu, cs, cc;
-  for (std::size_t i = 0; i < p.u.size(); ++i) {
-    if (p.u[i] < u_cone) continue;
-    if (p.S[i] >= 0.15 * width && p.S[i] <= 0.7 * width) {
-      cu.push_back(p.u[i]);
-      cs.push_back(p.S[i]);
-      cc.push_back(p.C[i]);
+  // 6. Nose: straight S(u) and C(u) over the cone. A first fit over 0.15 W ≤ S ≤ 0.7 W gives the cone's
+  // slope k = dS/du; the final fit takes the whole straight part, S from max(0.08 W, 3 s |k|) (the blur rounds
+  // S only within 3 s of the tip) to min(0.9 W, W − 3 s |k|) (and of the cone base): a 1.5× longer lever cuts
+  // the tip's along-axis error by ≈ 40 % (noise) and 60 % (sampling), docs/benchmarks.md, issue 4.
+  auto fit_cone = [&](double s_lo, double s_hi, Line* ls, Line* lc) {
+    std::vector<double> cu, cs, cc;
+    for (std::size_t i = 0; i < p.u.size(); ++i) {
+      if (p.u[i] < u_cone) continue;
+      if (p.S[i] >= s_lo && p.S[i] <= s_hi) {
+        cu.push_back(p.u[i]);
+        cs.push_back(p.S[i]);
+        cc.push_back(p.C[i]);
+      }
     }
-  }
-  const Line ls = FitLine(cu, cs), lc = FitLine(cu, cc);
-  if (ls.n < 3 || !(ls.b < 0.0)) {
+    *ls = FitLine(cu, cs);
+    *lc = FitLine(cu, cc);
+    return ls->n >= 3 && ls->b < 0.0;
+  };
+  Line ls, lc;
+  if (!fit_cone(0.15 * width, 0.7 * width, &ls, &lc)) {
     res.status = SilhouetteStatus::kBadFit;
     return res;
+  }
+  {
+    const double blur_s = 3.0 * std::abs(ls.b) * std::sqrt(blur2);
+    const double s_lo = std::max(0.08 * width, blur_s), s_hi = std::min(0.9 * width, width - blur_s);
+    Line ls2, lc2;
+    if (s_hi > s_lo + 0.2 * width && fit_cone(s_lo, s_hi, &ls2, &lc2)) {
+      ls = ls2;
+      lc = lc2;
+    }
   }
   const double u_tip = -ls.a / ls.b;
   const double v_tip = lc.a + lc.b * u_tip;
