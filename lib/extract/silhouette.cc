@@ -35,7 +35,8 @@ bool SilhouetteOptions::Check(std::string* why) const {
   if (border_px < 2 || border_px > 200) return fail("--border must be in [2, 200] px");
   if (!(psf_sigma_px >= 0.0 && psf_sigma_px <= 10.0)) return fail("--psf-sigma must be in [0, 10] px");
   if (!(min_width_px >= 1.0 && min_width_px <= 1e4)) return fail("--min-width must be in [1, 1e4] px");
-  if (!(min_length_ratio >= 1.0 && std::isfinite(min_length_ratio))) return fail("--min-length-ratio must be >= 1");
+  if (!(min_length_ratio >= 1.0 && std::isfinite(min_length_ratio)))
+    return fail("--min-length-ratio must be >= 1");
   return true;
 }
 
@@ -76,7 +77,8 @@ bool FitPlane(const std::vector<Eigen::Vector3d>& s, Plane* p, double* sigma) {
       if (use[i]) res.push_back(std::abs(s[i].z() - p->At(s[i].x(), s[i].y())));
     *sigma = std::max(1.4826 * Median(res), 1e-6);
     if (pass == 2) break;
-    for (std::size_t i = 0; i < s.size(); ++i) use[i] = std::abs(s[i].z() - p->At(s[i].x(), s[i].y())) <= 3.0 * *sigma;
+    for (std::size_t i = 0; i < s.size(); ++i)
+      use[i] = std::abs(s[i].z() - p->At(s[i].x(), s[i].y())) <= 3.0 * *sigma;
   }
   return true;
 }
@@ -90,7 +92,8 @@ inline double Bilinear(const cv::Mat& m, double x, double y) {
     if (xx < 0 || yy < 0 || xx >= m.cols || yy >= m.rows) return 0.0;
     return m.ptr<float>(yy)[xx];
   };
-  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) + ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
+  return (1 - ty) * ((1 - tx) * at(x0, y0) + tx * at(x0 + 1, y0)) +
+         ty * ((1 - tx) * at(x0, y0 + 1) + tx * at(x0 + 1, y0 + 1));
 }
 
 struct Frame2 {
@@ -110,8 +113,8 @@ constexpr double kStep = 0.5;  // sampling step along and across the axis (px)
 // 1.5 px on either side is subtracted before integrating. The narrow window keeps the integrated sky
 // error (noise, 8-bit steps of a sky gradient, a slightly tilted sky plane) small; without it C is biased
 // by ∝ V³/S as the nose narrows.
-Profile Sample(const cv::Mat& alpha, const Frame2& f, double u0, double u1, double V, const Profile* prior = nullptr,
-               double margin = 0.0, bool subtract_baseline = false) {
+Profile Sample(const cv::Mat& alpha, const Frame2& f, double u0, double u1, double V,
+               const Profile* prior = nullptr, double margin = 0.0, bool subtract_baseline = false) {
   Profile p;
   const int nu = static_cast<int>(std::ceil((u1 - u0) / kStep)) + 1;
   std::vector<double> a;
@@ -267,7 +270,8 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
   roi &= cv::Rect(0, 0, W, H);
   cv::Mat region = (labels(roi) == best);
   cv::Mat grown;
-  cv::dilate(region, grown, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * grow + 1, 2 * grow + 1)));
+  cv::dilate(region, grown,
+             cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * grow + 1, 2 * grow + 1)));
   samples.clear();
   for (int y = 0; y < roi.height; ++y) {
     const float* row = img.ptr<float>(roi.y + y);
@@ -493,12 +497,12 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
   }
 
   // 5. Tail. Body plateau A(v): mean α at offset v from the centre line over the body (blurred near the
-  // edges). Along lines of constant v (|v| ≤ min(0.8 w, w − 3 s), A ≥ 0.5): rough edge e0 = first drop below A/2
-  // walking out of the body; then e = e0 + h − ∫_{e0−h}^{e0+h} α du / A(v), h = 3 σ_psf + 2 (a short window
-  // keeps the integrated sky noise small). Each such edge is the outline averaged over the effective blur
-  // across the lines (PSF, pixel area and resampling, variance s²): e_meas(v) = e(v) + (s²/2) e''(v).
-  // s² is measured on the body's own side edges: for a blurred step, ∫ t (H(−t) − A(w + t)) dt = −s²/2.
-  // Fit e(v) = u0 − b [g(v) + (s²/2) g''(v)], g = sqrt(1 − (v/w)²), linear in (u0, b), b ≥ 0.
+  // edges). Along lines of constant v (|v| ≤ min(0.8 w, w − 3 s), A ≥ 0.5): rough edge e0 = first drop below
+  // A/2 walking out of the body; then e = e0 + h − ∫_{e0−h}^{e0+h} α du / A(v), h = 3 σ_psf + 2 (a short
+  // window keeps the integrated sky noise small). Each such edge is the outline averaged over the effective
+  // blur across the lines (PSF, pixel area and resampling, variance s²): e_meas(v) = e(v) + (s²/2) e''(v). s²
+  // is measured on the body's own side edges: for a blurred step, ∫ t (H(−t) − A(w + t)) dt = −s²/2. Fit e(v)
+  // = u0 − b [g(v) + (s²/2) g''(v)], g = sqrt(1 − (v/w)²), linear in (u0, b), b ≥ 0.
   auto half_width = [&](double u) { return 0.5 * ((e1.a + e1.b * u) - (e2.a + e2.b * u)); };
   auto centre = [&](double u) { return 0.5 * ((e1.a + e1.b * u) + (e2.a + e2.b * u)); };
   const double body_u0 = u_first + 0.5 * width + mrg, body_u1 = std::max(body_u0 + 1.0, u_cone - mrg);
@@ -532,8 +536,8 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
   // carries no width information (≈ 2× the variance of the edge windows on a 28-px body) and whose mean
   // error (the body level B) scales with the width. Each edge: e = v_e ∓ h ± ∫_{v_e−h}^{v_e+h} α dv / A_±,
   // A_± = the plateau just inside that edge (a shaded body has a different level on either side); the window
-  // is n·hu ≥ 2h long, from v_e − h.
-  {
+  // is n·hu ≥ 2h long, from v_e − h. The lines are fitted over [from_u, body_u1].
+  auto side_lines_from_edges = [&](double from_u) {
     const double wb = half_width(0.5 * (body_u0 + body_u1));
     const double A_hi = plateau(wb - h), A_lo = plateau(-(wb - h));
     if (A_hi >= 0.5 && A_lo >= 0.5 && wb >= 2.0 * h) {  // narrower: the windows span the profile anyway
@@ -547,7 +551,7 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
         return integral * hu;
       };
       std::vector<double> bu, b1, b2;
-      for (double u = body_u0; u <= body_u1; u += kStep) {
+      for (double u = from_u; u <= body_u1; u += kStep) {
         const double v_hi = e1.a + e1.b * u, v_lo = e2.a + e2.b * u;
         bu.push_back(u);
         b1.push_back(v_hi - h + window(u, v_hi) / A_hi);
@@ -559,58 +563,78 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
         e2 = f2;
       }
     }
-  }
+  };
   double u0 = u_first, b = 0;
-  for (int iter = 0; iter < 2; ++iter) {
-    const double w = half_width(u0);
-    const double c = centre(u0);
-    double s11 = 0, s12 = 0, s22 = 0, r1 = 0, r2 = 0;
-    int count = 0;
-    // Lines closer to a side edge than 3 s see that edge's blur too (the curvature model then fails).
-    const double vmax = std::min(0.8 * w, w - 3.0 * std::sqrt(blur2));
-    for (double v = -vmax; v <= vmax + 1e-9; v += kStep) {
-      const double A = plateau(v);
-      if (!(A >= 0.5)) continue;
-      auto alpha_at = [&](double u) {
-        const Eigen::Vector2d q = f.At(u, c + v);
-        return Bilinear(alpha, q.x(), q.y());
-      };
-      double e0 = std::nan("");
-      for (double u = u_first + w + mrg; u >= u_first - w - mrg - 2.0; u -= hu) {
-        if (alpha_at(u) < 0.5 * A) {
-          e0 = u + 0.5 * hu;
-          break;
+  auto fit_tail = [&]() {
+    u0 = u_first;
+    b = 0;
+    for (int iter = 0; iter < 2; ++iter) {
+      const double w = half_width(u0);
+      const double c = centre(u0);
+      double s11 = 0, s12 = 0, s22 = 0, r1 = 0, r2 = 0;
+      int count = 0;
+      // Lines closer to a side edge than 3 s see that edge's blur too (the curvature model then fails).
+      const double vmax = std::min(0.8 * w, w - 3.0 * std::sqrt(blur2));
+      for (double v = -vmax; v <= vmax + 1e-9; v += kStep) {
+        const double A = plateau(v);
+        if (!(A >= 0.5)) continue;
+        auto alpha_at = [&](double u) {
+          const Eigen::Vector2d q = f.At(u, c + v);
+          return Bilinear(alpha, q.x(), q.y());
+        };
+        double e0 = std::nan("");
+        for (double u = u_first + w + mrg; u >= u_first - w - mrg - 2.0; u -= hu) {
+          if (alpha_at(u) < 0.5 * A) {
+            e0 = u + 0.5 * hu;
+            break;
+          }
         }
+        if (!std::isfinite(e0)) continue;
+        const int n = static_cast<int>(std::ceil(2.0 * h / hu));
+        double integral = 0;
+        for (int i = 0; i <= n; ++i) integral += ((i == 0 || i == n) ? 0.5 : 1.0) * alpha_at(e0 - h + i * hu);
+        const double e = (e0 - h + n * hu) - hu * integral / A;
+        const double q = std::max(1e-3, 1.0 - (v / w) * (v / w));
+        const double g = -(std::sqrt(q) - 0.5 * blur2 / (w * w * q * std::sqrt(q)));  // −(g + (s²/2) g'')
+        s11 += 1;
+        s12 += g;
+        s22 += g * g;
+        r1 += e;
+        r2 += g * e;
+        ++count;
       }
-      if (!std::isfinite(e0)) continue;
-      const int n = static_cast<int>(std::ceil(2.0 * h / hu));
-      double integral = 0;
-      for (int i = 0; i <= n; ++i) integral += ((i == 0 || i == n) ? 0.5 : 1.0) * alpha_at(e0 - h + i * hu);
-      const double e = (e0 - h + n * hu) - hu * integral / A;
-      const double q = std::max(1e-3, 1.0 - (v / w) * (v / w));
-      const double g = -(std::sqrt(q) - 0.5 * blur2 / (w * w * q * std::sqrt(q)));  // −(g + (s²/2) g'')
-      s11 += 1;
-      s12 += g;
-      s22 += g * g;
-      r1 += e;
-      r2 += g * e;
-      ++count;
+      if (count < 3) return false;
+      const double det = s11 * s22 - s12 * s12;
+      b = std::abs(det) > 1e-12 ? (s11 * r2 - s12 * r1) / det : 0.0;
+      if (b < 0.0) b = 0.0;
+      u0 = (r1 - b * s12) / s11;
     }
-    if (count < 3) {
-      res.status = SilhouetteStatus::kTooSmall;
-      return res;
+    return true;
+  };
+  side_lines_from_edges(body_u0);
+  if (!fit_tail()) {
+    res.status = SilhouetteStatus::kTooSmall;
+    return res;
+  }
+  // The side lines are straight from the tail rim (u0) on; until the tail was located they started past the
+  // widest possible ellipse (half a width). Refit them from 3 s past u0 — a shorter extrapolation to u0 —
+  // and the tail on them.
+  {
+    const double near = u0 + 3.0 * std::sqrt(blur2) + 1.0;
+    if (near < body_u0 - 2.0) {
+      side_lines_from_edges(near);
+      if (!fit_tail()) {
+        res.status = SilhouetteStatus::kTooSmall;
+        return res;
+      }
     }
-    const double det = s11 * s22 - s12 * s12;
-    b = std::abs(det) > 1e-12 ? (s11 * r2 - s12 * r1) / det : 0.0;
-    if (b < 0.0) b = 0.0;
-    u0 = (r1 - b * s12) / s11;
   }
   res.tail_b_px = b;
 
   // 6. Nose: straight S(u) and C(u) over the cone. A first fit over 0.15 W ≤ S ≤ 0.7 W gives the cone's
-  // slope k = dS/du; the final fit takes the whole straight part, S from max(0.08 W, 3 s |k|) (the blur rounds
-  // S only within 3 s of the tip) to min(0.9 W, W − 3 s |k|) (and of the cone base): a 1.5× longer lever cuts
-  // the tip's along-axis error by ≈ 40 % (noise) and 60 % (sampling), docs/benchmarks.md, issue 4.
+  // slope k = dS/du; the final fit takes the whole straight part, S from max(0.08 W, 3 s |k|) (the blur
+  // rounds S only within 3 s of the tip) to min(0.9 W, W − 3 s |k|) (and of the cone base): a 1.5× longer
+  // lever cuts the tip's along-axis error by ≈ 40 % (noise) and 60 % (sampling), docs/benchmarks.md, issue 4.
   auto fit_cone = [&](double s_lo, double s_hi, Line* ls, Line* lc) {
     std::vector<double> cu, cs, cc;
     for (std::size_t i = 0; i < p.u.size(); ++i) {
