@@ -550,12 +550,35 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
         }
         return integral * hu;
       };
+      // Then a few Gauss–Newton steps of the blurred-step model α(v) = A Φ(±(e − v)/s) over the same window:
+      // it weights each sample by the model's slope there (the matched filter), so the samples far from the
+      // edge, which carry only noise, no longer count. Unbiased for any symmetric edge spread (the residual of
+      // a wrong width of the spread is odd about e, its weight even); ≈ 0.6× the window integral's noise.
+      const double s_edge = std::max(0.3, std::sqrt(blur2));
+      auto refine = [&](double u, double e, double A, double sign) {  // sign +1: target at v < e
+        for (int it = 0; it < 3; ++it) {
+          double num = 0, den = 0;
+          for (int i = 0; i <= n; ++i) {
+            const double v = e - h + i * hu;
+            const Eigen::Vector2d q = f.At(u, v);
+            const double t = sign * (e - v) / s_edge;
+            const double g = A * std::exp(-0.5 * t * t) / (std::sqrt(2.0 * M_PI) * s_edge) * sign;
+            num += g * (Bilinear(alpha, q.x(), q.y()) - A * 0.5 * std::erfc(-t / std::sqrt(2.0)));
+            den += g * g;
+          }
+          if (!(den > 0)) break;
+          const double step = std::clamp(num / den, -0.5, 0.5);
+          e += step;
+          if (std::abs(step) < 1e-4) break;
+        }
+        return e;
+      };
       std::vector<double> bu, b1, b2;
       for (double u = from_u; u <= body_u1; u += kStep) {
         const double v_hi = e1.a + e1.b * u, v_lo = e2.a + e2.b * u;
         bu.push_back(u);
-        b1.push_back(v_hi - h + window(u, v_hi) / A_hi);
-        b2.push_back(v_lo - h + n * hu - window(u, v_lo) / A_lo);  // window end minus the covered part
+        b1.push_back(refine(u, v_hi - h + window(u, v_hi) / A_hi, A_hi, 1.0));
+        b2.push_back(refine(u, v_lo - h + n * hu - window(u, v_lo) / A_lo, A_lo, -1.0));  // window end minus the covered part
       }
       const Line f1 = FitLine(bu, b1), f2 = FitLine(bu, b2);
       if (f1.n >= 3 && f2.n >= 3) {

@@ -108,10 +108,11 @@ TEST(Silhouette, DefaultNoiseBrightTargetAnd16Bit) {
 
 // What the attitude is sensitive to, at default noise on seed 004's ~300-px image: the tail diameter's image
 // (16° of yaw per px at the paper's 98° view) and the nose-to-tail length along the axis (1.6°/px). On these
-// 30 frames (fixed seeds): width 0.0082 px RMS with edge-only side lines fitted from the tail rim on (0.0120
-// with whole-profile integrals from half a width past the tail), nose tip along the axis 0.038 px (0.049 with
-// the short 0.15–0.7 W cone fit); the bounds sit 20–35 % above the present figures, below the former ones.
-constexpr double kWidthRmsPx = 0.011;
+// 30 frames (fixed seeds): width 0.0039 px RMS with side lines from matched-filter edge fits from the tail rim
+// on (0.0120 with whole-profile integrals from half a width past the tail), nose tip along the axis 0.038 px
+// (0.049 with the short 0.15–0.7 W cone fit); the bounds sit 20–40 % above the present figures, below the
+// former ones.
+constexpr double kWidthRmsPx = 0.0055;
 constexpr double kNoseAlongRmsPx = 0.045;
 
 TEST(Silhouette, DefaultNoiseWidthAndNoseAlongTheAxis) {
