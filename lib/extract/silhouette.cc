@@ -557,24 +557,25 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
     }
     return e;
   };
+  // Window-integral edge location on the same window, from a rough edge x_e: ∫ α over [x_e − h, x_e − h +
+  // n·hu] (trapezoid) is the covered length times A, so e = window start + ∫/A (sign +1: target at x < e) or
+  // window end − ∫/A (sign −1). Exact for a blurred straight step; the start of matched_edge.
+  auto window_edge = [&](const auto& at, double x_e, double A, double sign) {
+    double integral = 0;
+    for (int i = 0; i <= n_edge; ++i)
+      integral += ((i == 0 || i == n_edge) ? 0.5 : 1.0) * at(x_e - h + i * hu);
+    integral *= hu;
+    return sign > 0 ? x_e - h + integral / A : x_e - h + n_edge * hu - integral / A;
+  };
   // 5a. Side lines again from the edges alone. A profile's S integrates the whole interior too, whose noise
   // carries no width information (≈ 2× the variance of the edge windows on a 28-px body) and whose mean
-  // error (the body level B) scales with the width. Each edge: e = v_e ∓ h ± ∫_{v_e−h}^{v_e+h} α dv / A_±,
-  // A_± = the plateau just inside that edge (a shaded body has a different level on either side); the window
-  // is n·hu ≥ 2h long, from v_e − h. The lines are fitted over [from_u, body_u1].
+  // error (the body level B) scales with the width. Each edge: window_edge then matched_edge across it, with
+  // A_± = the plateau just inside that edge (a shaded body has a different level on either side). The lines
+  // are fitted over [from_u, body_u1].
   auto side_lines_from_edges = [&](double from_u) {
     const double wb = half_width(0.5 * (body_u0 + body_u1));
     const double A_hi = plateau(wb - h), A_lo = plateau(-(wb - h));
     if (A_hi >= 0.5 && A_lo >= 0.5 && wb >= 2.0 * h) {  // narrower: the windows span the profile anyway
-      const int n = static_cast<int>(std::ceil(2.0 * h / hu));
-      auto window = [&](double u, double v_e) {  // ∫_{v_e−h}^{v_e+h} α dv along the profile at u (trapezoid)
-        double integral = 0;
-        for (int i = 0; i <= n; ++i) {
-          const Eigen::Vector2d q = f.At(u, v_e - h + i * hu);
-          integral += ((i == 0 || i == n) ? 0.5 : 1.0) * Bilinear(alpha, q.x(), q.y());
-        }
-        return integral * hu;
-      };
       std::vector<double> bu, b1, b2;
       for (double u = from_u; u <= body_u1; u += kStep) {
         const double v_hi = e1.a + e1.b * u, v_lo = e2.a + e2.b * u;
@@ -583,9 +584,8 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
           const Eigen::Vector2d q = f.At(u, v);
           return Bilinear(alpha, q.x(), q.y());
         };
-        b1.push_back(matched_edge(across, v_hi - h + window(u, v_hi) / A_hi, A_hi, 1.0));
-        // window end minus the covered part
-        b2.push_back(matched_edge(across, v_lo - h + n * hu - window(u, v_lo) / A_lo, A_lo, -1.0));
+        b1.push_back(matched_edge(across, window_edge(across, v_hi, A_hi, 1.0), A_hi, 1.0));
+        b2.push_back(matched_edge(across, window_edge(across, v_lo, A_lo, -1.0), A_lo, -1.0));
       }
       const Line f1 = FitLine(bu, b1), f2 = FitLine(bu, b2);
       if (f1.n >= 3 && f2.n >= 3) {
@@ -620,10 +620,7 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
           }
         }
         if (!std::isfinite(e0)) continue;
-        const int n = static_cast<int>(std::ceil(2.0 * h / hu));
-        double integral = 0;
-        for (int i = 0; i <= n; ++i) integral += ((i == 0 || i == n) ? 0.5 : 1.0) * alpha_at(e0 - h + i * hu);
-        double e = (e0 - h + n * hu) - hu * integral / A;
+        double e = window_edge(alpha_at, e0, A, -1.0);        // target at u > e
         if (matched) e = matched_edge(alpha_at, e, A, -1.0);  // target at u > e
         const double q = std::max(1e-3, 1.0 - (v / w) * (v / w));
         const double g = -(std::sqrt(q) - 0.5 * blur2 / (w * w * q * std::sqrt(q)));  // −(g + (s²/2) g'')
