@@ -7,10 +7,7 @@
 #include "video/frame_source.h"
 
 namespace rk::extract {
-namespace {
 using Clock = std::chrono::steady_clock;
-double Seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
-}  // namespace
 
 BeaconRunResult RunBeacon(const std::vector<std::string>& videos, const FrameClock& clock,
                           const BeaconTrackOptions& opt, const std::function<void(std::int64_t)>& progress) {
@@ -35,7 +32,7 @@ DecodeResult DecodeOnly(const std::vector<std::string>& videos) {
   cv::Mat frame;
   const auto t0 = Clock::now();
   while (source.Read(&frame)) ++r.frames;
-  r.wall_s = Seconds(t0, Clock::now());
+  r.wall_s = SecondsSince(t0);
   return r;
 }
 

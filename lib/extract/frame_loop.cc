@@ -7,10 +7,7 @@
 #include "video/frame_source.h"
 
 namespace rk::extract {
-namespace {
 using Clock = std::chrono::steady_clock;
-double Seconds(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
-}  // namespace
 
 VideoRunStats ForEachFrame(const std::vector<std::string>& videos, const FrameClock& clock,
                            const std::function<void(const cv::Mat& frame, std::int64_t k, double t_s)>& process,
@@ -29,11 +26,11 @@ VideoRunStats ForEachFrame(const std::vector<std::string>& videos, const FrameCl
     }
     const auto t0 = Clock::now();
     process(frame, k, t_s);
-    st.extract_s += Seconds(t0, Clock::now());
+    st.extract_s += SecondsSince(t0);
     ++k;
     if (progress && progress_every > 0 && k % progress_every == 0) progress(k);
   }
-  st.wall_s = Seconds(t_start, Clock::now());
+  st.wall_s = SecondsSince(t_start);
   st.frames = k;
   if (clock.from_file() && clock.size() > k) {
     throw DataError(videos.back(), 0, 0,

@@ -2,6 +2,7 @@
 // recording, in decode order across its segments, with its time from the frame clock, timed.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <opencv2/core.hpp>
@@ -19,6 +20,11 @@ struct VideoRunStats {
   double wall_s = 0.0;                             // decode + extraction
   double extract_s = 0.0;                          // time spent in `process` only
 };
+
+// Wall seconds since `t0` (steady clock), for the run timings.
+inline double SecondsSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
 // Calls process(frame, k, t_s) for every frame k of `videos` (read in the order given) with
 // t_s = clock.TimeOf(k), and progress(k) every `progress_every` frames when set. Throws DataError
