@@ -3,6 +3,7 @@
 // page docs/rk-attitude-cylinder.md.
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "attitude/cylinder_run.h"
 #include "camera/camera_model.h"
@@ -11,6 +12,7 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "locate/inputs.h"
+#include "video/frame_source.h"
 #include "subcommand.h"
 
 namespace rk::app {
@@ -20,6 +22,7 @@ const char* const kCylinderTool = "rk-attitude";
 
 struct CylinderArgs {
   std::string points_path, theodolite_path, camera_path, target_path, out_path;
+  std::vector<std::string> videos;
   std::string method = "p3p", theodolite_interp = "cubic";
   double max_edge_tilt_deg = 60.0;
   attitude::CylinderRunOptions opt;
@@ -66,6 +69,15 @@ Command AddCylinderCommand(CLI::App& parent) {
   c->add_option("--max-edge-tilt-deg", a->max_edge_tilt_deg,
                 "Solutions tilting the tail diameter further out of the image plane are not admissible (deg)")
       ->capture_default_str();
+  c->add_option("--video", a->videos,
+                "The frames the points came from (file or image-sequence pattern; repeat for segments): each "
+                "solution is then refined by fitting the projected target to its frame (image fit; needs the "
+                "points file's frame column)");
+  c->add_option("--fit-psf-sigma", a->opt.image_fit.initial_psf_sigma_px,
+                "Image fit: starting value of the optics blur sigma (px; fitted)")
+      ->capture_default_str();
+  c->add_option("--fit-max-iterations", a->opt.image_fit.max_iterations, "Image fit: Levenberg-Marquardt iteration limit")
+      ->capture_default_str();
   c->add_option("--pixel-sigma", a->opt.pixel_sigma_px, "Point error assumed for the sigma columns (px, each coordinate)")
       ->capture_default_str();
   c->add_option("--angle-sigma-arcsec", a->opt.angle_sigma_arcsec,
@@ -80,7 +92,8 @@ Command AddCylinderCommand(CLI::App& parent) {
             opt.solve.max_edge_tilt_rad = geo::DegToRad(a->max_edge_tilt_deg);
             std::string why;
             if (!opt.Check(&why)) throw UsageError(why);
-            const std::vector<std::string> inputs = {a->points_path, a->theodolite_path, a->camera_path, a->target_path};
+            std::vector<std::string> inputs = {a->points_path, a->theodolite_path, a->camera_path, a->target_path};
+            inputs.insert(inputs.end(), a->videos.begin(), a->videos.end());
             int stdin_inputs = 0;
             for (const std::string& p : inputs) stdin_inputs += io::IsStdStream(p) ? 1 : 0;
             if (stdin_inputs > 1) throw UsageError("only one input can be read from stdin ('-')");
@@ -93,7 +106,33 @@ Command AddCylinderCommand(CLI::App& parent) {
             const attitude::CylinderTarget target = attitude::LoadCylinderTarget(a->target_path);
             const attitude::CylinderPointsFile points = attitude::ReadCylinderPoints(io::CsvTable::Read(a->points_path));
             const locate::TurretLog theo = locate::ReadTurretLog(io::CsvTable::Read(a->theodolite_path));
-            const attitude::CylinderRunResult res = attitude::RunCylinder(points, theo, cam, target, opt);
+            // Frames for the image fit, read forward in decode order (rows come in frame order).
+            std::unique_ptr<video::FrameSource> source;
+            cv::Mat image;
+            std::int64_t next_frame = 0;
+            const std::string video_name = a->videos.empty() ? "" : a->videos.front();
+            const attitude::CylinderFrameReader reader = [&](std::int64_t frame) -> const cv::Mat& {
+              if (frame < next_frame - 1 || frame < 0)
+                throw DataError(a->points_path, 0, 0,
+                                "frame " + std::to_string(frame) + " comes after a later frame; the image fit reads " +
+                                    video_name + " forward only");
+              while (next_frame <= frame) {
+                if (!source->Read(&image))
+                  throw DataError(video_name, 0, 0,
+                                "the video ends after " + std::to_string(next_frame) + " frames but " + a->points_path +
+                                    " refers to frame " + std::to_string(frame));
+                ++next_frame;
+              }
+              if (image.cols != cam.width_px || image.rows != cam.height_px)
+                throw DataError(video_name, 0, 0,
+                                "frames are " + std::to_string(image.cols) + "x" + std::to_string(image.rows) +
+                                    " px but the camera model is " + std::to_string(cam.width_px) + "x" +
+                                    std::to_string(cam.height_px));
+              return image;
+            };
+            if (!a->videos.empty()) source = std::make_unique<video::FrameSource>(a->videos);
+            const attitude::CylinderRunResult res =
+                attitude::RunCylinder(points, theo, cam, target, opt, a->videos.empty() ? nullptr : &reader);
             attitude::CylinderCsv(res).Write(a->out_path);
 
             using S = attitude::CylinderSolutionStatus;
@@ -130,7 +169,11 @@ Command AddCylinderCommand(CLI::App& parent) {
                                 {"max_miss_px", opt.max_miss_px},
                                 {"max_edge_tilt_deg", a->max_edge_tilt_deg},
                                 {"pixel_sigma_px", opt.pixel_sigma_px},
-                                {"angle_sigma_arcsec", opt.angle_sigma_arcsec}};
+                                {"angle_sigma_arcsec", opt.angle_sigma_arcsec},
+                                {"fit_psf_sigma_px", opt.image_fit.initial_psf_sigma_px},
+                                {"fit_max_iterations", opt.image_fit.max_iterations}};
+              for (std::size_t i = 0; i < a->videos.size(); ++i)
+                cli::AddReportInput(&rep, "video_" + std::to_string(i), a->videos[i]);
               rep["summary"] = res.SummaryJson();
               io::WriteJson(ctx.common.report_path, rep);
             }

@@ -3,6 +3,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -58,7 +59,7 @@ bool CylinderRunOptions::Check(std::string* why) const {
   if (!(max_asymmetry_px > 0.0)) return fail("--max-asymmetry-px must be > 0");
   if (!(pixel_sigma_px >= 0.0) || !std::isfinite(pixel_sigma_px)) return fail("--pixel-sigma must be >= 0");
   if (!(angle_sigma_arcsec >= 0.0) || !std::isfinite(angle_sigma_arcsec)) return fail("--angle-sigma-arcsec must be >= 0");
-  return true;
+  return image_fit.Check(why);
 }
 
 namespace {
@@ -157,21 +158,31 @@ io::Json CylinderRunResult::SummaryJson() const {
   for (int s = 0; s < kCylinderSolutionStatusCount; ++s)
     by_solution[CylinderSolutionStatusName(static_cast<CylinderSolutionStatus>(s))] =
         rows_by_solution[static_cast<std::size_t>(s)];
-  return {{"rows", rows.size()},
-          {"status_counts", by_status},
-          {"solution_counts", by_solution},
-          {"theodolite_duplicate_times", theodolite_duplicate_times},
-          {"solver_evaluations", solver_evaluations}};
+  io::Json j = {{"rows", rows.size()},
+                {"status_counts", by_status},
+                {"solution_counts", by_solution},
+                {"theodolite_duplicate_times", theodolite_duplicate_times},
+                {"solver_evaluations", solver_evaluations}};
+  if (image_fit) {
+    io::Json by_fit = io::Json::object();
+    for (int s = 0; s < 3; ++s)
+      by_fit[CylinderImageFitStatusName(static_cast<CylinderImageFitStatus>(s))] = rows_by_fit[static_cast<std::size_t>(s)];
+    j["image_fit"] = {{"fit_counts", by_fit}, {"model_evaluations", fit_evaluations}, {"seconds", fit_seconds}};
+  }
+  return j;
 }
 
 CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::TurretLog& theodolite,
                               const camera::CameraModel& cam, const CylinderTarget& target,
-                              const CylinderRunOptions& options) {
+                              const CylinderRunOptions& options, const CylinderFrameReader* frames) {
   std::string why;
   if (!options.Check(&why)) throw UsageError(why);
   if (!target.Check(&why)) throw UsageError(why);
+  if (frames && !points.has_frame)
+    throw UsageError(points.source + " has no `frame` column: the image fit (--video) needs it to find each row's frame");
   CylinderRunResult result;
   result.has_frame = points.has_frame;
+  result.image_fit = frames != nullptr;
 
   // Theodolite: merge repeated times, azimuth on its unwrapped sequence (locate/boresight.h, as rk-locate).
   const locate::BoresightSource theo =
@@ -277,6 +288,30 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
       finish(RowStatus::kInvalid, CylinderSolutionStatus::kNoSolution);
       continue;
     }
+    // Image fit of each solution (near the side-on double root the frame has two minima close to the two
+    // three-point solutions, of equal cost: each is refined, and continuity chooses as without the fit).
+    std::vector<std::optional<CylinderImageFitResult>> fits(sols.size());
+    if (frames && f.frame) {
+      const cv::Mat& image = (*frames)(*f.frame);
+      for (std::size_t k = 0; k < sols.size(); ++k) {
+        CylinderSolution& c = sols[k];
+        const auto t0 = std::chrono::steady_clock::now();
+        const CylinderImageFitResult g = FitCylinderImage(image, cam, boresight->az_rad, boresight->el_rad, target,
+                                                          c.tail_centre_enu, c.yaw_rad, c.pitch_rad, options.image_fit);
+        result.fit_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        result.fit_evaluations += g.evaluations;
+        fits[k] = g;
+        if (g.status == CylinderImageFitStatus::kFailed) continue;
+        c.yaw_rad = g.yaw_rad;
+        c.pitch_rad = g.pitch_rad;
+        c.axis_enu = g.axis_enu;
+        c.tail_centre_enu = g.tail_centre_enu;
+        c.nose_enu = g.tail_centre_enu + target.length_m * g.axis_enu;
+        const Eigen::Vector3d n = g.axis_enu.cross(g.tail_centre_enu).normalized();
+        c.range_m = Eigen::Vector3d(c.nose_enu.norm(), (g.tail_centre_enu + 0.5 * target.diameter_m * n).norm(),
+                                    (g.tail_centre_enu - 0.5 * target.diameter_m * n).norm());
+      }
+    }
     // History within the continuity gap → predicted axis.
     while (!history.empty() && f.t_s - history.back().t_s > options.continuity_gap_s) history.clear();
     std::optional<Eigen::Vector3d> predicted;
@@ -346,7 +381,20 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
       row.sigma_yaw_rad = sigma(0);
       row.sigma_pitch_rad = sigma(1);
     }
-    history.push_back({f.t_s, p.axis_enu});
+    if (fits[primary]) {
+      const CylinderImageFitResult& g = *fits[primary];
+      row.fit = g.status;
+      if (g.status != CylinderImageFitStatus::kFailed) {
+        row.sigma_yaw_rad = g.sigma_yaw_rad;
+        row.sigma_pitch_rad = g.sigma_pitch_rad;
+        row.fit_rms_dn = g.rms_dn;
+        row.fit_psf_px = g.psf_sigma_px;
+        row.fit_cone_m = g.nose_cone_length_m;
+        row.fit_iterations = g.iterations;
+      }
+    }
+    if (row.fit) ++result.rows_by_fit[static_cast<std::size_t>(*row.fit)];
+    history.push_back({f.t_s, *row.axis_enu});
     if (history.size() > kHistory) history.erase(history.begin());
     finish(ok_status, sol_status);
   }
@@ -369,6 +417,8 @@ io::CsvWriter CylinderCsv(const CylinderRunResult& result) {
                         "separation_deg", "asymmetry_px", "edge_tilt_deg", "boresight_az_deg", "boresight_el_deg"}) {
     cols.push_back(c);
   }
+  if (result.image_fit)
+    for (const char* c : {"fit", "fit_rms_dn", "fit_psf_px", "fit_cone_m", "fit_iterations"}) cols.push_back(c);
   io::CsvWriter w(cols);
   constexpr int kAngleDecimals = 9;
   constexpr int kLengthDecimals = 6;
@@ -401,6 +451,21 @@ io::CsvWriter CylinderCsv(const CylinderRunResult& result) {
     w.Add(deg(val(row.edge_tilt_rad)), 6);
     w.Add(deg(row.boresight_az_rad), kAngleDecimals);
     w.Add(deg(row.boresight_el_rad), kAngleDecimals);
+    if (result.image_fit) {
+      if (row.fit) {
+        w.Add(CylinderImageFitStatusName(*row.fit));
+      } else {
+        w.AddEmpty();
+      }
+      w.Add(row.fit_rms_dn, 3);
+      w.Add(row.fit_psf_px, 4);
+      w.Add(row.fit_cone_m, 4);
+      if (row.fit_iterations) {
+        w.Add(*row.fit_iterations);
+      } else {
+        w.AddEmpty();
+      }
+    }
     w.EndRow();
   }
   return w;

@@ -27,7 +27,13 @@
 //      cannot tell apart: none, or both within ambiguity_deg of the prediction — primary by the SPEC rule,
 //      the other in alt_*), `side_on` (two within ambiguity_deg of each other: the view is nearly
 //      perpendicular to the axis, the double root of the problem, where precision is poorest).
-//   7. Quality: σ of yaw and pitch from pixel_sigma_px on each coordinate and angle_sigma_arcsec on A and E,
+//   5b. Optional image fit (with the frames: rk-attitude cylinder --video): each of the (up to two) solutions
+//      is refined by fitting the projected target to the frame itself (cylinder_image_fit.h) before step 6
+//      chooses between them (near the side-on double root the frame has two minima of equal cost close to the
+//      two three-point solutions: the image cannot tell them apart either). yaw, pitch, alt_*, the ranges and
+//      the σ columns are then the fit's (σ from its covariance); `fit` says converged / not_converged /
+//      failed (failed: that solution keeps its three-point values).
+//   8. Quality: σ of yaw and pitch from pixel_sigma_px on each coordinate and angle_sigma_arcsec on A and E,
 //      by the autodiff Jacobian (cylinder_budget.h); empty at a double root (infinite). Also the angle
 //      between the two solutions (separation_deg), the asymmetry (px) and the edge tilt of the primary.
 // Row status (SPEC.md §2): `ok` with values for unique/continuity/ambiguous/side_on/near_miss/tail_chase
@@ -37,11 +43,13 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "attitude/cylinder_geometry.h"
+#include "attitude/cylinder_image_fit.h"
 #include "attitude/cylinder_solve.h"
 #include "camera/camera_model.h"
 #include "io/csv.h"
@@ -99,6 +107,7 @@ struct CylinderRunOptions {
   double max_asymmetry_px = 3.0;            // > 0; the limit is max(this, diameter image / 4)
   double pixel_sigma_px = 0.3;              // for the σ columns, >= 0
   double angle_sigma_arcsec = 0.0;          // for the σ columns, >= 0
+  CylinderImageFitOptions image_fit;        // used when frames are given
   bool Check(std::string* why) const;
 };
 
@@ -113,6 +122,10 @@ struct CylinderRow {
   std::optional<double> separation_rad, asymmetry_px, edge_tilt_rad;
   std::optional<double> boresight_az_rad, boresight_el_rad;
   std::optional<Eigen::Vector3d> axis_enu;  // primary axis (for continuity)
+  // Image fit (when frames are given and the row has a three-point solution).
+  std::optional<CylinderImageFitStatus> fit;
+  std::optional<double> fit_rms_dn, fit_psf_px, fit_cone_m;
+  std::optional<int> fit_iterations;
 };
 
 struct CylinderRunResult {
@@ -122,19 +135,28 @@ struct CylinderRunResult {
   std::array<std::size_t, kCylinderSolutionStatusCount> rows_by_solution{};      // by CylinderSolutionStatus
   std::size_t theodolite_duplicate_times = 0;
   long solver_evaluations = 0;
+  bool image_fit = false;
+  std::array<std::size_t, 3> rows_by_fit{};  // by CylinderImageFitStatus
+  long fit_evaluations = 0;
+  double fit_seconds = 0.0;
   io::Json SummaryJson() const;
 };
 
+// The frame numbered `frame` (SPEC.md: counting from 0 across video segments) for the image fit, CV_8UC1 or
+// CV_16UC1 of the camera's size; throws DataError naming the video if it cannot supply it.
+using CylinderFrameReader = std::function<const cv::Mat&(std::int64_t frame)>;
+
 // Throws DataError naming the theodolite log if it covers no frame time, ProcessingError if no frame has
-// the three points, UsageError if the options fail Check().
+// the three points, UsageError if the options fail Check() or frames are given for a points file without
+// the `frame` column.
 CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::TurretLog& theodolite,
                               const camera::CameraModel& camera, const CylinderTarget& target,
-                              const CylinderRunOptions& options);
+                              const CylinderRunOptions& options, const CylinderFrameReader* frames = nullptr);
 
 // Axis attitude CSV (SPEC.md §2.1 + extras):
 //   [frame,]t_s,yaw_deg,pitch_deg,status,alt_yaw_deg,alt_pitch_deg,solution,range_nose_m,range_tail1_m,
 //   range_tail2_m,sigma_yaw_deg,sigma_pitch_deg,separation_deg,asymmetry_px,edge_tilt_deg,
-//   boresight_az_deg,boresight_el_deg
+//   boresight_az_deg,boresight_el_deg[,fit,fit_rms_dn,fit_psf_px,fit_cone_m,fit_iterations (image fit)]
 io::CsvWriter CylinderCsv(const CylinderRunResult& result);
 
 }  // namespace rk::attitude

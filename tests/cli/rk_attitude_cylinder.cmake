@@ -90,3 +90,32 @@ grep -q '^1 invalid no_theodolite empty$' "$W/st.txt"
 grep -q '^4 ok ambiguous value$' "$W/st.txt"   # first row after the gap: no history
 echo ok
 ]==])
+
+# Image fit (--video): rk-extract silhouette points refined on the fixture's own frames. Tolerances 4σ of one
+# frame at this 298-px image (the fit's σ ≈ 0.055° yaw, 0.021° pitch); bad input: no frame column, a video
+# shorter than the points file.
+rk_att_cyl_script(rk_attitude_cylinder_image_fit [==[
+rm -f "$W/fit.csv" "$W/sil.csv"
+rk-extract silhouette --video "$T/theo/%06d.png" --frames "$T/theo/frames.csv" -o "$W/sil.csv" --quiet
+rk-attitude cylinder --points "$W/sil.csv" --theodolite "$T/theodolite.csv" --camera "$T/theo/camera.json" \
+  --target "$T/target.json" --video "$T/theo/%06d.png" -o "$W/fit.csv" --report "$W/fit.json" --quiet
+head -n 1 "$W/fit.csv" | grep -q ',fit,fit_rms_dn,fit_psf_px,fit_cone_m,fit_iterations$'
+awk -F, 'NR > 1 && $19 == "converged" { n++ } END { exit n != 5 }' "$W/fit.csv"
+grep -q '"converged": 5' "$W/fit.json"
+rk-analyze compare --estimate "$W/fit.csv" --reference "$T/truth/axis.csv" --columns yaw_deg,pitch_deg -o "$W/fit_stats.json"
+python3 - "$W/fit_stats.json" <<'PY'
+import json, sys
+c = json.load(open(sys.argv[1]))["columns"]
+for k, tol in (("yaw_deg", 0.25), ("pitch_deg", 0.10)):
+    assert c[k]["n"] == 5 and c[k]["max"] < tol and c[k]["min"] > -tol, (k, c[k])
+PY
+o=$W/fit_bad.csv; rm -f "$o"
+args=(--theodolite "$T/theodolite.csv" --camera "$T/theo/camera.json" --target "$T/target.json" -o "$o")
+cut -d, -f2- "$W/sil.csv" > "$W/sil_noframe.csv"
+"$expect" 2 "$o" 'frame. column' -- rk-attitude cylinder --points "$W/sil_noframe.csv" "${args[@]}" --video "$T/theo/%06d.png"
+mkdir -p "$W/short"; cp "$T/theo/000000.png" "$T/theo/000001.png" "$W/short/"
+"$expect" 3 "$o" 'ends after 2 frames' -- rk-attitude cylinder --points "$W/sil.csv" "${args[@]}" --video "$W/short/%06d.png"
+"$expect" 4 "$o" -- rk-attitude cylinder --points "$W/sil.csv" "${args[@]}" --video "$W/none/%06d.png"
+"$expect" 2 "$o" -- rk-attitude cylinder --points "$W/sil.csv" "${args[@]}" --video "$T/theo/%06d.png" --fit-psf-sigma 0
+echo ok
+]==])

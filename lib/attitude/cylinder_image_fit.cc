@@ -1,0 +1,268 @@
+// Image-based refinement of a cylinder's pose; model and method in cylinder_image_fit.h.
+#include "attitude/cylinder_image_fit.h"
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <opencv2/imgproc.hpp>
+#include <vector>
+
+#include "geo/angles.h"
+#include "geo/line_of_sight.h"
+#include "sim/theodolite_render.h"
+#include "sim/theodolite_scene.h"
+
+namespace rk::attitude {
+namespace {
+
+constexpr int kNonlinear = 7;  // tail centre E, N, U; yaw; pitch; nose-cone length; PSF σ
+constexpr int kLinear = 5;     // sky s0, s1, s2; body b0, b1
+using Params = Eigen::Matrix<double, kNonlinear, 1>;
+
+constexpr double kMinSigmaPx = 0.05, kMaxSigmaPx = 5.0;
+
+// Everything a residual evaluation needs that does not change during the fit.
+class Problem {
+ public:
+  Problem(const cv::Mat& window, cv::Rect roi, const camera::CameraModel& cam, double az, double el,
+          const CylinderTarget& target, int rim_samples, int kernel_size)
+      : roi_(roi), cam_(cam), az_(az), el_(el), target_(target), rim_samples_(rim_samples), kernel_size_(kernel_size) {
+    data_.resize(static_cast<Eigen::Index>(roi.area()));
+    xs_.resize(data_.size());
+    ys_.resize(data_.size());
+    for (int i = 0, k = 0; i < roi.height; ++i) {
+      const double* row = window.ptr<double>(i);
+      for (int j = 0; j < roi.width; ++j, ++k) {
+        data_(k) = row[j];
+        xs_(k) = roi.width > 1 ? 2.0 * j / (roi.width - 1) - 1.0 : 0.0;
+        ys_(k) = roi.height > 1 ? 2.0 * i / (roi.height - 1) - 1.0 : 0.0;
+      }
+    }
+  }
+
+  Eigen::Index size() const { return data_.size(); }
+
+  // Residual data − model with the linear parameters at their least-squares values; false if the outline
+  // cannot be projected.
+  bool Residual(const Params& p, Eigen::VectorXd* r, Eigen::Matrix<double, kLinear, 1>* lin = nullptr) {
+    ++evaluations_;
+    sim::CylinderPose pose;
+    pose.tail_centre_enu = p.head<3>();
+    pose.yaw_rad = p(3);
+    pose.pitch_rad = p(4);
+    sim::CylinderShape shape;
+    shape.length_m = target_.length_m;
+    shape.diameter_m = target_.diameter_m;
+    shape.nose_length_m = std::clamp(p(5), 0.02 * target_.length_m, 0.98 * target_.length_m);
+    const std::vector<Eigen::Vector2d> poly = sim::SilhouettePolygon(cam_, pose, shape, az_, el_, rim_samples_);
+    if (poly.size() < 3) return false;
+    cv::Mat cov = sim::RasterizeConvexPolygon(poly, roi_), alpha;
+    cov.convertTo(alpha, CV_64F);
+    const double sigma = std::clamp(p(6), kMinSigmaPx, kMaxSigmaPx);
+    const cv::Mat g = cv::getGaussianKernel(kernel_size_, sigma, CV_64F);
+    cv::sepFilter2D(alpha, alpha, CV_64F, g, g, cv::Point(-1, -1), 0.0, cv::BORDER_CONSTANT);
+
+    // Image axis and tail half-width for the body shading term.
+    const sim::SilhouettePoints3d pts = sim::SilhouettePointsOf(pose, shape);
+    const auto tail1 = cam_.ProjectEnu(pts.tail1, az_, el_), tail2 = cam_.ProjectEnu(pts.tail2, az_, el_),
+               nose = cam_.ProjectEnu(pts.nose, az_, el_);
+    if (!tail1 || !tail2 || !nose) return false;
+    const Eigen::Vector2d tail = 0.5 * (*tail1 + *tail2);
+    Eigen::Vector2d dir = *nose - tail;
+    dir = dir.norm() > 0 ? dir.normalized() : Eigen::Vector2d(1, 0);
+    const Eigen::Vector2d nrm(-dir.y(), dir.x());
+    const double w = std::max(0.5 * (*tail1 - *tail2).norm(), 1e-6);
+
+    a_.resize(size());
+    v_.resize(size());
+    Eigen::Matrix<double, kLinear, kLinear> N = Eigen::Matrix<double, kLinear, kLinear>::Zero();
+    Eigen::Matrix<double, kLinear, 1> b = Eigen::Matrix<double, kLinear, 1>::Zero();
+    for (int i = 0, k = 0; i < roi_.height; ++i) {
+      const double* row = alpha.ptr<double>(i);
+      for (int j = 0; j < roi_.width; ++j, ++k) {
+        const double a = row[j];
+        const Eigen::Vector2d q(roi_.x + j, roi_.y + i);
+        const double v = std::clamp((q - tail).dot(nrm) / w, -1.0, 1.0);
+        a_(k) = a;
+        v_(k) = v;
+        Eigen::Matrix<double, kLinear, 1> c;
+        c << 1.0 - a, (1.0 - a) * xs_(k), (1.0 - a) * ys_(k), a, a * v;
+        N.noalias() += c * c.transpose();
+        b.noalias() += c * data_(k);
+      }
+    }
+    const Eigen::Matrix<double, kLinear, 1> x = N.ldlt().solve(b);
+    if (!x.allFinite()) return false;
+    r->resize(size());
+    for (Eigen::Index k = 0; k < size(); ++k) {
+      const double a = a_(k);
+      const double model = (1.0 - a) * (x(0) + x(1) * xs_(k) + x(2) * ys_(k)) + a * (x(3) + x(4) * v_(k));
+      (*r)(k) = data_(k) - model;
+    }
+    if (lin) *lin = x;
+    return true;
+  }
+
+  int evaluations() const { return evaluations_; }
+
+ private:
+  cv::Rect roi_;
+  const camera::CameraModel& cam_;
+  double az_, el_;
+  CylinderTarget target_;
+  int rim_samples_, kernel_size_;
+  Eigen::VectorXd data_, xs_, ys_, a_, v_;
+  int evaluations_ = 0;
+};
+
+}  // namespace
+
+bool CylinderImageFitOptions::Check(std::string* why) const {
+  if (!(initial_psf_sigma_px > 0.0 && initial_psf_sigma_px <= 5.0)) {
+    *why = "the image fit's initial PSF sigma must be in (0, 5] px";
+    return false;
+  }
+  if (max_iterations < 1 || rim_samples < 16 || !(margin_px >= 1.0 && margin_px <= 100.0)) {
+    *why = "the image fit needs max_iterations >= 1, rim_samples >= 16 and a margin in [1, 100] px";
+    return false;
+  }
+  return true;
+}
+
+const char* CylinderImageFitStatusName(CylinderImageFitStatus s) {
+  switch (s) {
+    case CylinderImageFitStatus::kConverged: return "converged";
+    case CylinderImageFitStatus::kNotConverged: return "not_converged";
+    case CylinderImageFitStatus::kFailed: return "failed";
+  }
+  return "failed";
+}
+
+CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::CameraModel& cam, double az_rad,
+                                        double el_rad, const CylinderTarget& target,
+                                        const Eigen::Vector3d& tail_centre_enu, double yaw_rad, double pitch_rad,
+                                        const CylinderImageFitOptions& opt) {
+  CylinderImageFitResult out;
+  if (frame.empty() || frame.channels() != 1 || (frame.depth() != CV_8U && frame.depth() != CV_16U)) return out;
+
+  // Window: the initial outline (nose cone at 1/4 of the length) + 4σ_max + margin, inside the frame.
+  sim::CylinderPose pose0;
+  pose0.tail_centre_enu = tail_centre_enu;
+  pose0.yaw_rad = yaw_rad;
+  pose0.pitch_rad = pitch_rad;
+  sim::CylinderShape shape0;
+  shape0.length_m = target.length_m;
+  shape0.diameter_m = target.diameter_m;
+  shape0.nose_length_m = 0.25 * target.length_m;
+  const std::vector<Eigen::Vector2d> poly0 = sim::SilhouettePolygon(cam, pose0, shape0, az_rad, el_rad, 64);
+  if (poly0.size() < 3) return out;
+  double x0 = poly0[0].x(), x1 = x0, y0 = poly0[0].y(), y1 = y0;
+  for (const auto& q : poly0) {
+    x0 = std::min(x0, q.x());
+    x1 = std::max(x1, q.x());
+    y0 = std::min(y0, q.y());
+    y1 = std::max(y1, q.y());
+  }
+  if (x0 < 0 || y0 < 0 || x1 > frame.cols - 1 || y1 > frame.rows - 1) return out;
+  const double sigma_cap = std::max(2.0 * opt.initial_psf_sigma_px, 1.5);
+  const int margin = static_cast<int>(std::ceil(4.0 * sigma_cap + opt.margin_px));
+  cv::Rect roi(static_cast<int>(std::floor(x0)) - margin, static_cast<int>(std::floor(y0)) - margin, 0, 0);
+  roi.width = static_cast<int>(std::ceil(x1)) + margin - roi.x + 1;
+  roi.height = static_cast<int>(std::ceil(y1)) + margin - roi.y + 1;
+  roi &= cv::Rect(0, 0, frame.cols, frame.rows);
+  cv::Mat window;
+  frame(roi).convertTo(window, CV_64F);
+  const int kernel = 2 * static_cast<int>(std::ceil(4.0 * sigma_cap)) + 1;
+  Problem prob(window, roi, cam, az_rad, el_rad, target, opt.rim_samples, kernel);
+
+  // Steps that move the outline by ~0.02 px: the central-difference steps and the parameter scaling.
+  const double R = tail_centre_enu.norm(), f = cam.fx();
+  Params h;
+  h << 0.02 * R / f, 0.02 * R / f, 0.02 * R / f, 0.02 * R / (f * target.length_m), 0.02 * R / (f * target.length_m),
+      0.02 * R / f, 0.02;
+  Params p;
+  p << tail_centre_enu, yaw_rad, pitch_rad, 0.25 * target.length_m, opt.initial_psf_sigma_px;
+
+  // Nose-cone length: best of a coarse scan (the cost is flat in it far from the truth only near the tip).
+  Eigen::VectorXd r, rt;
+  double cost = std::numeric_limits<double>::infinity();
+  const Params start = p;
+  for (double frac : {0.1, 0.2, 0.3, 0.4, 0.5, 0.6}) {
+    Params q = start;
+    q(5) = frac * target.length_m;
+    if (prob.Residual(q, &rt) && rt.squaredNorm() < cost) {
+      cost = rt.squaredNorm();
+      p = q;
+      r = rt;
+    }
+  }
+  if (!std::isfinite(cost)) return out;
+
+  Eigen::MatrixXd J(prob.size(), kNonlinear);
+  Eigen::Matrix<double, kNonlinear, kNonlinear> A;
+  double lambda = 1e-3;
+  bool converged = false;
+  int it = 0;
+  for (; it < opt.max_iterations && !converged; ++it) {
+    for (int c = 0; c < kNonlinear; ++c) {
+      Params pp = p, pm = p;
+      pp(c) += h(c);
+      pm(c) -= h(c);
+      Eigen::VectorXd rp, rm;
+      if (!prob.Residual(pp, &rp) || !prob.Residual(pm, &rm)) return out;
+      J.col(c) = (rp - rm) / 2.0;  // per step h(c): scaled units
+    }
+    A.noalias() = J.transpose() * J;
+    const Params g = J.transpose() * r;
+    bool accepted = false;
+    for (int tries = 0; tries < 10 && !accepted; ++tries) {
+      Eigen::Matrix<double, kNonlinear, kNonlinear> M = A;
+      M.diagonal() += lambda * A.diagonal();
+      const Params du = -M.ldlt().solve(g);
+      if (!du.allFinite()) return out;
+      Params q = p + du.cwiseProduct(h);
+      q(6) = std::clamp(q(6), kMinSigmaPx, kMaxSigmaPx);
+      if (prob.Residual(q, &rt) && rt.squaredNorm() <= cost) {
+        const double drop = cost - rt.squaredNorm();
+        p = q;
+        r = rt;
+        cost = r.squaredNorm();
+        lambda = std::max(lambda / 4.0, 1e-9);
+        accepted = true;
+        // Converged: the step moves the outline by < 2e-5 px or the cost no longer falls.
+        if (du.cwiseAbs().maxCoeff() < 1e-3 || drop <= 1e-12 * cost) converged = true;
+      } else {
+        lambda *= 8.0;
+      }
+    }
+    if (!accepted) converged = true;  // no descent direction left: at the minimum to rounding
+  }
+
+  // Final covariance from the last Jacobian (at the previous iterate: within 2e-5 px of the solution).
+  const Eigen::Index dof = prob.size() - kNonlinear - kLinear;
+  if (dof <= 0) return out;
+  const double s2 = cost / static_cast<double>(dof);
+  const Eigen::Matrix<double, kNonlinear, kNonlinear> Ai = A.inverse();
+  if (!Ai.allFinite()) return out;
+  Eigen::Matrix<double, kLinear, 1> lin;
+  if (!prob.Residual(p, &r, &lin)) return out;
+
+  out.status = converged ? CylinderImageFitStatus::kConverged : CylinderImageFitStatus::kNotConverged;
+  out.tail_centre_enu = p.head<3>();
+  out.yaw_rad = geo::WrapTwoPi(p(3));
+  out.pitch_rad = p(4);
+  out.axis_enu = geo::DirectionFromAzEl(p(3), p(4));
+  out.nose_cone_length_m = p(5);
+  out.psf_sigma_px = p(6);
+  out.sigma_yaw_rad = std::sqrt(s2 * Ai(3, 3)) * h(3);
+  out.sigma_pitch_rad = std::sqrt(s2 * Ai(4, 4)) * h(4);
+  out.rms_dn = std::sqrt(r.squaredNorm() / static_cast<double>(prob.size()));
+  out.contrast_dn = lin(3) - lin(0);
+  out.iterations = it;
+  out.evaluations = prob.evaluations();
+  out.pixels = static_cast<int>(prob.size());
+  return out;
+}
+
+}  // namespace rk::attitude
