@@ -11,6 +11,7 @@
 // noise per pixel, 8-bit rounding added as 1/12 DN²). J = Σ_pixels ∂s/∂θ ∂s/∂θᵀ / σ²; σ(yaw) = √(J⁻¹)₃₃.
 // No unbiased estimator working on one frame — whatever points it extracts — has a smaller RMS error. Mean over
 // N random sub-pixel phases. Theodolite pointing errors are excluded (they are Table 2's, not the image's).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -33,7 +34,8 @@ using geo::RadToDeg;
 namespace {
 
 constexpr double kAz = 326.2, kYaw = 76.211, kPitch = 31.257;  // as bench/cylinder_tables.cc
-constexpr int kParams = 9;  // tail ENU (3), yaw, pitch, body DN, sky DN, sky gradient DN, nose-cone length
+// tail ENU (3), yaw, pitch, body DN, sky DN, sky gradient DN | nose-cone length | PSF σ, body shading DN
+constexpr int kParams = 11;
 
 struct Scene {
   sim::TheodoliteFrameTruth truth;
@@ -68,6 +70,8 @@ Scene Apply(const Scene& base, const double* d, const camera::CameraModel& cam) 
   s.render.sky_dn += d[6];
   s.render.sky_gradient_dn += d[7];
   s.shape.nose_length_m += d[8];
+  s.render.psf_sigma_px += d[9];
+  s.render.shading_dn += d[10];
   s.truth.points = sim::SilhouettePointsOf(s.truth.pose, s.shape);
   const double A = s.truth.boresight_az_rad, E = s.truth.boresight_el_rad;
   s.truth.nose_px = *cam.ProjectEnu(s.truth.points.nose, A, E);
@@ -92,16 +96,32 @@ cv::Mat Signal(const Scene& s, const camera::CameraModel& cam) {
   cov.convertTo(a, CV_64F);
   const int k = 2 * static_cast<int>(std::ceil(4.0 * o.psf_sigma_px)) + 1;
   cv::GaussianBlur(a, a, cv::Size(k, k), o.psf_sigma_px, o.psf_sigma_px, cv::BORDER_CONSTANT);
-  out += a.mul(o.body_dn - out);
+  // Body level with the renderer's shading across the image axis (zero by default; a nuisance here).
+  const Eigen::Vector2d tail = 0.5 * (s.truth.tail1_px + s.truth.tail2_px);
+  const Eigen::Vector2d dir = (s.truth.nose_px - tail).normalized(), nrm(-dir.y(), dir.x());
+  const double w = 0.5 * (s.truth.tail1_px - s.truth.tail2_px).norm();
+  for (int y = 0; y < H; ++y) {
+    double* row = out.ptr<double>(y);
+    const double* al = a.ptr<double>(y);
+    for (int x = 0; x < W; ++x) {
+      if (al[x] == 0.0) continue;
+      const double v = std::clamp((Eigen::Vector2d(x, y) - tail).dot(nrm) / w, -1.0, 1.0);
+      row[x] += al[x] * (o.body_dn + o.shading_dn * v - row[x]);
+    }
+  }
   return out;
 }
 
-// σ(yaw), σ(pitch) in degrees for one scene.
-Eigen::Vector4d Bound(const Scene& s, const camera::CameraModel& cam, double read_dn, double gain) {
+// σ(yaw), σ(pitch) in degrees for one scene: nose shape known; nose-cone length unknown; also the PSF σ and
+// a body shading unknown (what rk-attitude cylinder --video faces: it fits both).
+Eigen::Matrix<double, 6, 1> Bound(const Scene& s, const camera::CameraModel& cam, double read_dn, double gain) {
   const double R = s.truth.pose.tail_centre_enu.norm();
-  // Steps move the outline by ~0.05–0.3 px: the bound is stable to 2 % for steps 1–3× these (smaller ones
-  // reach the float rounding of the coverage and the rim sampling).
-  const double step[kParams] = {2e-6 * R, 2e-6 * R, 2e-6 * R, 2e-5, 2e-5, 0.5, 0.5, 0.5, 2e-6 * R};
+  // Steps move the outline by ≤ 0.02 px (as rk-attitude cylinder's image fit, whose own Fisher information is
+  // stable for 0.2–5× its steps): the bound agrees to 4 % between 0.2× and 1× these; from ~5× up the
+  // differences stop being derivatives of the outline and the "bound" falls (by 25 % at 5×; the 0.27-px
+  // steps of the 2026-11-22 version gave 0.039° instead of 0.053° at 276 px).
+  const double px = 0.02 * R / cam.fx();
+  const double step[kParams] = {px, px, px, px / 2.5, px / 2.5, 0.5, 0.5, 0.5, px, 0.02, 0.5};
   const cv::Mat s0 = Signal(s, cam);
   std::vector<cv::Mat> g(kParams);
   for (int k = 0; k < kParams; ++k) {
@@ -122,10 +142,14 @@ Eigen::Vector4d Bound(const Scene& s, const camera::CameraModel& cam, double rea
       J.noalias() += v * v.transpose() / var;
     }
   }
-  // Nose-cone length unknown (rk-attitude is given only length and diameter) and known.
-  const Eigen::Matrix<double, kParams, kParams> C = J.inverse();
-  const Eigen::Matrix<double, kParams - 1, kParams - 1> Ck = J.topLeftCorner<kParams - 1, kParams - 1>().inverse();
-  return {RadToDeg(std::sqrt(C(3, 3))), RadToDeg(std::sqrt(C(4, 4))), RadToDeg(std::sqrt(Ck(3, 3))), RadToDeg(std::sqrt(Ck(4, 4)))};
+  Eigen::Matrix<double, 6, 1> out;
+  int col = 0;
+  for (int n : {8, 9, 11}) {  // the first n parameters unknown, the others known
+    const Eigen::MatrixXd C = J.topLeftCorner(n, n).inverse();
+    out(col++) = RadToDeg(std::sqrt(C(3, 3)));
+    out(col++) = RadToDeg(std::sqrt(C(4, 4)));
+  }
+  return out;
 }
 
 }  // namespace
@@ -164,13 +188,12 @@ int main(int argc, char** argv) {
 
   std::printf("Single-frame Cramer-Rao bound of yaw, pitch from the rendered image (read %.2f DN, %.0f e-/DN, PSF %.2f px, "
               "8 bit; %d sub-pixel phases)\n", ro.sensor.read_noise_dn, ro.sensor.gain_e_per_dn, ro.psf_sigma_px, phases);
-  std::printf("%-14s %7s | %-13s | %-13s | %-15s | %-15s | %s\n", "row", "R m", "paper dth dph", "1/4 paper", "nose known",
-              "nose unknown",
-              "1/4 paper reachable, nose unknown (yaw, pitch)");
+  std::printf("%-14s %7s | %-13s | %-13s | %-15s | %-15s | %-15s | %s\n", "row", "R m", "paper dth dph", "1/4 paper",
+              "nose known", "nose unknown", "+PSF, shading", "1/4 paper reachable, nose unknown (yaw, pitch)");
   std::mt19937_64 rng(4);
   std::uniform_real_distribution<double> U(-0.5, 0.5);
   for (const Row& r : rows) {
-    Eigen::Vector4d var = Eigen::Vector4d::Zero();
+    Eigen::Matrix<double, 6, 1> var = Eigen::Matrix<double, 6, 1>::Zero();
     for (int k = 0; k < phases; ++k) {
       Scene s;
       s.render = ro;
@@ -182,12 +205,13 @@ int main(int argc, char** argv) {
       s.truth.boresight_el_rad = ae.el_rad - U(rng) * 20 / cam.fy();
       const double zero[kParams] = {0};
       s = Apply(s, zero, cam);
-      const Eigen::Vector4d b = Bound(s, cam, ro.sensor.read_noise_dn, ro.sensor.gain_e_per_dn);
+      const Eigen::Matrix<double, 6, 1> b = Bound(s, cam, ro.sensor.read_noise_dn, ro.sensor.gain_e_per_dn);
       var += b.cwiseProduct(b);
     }
-    const Eigen::Vector4d b = (var / phases).cwiseSqrt();
-    std::printf("%-14s %7.0f | %6.3f %6.3f | %6.3f %6.3f | %7.4f %7.4f | %7.4f %7.4f | %s, %s\n", r.name.c_str(), r.R, r.p_th, r.p_ph,
-                r.p_th / 4, r.p_ph / 4, b(2), b(3), b(0), b(1), b(0) <= r.p_th / 4 ? "yes" : "NO", b(1) <= r.p_ph / 4 ? "yes" : "NO");
+    const Eigen::Matrix<double, 6, 1> b = (var / phases).cwiseSqrt();
+    std::printf("%-14s %7.0f | %6.3f %6.3f | %6.3f %6.3f | %7.4f %7.4f | %7.4f %7.4f | %7.4f %7.4f | %s, %s\n", r.name.c_str(), r.R,
+                r.p_th, r.p_ph, r.p_th / 4, r.p_ph / 4, b(0), b(1), b(2), b(3), b(4), b(5), b(2) <= r.p_th / 4 ? "yes" : "NO",
+                b(3) <= r.p_ph / 4 ? "yes" : "NO");
   }
   return 0;
 }

@@ -21,13 +21,16 @@ constexpr int kLinear = 5;     // sky s0, s1, s2; body b0, b1
 using Params = Eigen::Matrix<double, kNonlinear, 1>;
 
 constexpr double kMinSigmaPx = 0.05, kMaxSigmaPx = 5.0;
+constexpr double kMaxAxisStepRad = 0.0175;
 
 // Everything a residual evaluation needs that does not change during the fit.
 class Problem {
  public:
   Problem(const cv::Mat& window, cv::Rect roi, const camera::CameraModel& cam, double az, double el,
-          const CylinderTarget& target, int rim_samples, int kernel_size)
-      : roi_(roi), cam_(cam), az_(az), el_(el), target_(target), rim_samples_(rim_samples), kernel_size_(kernel_size) {
+          const CylinderTarget& target, int rim_samples, int kernel_size, const Eigen::Vector3d& origin,
+          const Eigen::Matrix3d& basis)
+      : roi_(roi), cam_(cam), az_(az), el_(el), target_(target), rim_samples_(rim_samples), kernel_size_(kernel_size),
+        origin_(origin), basis_(basis) {
     data_.resize(static_cast<Eigen::Index>(roi.area()));
     xs_.resize(data_.size());
     ys_.resize(data_.size());
@@ -39,6 +42,9 @@ class Problem {
         ys_(k) = roi.height > 1 ? 2.0 * i / (roi.height - 1) - 1.0 : 0.0;
       }
     }
+    sw_ = Eigen::VectorXd::Ones(data_.size());
+    wdata_ = data_;
+    C_.resize(data_.size(), kLinear);
   }
 
   Eigen::Index size() const { return data_.size(); }
@@ -48,7 +54,7 @@ class Problem {
   bool Residual(const Params& p, Eigen::VectorXd* r, Eigen::Matrix<double, kLinear, 1>* lin = nullptr) {
     ++evaluations_;
     sim::CylinderPose pose;
-    pose.tail_centre_enu = p.head<3>();
+    pose.tail_centre_enu = TailCentre(p);
     pose.yaw_rad = p(3);
     pose.pitch_rad = p(4);
     sim::CylinderShape shape;
@@ -74,37 +80,36 @@ class Problem {
     const Eigen::Vector2d nrm(-dir.y(), dir.x());
     const double w = std::max(0.5 * (*tail1 - *tail2).norm(), 1e-6);
 
-    a_.resize(size());
-    v_.resize(size());
-    Eigen::Matrix<double, kLinear, kLinear> N = Eigen::Matrix<double, kLinear, kLinear>::Zero();
-    Eigen::Matrix<double, kLinear, 1> b = Eigen::Matrix<double, kLinear, 1>::Zero();
+    // Design matrix of the linear parameters (whitened), then their weighted least squares.
     for (int i = 0, k = 0; i < roi_.height; ++i) {
       const double* row = alpha.ptr<double>(i);
       for (int j = 0; j < roi_.width; ++j, ++k) {
         const double a = row[j];
-        const Eigen::Vector2d q(roi_.x + j, roi_.y + i);
-        const double v = std::clamp((q - tail).dot(nrm) / w, -1.0, 1.0);
-        a_(k) = a;
-        v_(k) = v;
-        Eigen::Matrix<double, kLinear, 1> c;
-        c << 1.0 - a, (1.0 - a) * xs_(k), (1.0 - a) * ys_(k), a, a * v;
-        N.noalias() += c * c.transpose();
-        b.noalias() += c * data_(k);
+        const double v = std::clamp((Eigen::Vector2d(roi_.x + j, roi_.y + i) - tail).dot(nrm) / w, -1.0, 1.0);
+        C_.row(k) << 1.0 - a, (1.0 - a) * xs_(k), (1.0 - a) * ys_(k), a, a * v;
+        C_.row(k) *= sw_(k);
       }
     }
-    const Eigen::Matrix<double, kLinear, 1> x = N.ldlt().solve(b);
+    const Eigen::Matrix<double, kLinear, kLinear> N = C_.transpose() * C_;
+    const Eigen::Matrix<double, kLinear, 1> x = N.ldlt().solve(C_.transpose() * wdata_);
     if (!x.allFinite()) return false;
-    r->resize(size());
-    for (Eigen::Index k = 0; k < size(); ++k) {
-      const double a = a_(k);
-      const double model = (1.0 - a) * (x(0) + x(1) * xs_(k) + x(2) * ys_(k)) + a * (x(3) + x(4) * v_(k));
-      (*r)(k) = data_(k) - model;
-    }
+    *r = wdata_ - C_ * x;
     if (lin) *lin = x;
     return true;
   }
 
+  // Weights 1/(c0 + c1 · model) for the noise variance of each pixel (read + shot noise), from the model values
+  // `model` (DN).
+  void SetWeights(const Eigen::VectorXd& model, double c0, double c1) {
+    sw_ = (c0 + c1 * model.array()).max(1e-6 * c0).rsqrt().matrix();
+    wdata_ = sw_.cwiseProduct(data_);
+  }
+  // Unwhitened model values for whitened residuals r.
+  Eigen::VectorXd Model(const Eigen::VectorXd& r) const { return data_ - r.cwiseQuotient(sw_); }
+  Eigen::VectorXd Unwhiten(const Eigen::VectorXd& r) const { return r.cwiseQuotient(sw_); }
+
   int evaluations() const { return evaluations_; }
+  Eigen::Vector3d TailCentre(const Params& p) const { return origin_ + basis_ * p.head<3>(); }
 
  private:
   cv::Rect roi_;
@@ -112,7 +117,10 @@ class Problem {
   double az_, el_;
   CylinderTarget target_;
   int rim_samples_, kernel_size_;
-  Eigen::VectorXd data_, xs_, ys_, a_, v_;
+  Eigen::Vector3d origin_;
+  Eigen::Matrix3d basis_;
+  Eigen::VectorXd data_, xs_, ys_, sw_, wdata_;
+  Eigen::Matrix<double, Eigen::Dynamic, kLinear> C_;
   int evaluations_ = 0;
 };
 
@@ -157,32 +165,34 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
   shape0.nose_length_m = 0.25 * target.length_m;
   const std::vector<Eigen::Vector2d> poly0 = sim::SilhouettePolygon(cam, pose0, shape0, az_rad, el_rad, 64);
   if (poly0.size() < 3) return out;
-  double x0 = poly0[0].x(), x1 = x0, y0 = poly0[0].y(), y1 = y0;
-  for (const auto& q : poly0) {
-    x0 = std::min(x0, q.x());
-    x1 = std::max(x1, q.x());
-    y0 = std::min(y0, q.y());
-    y1 = std::max(y1, q.y());
-  }
-  if (x0 < 0 || y0 < 0 || x1 > frame.cols - 1 || y1 > frame.rows - 1) return out;
+  const cv::Rect outline = sim::PolygonWindow(poly0, 0);
+  if (outline.x < 0 || outline.y < 0 || outline.br().x > frame.cols || outline.br().y > frame.rows) return out;
   const double sigma_cap = std::max(2.0 * opt.initial_psf_sigma_px, 1.5);
   const int margin = static_cast<int>(std::ceil(4.0 * sigma_cap + opt.margin_px));
-  cv::Rect roi(static_cast<int>(std::floor(x0)) - margin, static_cast<int>(std::floor(y0)) - margin, 0, 0);
-  roi.width = static_cast<int>(std::ceil(x1)) + margin - roi.x + 1;
-  roi.height = static_cast<int>(std::ceil(y1)) + margin - roi.y + 1;
+  cv::Rect roi = sim::PolygonWindow(poly0, margin);
   roi &= cv::Rect(0, 0, frame.cols, frame.rows);
   cv::Mat window;
   frame(roi).convertTo(window, CV_64F);
   const int kernel = 2 * static_cast<int>(std::ceil(4.0 * sigma_cap)) + 1;
-  Problem prob(window, roi, cam, az_rad, el_rad, target, opt.rim_samples, kernel);
+  // Tail centre as offsets from its start along two directions across the line of sight and one along it: the
+  // range is seen far more weakly (through the image scale) than the lateral position, and with its own
+  // coordinate Marquardt's scaling damps it by its own curvature (in ENU coordinates LM crept along the
+  // range–yaw valley for ten iterations).
+  const Eigen::Vector3d los = tail_centre_enu.normalized();
+  Eigen::Vector3d across = los.cross(Eigen::Vector3d::UnitZ());
+  if (across.norm() < 1e-6) across = los.cross(Eigen::Vector3d::UnitX());
+  across.normalize();
+  Eigen::Matrix3d basis;
+  basis << across, los.cross(across), los;
+  Problem prob(window, roi, cam, az_rad, el_rad, target, opt.rim_samples, kernel, tail_centre_enu, basis);
 
   // Steps that move the outline by ~0.02 px: the central-difference steps and the parameter scaling.
   const double R = tail_centre_enu.norm(), f = cam.fx();
   Params h;
-  h << 0.02 * R / f, 0.02 * R / f, 0.02 * R / f, 0.02 * R / (f * target.length_m), 0.02 * R / (f * target.length_m),
+  h << 0.02 * R / f, 0.02 * R / f, 0.02 * R * R / (f * target.length_m), 0.02 * R / (f * target.length_m), 0.02 * R / (f * target.length_m),
       0.02 * R / f, 0.02;
   Params p;
-  p << tail_centre_enu, yaw_rad, pitch_rad, 0.25 * target.length_m, opt.initial_psf_sigma_px;
+  p << 0.0, 0.0, 0.0, yaw_rad, pitch_rad, 0.25 * target.length_m, opt.initial_psf_sigma_px;
 
   // Nose-cone length: best of a coarse scan (the cost is flat in it far from the truth only near the tip).
   Eigen::VectorXd r, rt;
@@ -201,42 +211,74 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
 
   Eigen::MatrixXd J(prob.size(), kNonlinear);
   Eigen::Matrix<double, kNonlinear, kNonlinear> A;
-  double lambda = 1e-3;
-  bool converged = false;
   int it = 0;
-  for (; it < opt.max_iterations && !converged; ++it) {
-    for (int c = 0; c < kNonlinear; ++c) {
-      Params pp = p, pm = p;
-      pp(c) += h(c);
-      pm(c) -= h(c);
-      Eigen::VectorXd rp, rm;
-      if (!prob.Residual(pp, &rp) || !prob.Residual(pm, &rm)) return out;
-      J.col(c) = (rp - rm) / 2.0;  // per step h(c): scaled units
-    }
-    A.noalias() = J.transpose() * J;
-    const Params g = J.transpose() * r;
-    bool accepted = false;
-    for (int tries = 0; tries < 10 && !accepted; ++tries) {
-      Eigen::Matrix<double, kNonlinear, kNonlinear> M = A;
-      M.diagonal() += lambda * A.diagonal();
-      const Params du = -M.ldlt().solve(g);
-      if (!du.allFinite()) return out;
-      Params q = p + du.cwiseProduct(h);
-      q(6) = std::clamp(q(6), kMinSigmaPx, kMaxSigmaPx);
-      if (prob.Residual(q, &rt) && rt.squaredNorm() <= cost) {
-        const double drop = cost - rt.squaredNorm();
-        p = q;
-        r = rt;
-        cost = r.squaredNorm();
-        lambda = std::max(lambda / 4.0, 1e-9);
-        accepted = true;
-        // Converged: the step moves the outline by < 2e-5 px or the cost no longer falls.
-        if (du.cwiseAbs().maxCoeff() < 1e-3 || drop <= 1e-12 * cost) converged = true;
-      } else {
-        lambda *= 8.0;
+  // Levenberg–Marquardt from p; false if a model cannot be evaluated. Converged: a step moves the outline by
+  // less than step_tol × 0.02 px, or lowers the cost by less than drop_tol × the residual variance (a
+  // parameter change of ~sqrt(drop_tol) of its σ; the range along the line of sight is too weakly seen for a
+  // step test alone).
+  const double n_px = static_cast<double>(prob.size());
+  const auto levenberg_marquardt = [&](int max_iterations, double step_tol, double drop_tol, bool* converged) {
+    double lambda = 1e-2;
+    *converged = false;
+    for (int k = 0; k < max_iterations && !*converged; ++k, ++it) {
+      for (int c = 0; c < kNonlinear; ++c) {
+        Params pp = p, pm = p;
+        pp(c) += h(c);
+        pm(c) -= h(c);
+        Eigen::VectorXd rp, rm;
+        if (!prob.Residual(pp, &rp) || !prob.Residual(pm, &rm)) return false;
+        J.col(c) = (rp - rm) / 2.0;  // per step h(c): scaled units
       }
+      A.noalias() = J.transpose() * J;
+      const Params g = J.transpose() * r;
+      bool accepted = false;
+      for (int tries = 0; tries < 10 && !accepted; ++tries) {
+        Eigen::Matrix<double, kNonlinear, kNonlinear> M = A;
+        M.diagonal() += lambda * A.diagonal();
+        const Params du = -M.ldlt().solve(g);
+        if (!du.allFinite()) return false;
+        Params q = p + du.cwiseProduct(h);
+        // A step turning the axis by more than 1° leaves the start's basin (the mirror minimum is a few degrees
+        // away near side-on): damp more instead.
+        if (std::abs(q(3) - p(3)) > kMaxAxisStepRad || std::abs(q(4) - p(4)) > kMaxAxisStepRad) {
+          lambda *= 8.0;
+          continue;
+        }
+        q(6) = std::clamp(q(6), kMinSigmaPx, kMaxSigmaPx);
+        if (prob.Residual(q, &rt) && rt.squaredNorm() <= cost) {
+          const double drop = cost - rt.squaredNorm();
+          p = q;
+          r = rt;
+          cost = r.squaredNorm();
+          lambda = std::max(lambda / 4.0, 1e-12);
+          accepted = true;
+          if (du.cwiseAbs().maxCoeff() < step_tol || drop <= drop_tol * cost / n_px) *converged = true;
+        } else {
+          lambda *= 8.0;
+        }
+      }
+      if (!accepted) *converged = true;  // no descent direction left: at the minimum to rounding
     }
-    if (!accepted) converged = true;  // no descent direction left: at the minimum to rounding
+    return true;
+  };
+
+  // Pass 1 unweighted; then the noise variance per pixel modelled as c0 + c1 · signal (read + shot noise:
+  // the sky and the body differ by their shot noise) from the squared residuals, and pass 2 weighted by it —
+  // the maximum-likelihood fit for that noise.
+  // Pass 1 stops early (the weights need only a near solution: 0.1 σ), pass 2 at 0.01 σ.
+  bool converged = false;
+  if (!levenberg_marquardt(opt.max_iterations, 1e-2, 1e-2, &converged)) return out;
+  {
+    const Eigen::VectorXd m = prob.Model(r), u2 = prob.Unwhiten(r).array().square().matrix();
+    Eigen::Matrix2d Nv;
+    Nv << static_cast<double>(m.size()), m.sum(), m.sum(), m.squaredNorm();
+    const Eigen::Vector2d c = Nv.ldlt().solve(Eigen::Vector2d(u2.sum(), m.dot(u2)));
+    const double mean = u2.mean();
+    const bool usable = c.allFinite() && c(1) >= 0.0 && c(0) > 0.05 * mean;
+    prob.SetWeights(m, usable ? c(0) : mean, usable ? c(1) : 0.0);
+    if (!prob.Residual(p, &r)) return out;
+    cost = r.squaredNorm();
+    if (!levenberg_marquardt(opt.max_iterations, 1e-3, 1e-4, &converged)) return out;
   }
 
   // Final covariance from the last Jacobian (at the previous iterate: within 2e-5 px of the solution).
@@ -249,7 +291,7 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
   if (!prob.Residual(p, &r, &lin)) return out;
 
   out.status = converged ? CylinderImageFitStatus::kConverged : CylinderImageFitStatus::kNotConverged;
-  out.tail_centre_enu = p.head<3>();
+  out.tail_centre_enu = prob.TailCentre(p);
   out.yaw_rad = geo::WrapTwoPi(p(3));
   out.pitch_rad = p(4);
   out.axis_enu = geo::DirectionFromAzEl(p(3), p(4));
@@ -257,7 +299,7 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
   out.psf_sigma_px = p(6);
   out.sigma_yaw_rad = std::sqrt(s2 * Ai(3, 3)) * h(3);
   out.sigma_pitch_rad = std::sqrt(s2 * Ai(4, 4)) * h(4);
-  out.rms_dn = std::sqrt(r.squaredNorm() / static_cast<double>(prob.size()));
+  out.rms_dn = std::sqrt(prob.Unwhiten(r).squaredNorm() / static_cast<double>(prob.size()));
   out.contrast_dn = lin(3) - lin(0);
   out.iterations = it;
   out.evaluations = prob.evaluations();

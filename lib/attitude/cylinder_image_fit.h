@@ -15,16 +15,20 @@
 //   α = G_σ ∗ coverage: the exact area of each pixel covered by the projected solid (the convex hull of the
 //   tail rim, the nose-cone base rim and the tip; sim::SilhouettePolygon / sim::RasterizeConvexPolygon, the same
 //   geometry as rk-sim theodolite's renderer) blurred by a Gaussian PSF of σ px.
-// Unknowns: the tail-rim centre (station ENU, 3), yaw, pitch, the nose-cone length (the target file gives only
+// Unknowns: the tail-rim centre (3: two offsets across the line of sight and one along it, which the image sees
+// only through its scale), yaw, pitch, the nose-cone length (the target file gives only
 // length and diameter: the cone length is a nuisance, started from the best of a coarse scan) and σ (7
 // nonlinear); s0..s2, b0, b1 (5 linear, eliminated in closed form at every evaluation: variable projection).
 // Levenberg–Marquardt with Marquardt's diagonal scaling, Jacobian by central differences of the reduced
-// residual. The lines of sight come from camera::CameraModel::ProjectEnu (SPEC.md §3 exactly: distortion,
+// residual, no step turning the axis by more than 1° (near side-on a mirror minimum of equal cost lies a few
+// degrees away: the fit stays in the basin of the solution it starts from). The lines of sight come from camera::CameraModel::ProjectEnu (SPEC.md §3 exactly: distortion,
 // mount, boresight).
 //
-// Covariance: σ̂² (JᵀJ)⁻¹ with σ̂² the residual variance — the yaw/pitch σ columns of the fit. Unweighted (the
-// noise variance of sky and body differ by their shot noise; the estimator stays unbiased, slightly less
-// efficient than the bound, which weights them).
+// Noise: a first pass is unweighted; the per-pixel noise variance is then modelled as c0 + c1 · signal (read +
+// shot noise, so sky and body pixels differ) by regressing the squared residuals on the model, and a second pass
+// is weighted by it — maximum likelihood for Gaussian noise of that variance.
+// Covariance: σ̂² (JᵀJ)⁻¹ of the weighted problem (σ̂² ≈ 1 when the noise model holds) — the yaw/pitch σ
+// columns of the fit.
 // Limits: a conical nose is assumed (an ogive biases the tip); the target must be wholly in the frame.
 #pragma once
 

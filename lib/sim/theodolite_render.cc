@@ -56,6 +56,21 @@ void ClipAxis(const std::vector<Eigen::Vector2d>& in, int axis, double v, bool k
 
 }  // namespace
 
+cv::Rect PolygonWindow(const std::vector<Eigen::Vector2d>& poly, int margin) {
+  if (poly.empty()) return {};
+  double x0 = poly[0].x(), x1 = x0, y0 = poly[0].y(), y1 = y0;
+  for (const auto& p : poly) {
+    x0 = std::min(x0, p.x());
+    x1 = std::max(x1, p.x());
+    y0 = std::min(y0, p.y());
+    y1 = std::max(y1, p.y());
+  }
+  cv::Rect r(static_cast<int>(std::floor(x0)) - margin, static_cast<int>(std::floor(y0)) - margin, 0, 0);
+  r.width = static_cast<int>(std::ceil(x1)) + margin - r.x + 1;
+  r.height = static_cast<int>(std::ceil(y1)) + margin - r.y + 1;
+  return r;
+}
+
 double PolygonArea(const std::vector<Eigen::Vector2d>& poly) {
   double s = 0.0;
   for (std::size_t i = 0, n = poly.size(); i < n; ++i) {
@@ -162,17 +177,8 @@ cv::Mat RenderSilhouetteFrame(const camera::CameraModel& cam, const TheodoliteFr
   }
   const std::vector<Eigen::Vector2d> poly = SilhouettePolygon(cam, f.pose, shape, f.boresight_az_rad, f.boresight_el_rad);
   if (poly.size() >= 3) {
-    double x0 = poly[0].x(), x1 = x0, y0 = poly[0].y(), y1 = y0;
-    for (const auto& p : poly) {
-      x0 = std::min(x0, p.x());
-      x1 = std::max(x1, p.x());
-      y0 = std::min(y0, p.y());
-      y1 = std::max(y1, p.y());
-    }
     const int margin = static_cast<int>(std::ceil(5.0 * o.psf_sigma_px)) + 2;
-    cv::Rect roi(static_cast<int>(std::floor(x0)) - margin, static_cast<int>(std::floor(y0)) - margin, 0, 0);
-    roi.width = static_cast<int>(std::ceil(x1)) + margin - roi.x + 1;
-    roi.height = static_cast<int>(std::ceil(y1)) + margin - roi.y + 1;
+    cv::Rect roi = PolygonWindow(poly, margin);
     roi &= cv::Rect(0, 0, W, H);
     if (roi.area() > 0) {
       cv::Mat cov = RasterizeConvexPolygon(poly, roi);

@@ -32,6 +32,10 @@ std::vector<Eigen::Vector2d> SilhouettePolygon(const camera::CameraModel& camera
                                                const CylinderShape& shape, double az_rad, double el_rad,
                                                int rim_samples = 2048);
 
+// Whole-pixel window holding the polygon's bounding box grown by `margin` px on each side (not clipped to any
+// image); empty for an empty polygon.
+cv::Rect PolygonWindow(const std::vector<Eigen::Vector2d>& poly, int margin);
+
 // Area of a polygon (shoelace; positive for counter-clockwise in x-right/y-up, so negative for CCW
 // in image coordinates: the absolute value is returned).
 double PolygonArea(const std::vector<Eigen::Vector2d>& poly);
