@@ -3,11 +3,14 @@
 //                                 exact rays and 0.3-px noisy rays
 //   BM_Jacobian                   the autodiff Jacobian (10 inputs → 5 outputs) of one frame
 //   BM_ExtractSilhouette          rk-extract silhouette on one rendered 1536×1536 frame (in memory)
+//   BM_ImageFit                   rk-attitude cylinder --video's image fit of one such frame (298-px image),
+//                                 from the three-point solution of the extracted points
 #include <benchmark/benchmark.h>
 
 #include <random>
 
 #include "attitude/cylinder_budget.h"
+#include "attitude/cylinder_image_fit.h"
 #include "attitude/cylinder_solve.h"
 #include "extract/silhouette.h"
 #include "geo/angles.h"
@@ -94,6 +97,36 @@ void BM_ExtractSilhouette(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_ExtractSilhouette)->Unit(benchmark::kMillisecond);
+
+void BM_ImageFit(benchmark::State& state) {
+  sim::TheodoliteSimOptions o;
+  o.duration_s = 0.0;
+  const sim::TheodoliteSimulator sim(o);
+  const sim::TheodoliteFrameTruth& f = sim.frames()[0];
+  std::mt19937_64 rng(3);
+  const cv::Mat img = sim::RenderSilhouetteFrame(o.camera, f, o.shape, sim::SilhouetteRenderOptions{}, rng);
+  const extract::SilhouetteResult ex = extract::ExtractSilhouette(img, extract::SilhouetteOptions{});
+  const double A = f.boresight_az_rad, E = f.boresight_el_rad;
+  const attitude::CylinderRays rays{o.camera.RayEnu(ex.px[0], A, E), o.camera.RayEnu(ex.px[1], A, E),
+                                    o.camera.RayEnu(ex.px[2], A, E)};
+  const attitude::CylinderTarget target{o.shape.length_m, o.shape.diameter_m};
+  attitude::CylinderSolveOptions so;
+  so.max_miss_rad = 1.0 / o.camera.fx();
+  const auto sols = attitude::SolveCylinder(rays, target, so).solutions;
+  const attitude::CylinderSolution* start = &sols.front();  // the one nearest the truth, as continuity would hold
+  for (const auto& c : sols)
+    if (attitude::AxisAngle(c.axis_enu, f.pose.Axis()) < attitude::AxisAngle(start->axis_enu, f.pose.Axis())) start = &c;
+  attitude::CylinderImageFitResult r;
+  for (auto _ : state) {
+    r = attitude::FitCylinderImage(img, o.camera, A, E, target, start->tail_centre_enu, start->yaw_rad, start->pitch_rad,
+                                   attitude::CylinderImageFitOptions{});
+    benchmark::DoNotOptimize(r.yaw_rad);
+  }
+  state.counters["evaluations"] = r.evaluations;
+  state.counters["iterations"] = r.iterations;
+  state.counters["window_px"] = r.pixels;
+}
+BENCHMARK(BM_ImageFit)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 
