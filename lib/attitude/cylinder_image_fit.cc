@@ -29,8 +29,15 @@ class Problem {
   Problem(const cv::Mat& window, cv::Rect roi, const camera::CameraModel& cam, double az, double el,
           const CylinderTarget& target, int rim_samples, int kernel_size, const Eigen::Vector3d& origin,
           const Eigen::Matrix3d& basis)
-      : roi_(roi), cam_(cam), az_(az), el_(el), target_(target), rim_samples_(rim_samples), kernel_size_(kernel_size),
-        origin_(origin), basis_(basis) {
+      : roi_(roi),
+        cam_(cam),
+        az_(az),
+        el_(el),
+        target_(target),
+        rim_samples_(rim_samples),
+        kernel_size_(kernel_size),
+        origin_(origin),
+        basis_(basis) {
     data_.resize(static_cast<Eigen::Index>(roi.area()));
     xs_.resize(data_.size());
     ys_.resize(data_.size());
@@ -61,7 +68,8 @@ class Problem {
     shape.length_m = target_.length_m;
     shape.diameter_m = target_.diameter_m;
     shape.nose_length_m = std::clamp(p(5), 0.02 * target_.length_m, 0.98 * target_.length_m);
-    const std::vector<Eigen::Vector2d> poly = sim::SilhouettePolygon(cam_, pose, shape, az_, el_, rim_samples_);
+    const std::vector<Eigen::Vector2d> poly =
+        sim::SilhouettePolygon(cam_, pose, shape, az_, el_, rim_samples_);
     if (poly.size() < 3) return false;
     cv::Mat cov = sim::RasterizeConvexPolygon(poly, roi_), alpha;
     cov.convertTo(alpha, CV_64F);
@@ -98,8 +106,8 @@ class Problem {
     return true;
   }
 
-  // Weights 1/(c0 + c1 · model) for the noise variance of each pixel (read + shot noise), from the model values
-  // `model` (DN).
+  // Weights 1/(c0 + c1 · model) for the noise variance of each pixel (read + shot noise), from the model
+  // values `model` (DN).
   void SetWeights(const Eigen::VectorXd& model, double c0, double c1) {
     sw_ = (c0 + c1 * model.array()).max(1e-6 * c0).rsqrt().matrix();
     wdata_ = sw_.cwiseProduct(data_);
@@ -140,19 +148,23 @@ bool CylinderImageFitOptions::Check(std::string* why) const {
 
 const char* CylinderImageFitStatusName(CylinderImageFitStatus s) {
   switch (s) {
-    case CylinderImageFitStatus::kConverged: return "converged";
-    case CylinderImageFitStatus::kNotConverged: return "not_converged";
-    case CylinderImageFitStatus::kFailed: return "failed";
+    case CylinderImageFitStatus::kConverged:
+      return "converged";
+    case CylinderImageFitStatus::kNotConverged:
+      return "not_converged";
+    case CylinderImageFitStatus::kFailed:
+      return "failed";
   }
   return "failed";
 }
 
 CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::CameraModel& cam, double az_rad,
                                         double el_rad, const CylinderTarget& target,
-                                        const Eigen::Vector3d& tail_centre_enu, double yaw_rad, double pitch_rad,
-                                        const CylinderImageFitOptions& opt) {
+                                        const Eigen::Vector3d& tail_centre_enu, double yaw_rad,
+                                        double pitch_rad, const CylinderImageFitOptions& opt) {
   CylinderImageFitResult out;
-  if (frame.empty() || frame.channels() != 1 || (frame.depth() != CV_8U && frame.depth() != CV_16U)) return out;
+  if (frame.empty() || frame.channels() != 1 || (frame.depth() != CV_8U && frame.depth() != CV_16U))
+    return out;
 
   // Window: the initial outline (nose cone at 1/4 of the length) + 4σ_max + margin, inside the frame.
   sim::CylinderPose pose0;
@@ -166,7 +178,8 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
   const std::vector<Eigen::Vector2d> poly0 = sim::SilhouettePolygon(cam, pose0, shape0, az_rad, el_rad, 64);
   if (poly0.size() < 3) return out;
   const cv::Rect outline = sim::PolygonWindow(poly0, 0);
-  if (outline.x < 0 || outline.y < 0 || outline.br().x > frame.cols || outline.br().y > frame.rows) return out;
+  if (outline.x < 0 || outline.y < 0 || outline.br().x > frame.cols || outline.br().y > frame.rows)
+    return out;
   const double sigma_cap = std::max(2.0 * opt.initial_psf_sigma_px, 1.5);
   const int margin = static_cast<int>(std::ceil(4.0 * sigma_cap + opt.margin_px));
   cv::Rect roi = sim::PolygonWindow(poly0, margin);
@@ -189,8 +202,8 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
   // Steps that move the outline by ~0.02 px: the central-difference steps and the parameter scaling.
   const double R = tail_centre_enu.norm(), f = cam.fx();
   Params h;
-  h << 0.02 * R / f, 0.02 * R / f, 0.02 * R * R / (f * target.length_m), 0.02 * R / (f * target.length_m), 0.02 * R / (f * target.length_m),
-      0.02 * R / f, 0.02;
+  h << 0.02 * R / f, 0.02 * R / f, 0.02 * R * R / (f * target.length_m), 0.02 * R / (f * target.length_m),
+      0.02 * R / (f * target.length_m), 0.02 * R / f, 0.02;
   Params p;
   p << 0.0, 0.0, 0.0, yaw_rad, pitch_rad, 0.25 * target.length_m, opt.initial_psf_sigma_px;
 
@@ -217,7 +230,8 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
   // parameter change of ~sqrt(drop_tol) of its σ; the range along the line of sight is too weakly seen for a
   // step test alone).
   const double n_px = static_cast<double>(prob.size());
-  const auto levenberg_marquardt = [&](int max_iterations, double step_tol, double drop_tol, bool* converged) {
+  const auto levenberg_marquardt = [&](int max_iterations, double step_tol, double drop_tol,
+                                       bool* converged) {
     double lambda = 1e-2;
     *converged = false;
     for (int k = 0; k < max_iterations && !*converged; ++k, ++it) {
@@ -238,8 +252,8 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
         const Params du = -M.ldlt().solve(g);
         if (!du.allFinite()) return false;
         Params q = p + du.cwiseProduct(h);
-        // A step turning the axis by more than 1° leaves the start's basin (the mirror minimum is a few degrees
-        // away near side-on): damp more instead.
+        // A step turning the axis by more than 1° leaves the start's basin (the mirror minimum is a few
+        // degrees away near side-on): damp more instead.
         if (std::abs(q(3) - p(3)) > kMaxAxisStepRad || std::abs(q(4) - p(4)) > kMaxAxisStepRad) {
           lambda *= 8.0;
           continue;

@@ -13,23 +13,22 @@
 //   body = b0 + b1 v (v: signed distance from the image axis over the tail half-width, clamped to [−1, 1]: a
 //   target lit from one side),
 //   α = G_σ ∗ coverage: the exact area of each pixel covered by the projected solid (the convex hull of the
-//   tail rim, the nose-cone base rim and the tip; sim::SilhouettePolygon / sim::RasterizeConvexPolygon, the same
-//   geometry as rk-sim theodolite's renderer) blurred by a Gaussian PSF of σ px.
-// Unknowns: the tail-rim centre (3: two offsets across the line of sight and one along it, which the image sees
-// only through its scale), yaw, pitch, the nose-cone length (the target file gives only
-// length and diameter: the cone length is a nuisance, started from the best of a coarse scan) and σ (7
-// nonlinear); s0..s2, b0, b1 (5 linear, eliminated in closed form at every evaluation: variable projection).
+//   tail rim, the nose-cone base rim and the tip; sim::SilhouettePolygon / sim::RasterizeConvexPolygon, the
+//   same geometry as rk-sim theodolite's renderer) blurred by a Gaussian PSF of σ px.
+// Unknowns: the tail-rim centre (3: two offsets across the line of sight and one along it, which the image
+// sees only through its scale), yaw, pitch, the nose-cone length (the target file gives only length and
+// diameter: the cone length is a nuisance, started from the best of a coarse scan) and σ (7 nonlinear);
+// s0..s2, b0, b1 (5 linear, eliminated in closed form at every evaluation: variable projection).
 // Levenberg–Marquardt with Marquardt's diagonal scaling, Jacobian by central differences of the reduced
 // residual, no step turning the axis by more than 1° (near side-on a mirror minimum of equal cost lies a few
-// degrees away: the fit stays in the basin of the solution it starts from). The lines of sight come from camera::CameraModel::ProjectEnu (SPEC.md §3 exactly: distortion,
-// mount, boresight).
+// degrees away: the fit stays in the basin of the solution it starts from). The lines of sight come from
+// camera::CameraModel::ProjectEnu (SPEC.md §3 exactly: distortion, mount, boresight).
 //
-// Noise: a first pass is unweighted; the per-pixel noise variance is then modelled as c0 + c1 · signal (read +
-// shot noise, so sky and body pixels differ) by regressing the squared residuals on the model, and a second pass
-// is weighted by it — maximum likelihood for Gaussian noise of that variance.
-// Covariance: σ̂² (JᵀJ)⁻¹ of the weighted problem (σ̂² ≈ 1 when the noise model holds) — the yaw/pitch σ
-// columns of the fit.
-// Limits: a conical nose is assumed (an ogive biases the tip); the target must be wholly in the frame.
+// Noise: a first pass is unweighted; the per-pixel noise variance is then modelled as c0 + c1 · signal (read
+// + shot noise, so sky and body pixels differ) by regressing the squared residuals on the model, and a second
+// pass is weighted by it — maximum likelihood for Gaussian noise of that variance. Covariance: σ̂² (JᵀJ)⁻¹ of
+// the weighted problem (σ̂² ≈ 1 when the noise model holds) — the yaw/pitch σ columns of the fit. Limits: a
+// conical nose is assumed (an ogive biases the tip); the target must be wholly in the frame.
 #pragma once
 
 #include <Eigen/Core>
@@ -64,18 +63,18 @@ struct CylinderImageFitResult {
   double nose_cone_length_m = 0.0;
   double psf_sigma_px = 0.0;
   double sigma_yaw_rad = 0.0, sigma_pitch_rad = 0.0;  // from σ̂² (JᵀJ)⁻¹
-  double rms_dn = 0.0;          // residual RMS over the window
-  double contrast_dn = 0.0;     // body − sky at the window centre
+  double rms_dn = 0.0;                                // residual RMS over the window
+  double contrast_dn = 0.0;                           // body − sky at the window centre
   int iterations = 0;
-  int evaluations = 0;          // model renderings
-  int pixels = 0;               // window size
+  int evaluations = 0;  // model renderings
+  int pixels = 0;       // window size
 };
 
 // Refines the pose (tail_centre_enu, yaw, pitch) of `target` seen in `frame` (CV_8UC1 or CV_16UC1; 16-bit
 // values are fitted as they are) with the camera boresight at (az, el).
-CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::CameraModel& camera, double az_rad,
-                                        double el_rad, const CylinderTarget& target,
-                                        const Eigen::Vector3d& tail_centre_enu, double yaw_rad, double pitch_rad,
-                                        const CylinderImageFitOptions& options);
+CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::CameraModel& camera,
+                                        double az_rad, double el_rad, const CylinderTarget& target,
+                                        const Eigen::Vector3d& tail_centre_enu, double yaw_rad,
+                                        double pitch_rad, const CylinderImageFitOptions& options);
 
 }  // namespace rk::attitude

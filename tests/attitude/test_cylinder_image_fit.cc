@@ -21,8 +21,8 @@ using geo::RadToDeg;
 // The fit's own σ on this image is ≈ 0.057° yaw, 0.022° pitch (default sensor, 1.7 DN noise); the
 // Cramér–Rao bound 0.039° / 0.015° (bench/cylinder_crlb). Tolerances: 4σ of one frame.
 constexpr double kYawTolDeg = 0.25, kPitchTolDeg = 0.10;
-// Noise-free 16-bit frame: the model is the renderer's, so only rounding (1/256 DN) and the rim sampling remain:
-// a bias test.
+// Noise-free 16-bit frame: the model is the renderer's, so only rounding (1/256 DN) and the rim sampling
+// remain: a bias test.
 constexpr double kNoiseFreeTolDeg = 0.002;
 
 struct Scene {
@@ -36,7 +36,8 @@ Scene MakeScene(double dx_px, double dy_px) {
   s.cam = sim::Seed004Camera();
   s.cam.width_px = s.cam.height_px = 640;
   s.cam.principal_point_px = {319.5, 319.5};
-  s.truth.pose = sim::PoseAt(1224.0, DegToRad(326.2), DegToRad(16.274), DegToRad(76.211), DegToRad(31.257), s.shape);
+  s.truth.pose =
+      sim::PoseAt(1224.0, DegToRad(326.2), DegToRad(16.274), DegToRad(76.211), DegToRad(31.257), s.shape);
   s.truth.points = sim::SilhouettePointsOf(s.truth.pose, s.shape);
   const Eigen::Vector3d mid = s.truth.pose.tail_centre_enu + 0.5 * s.shape.length_m * s.truth.pose.Axis();
   const geo::AzEl ae = geo::AzElFromEnu(mid);
@@ -52,9 +53,9 @@ Scene MakeScene(double dx_px, double dy_px) {
 CylinderImageFitResult FitFrom(const Scene& s, const cv::Mat& img, double dyaw_deg, double dpitch_deg,
                                const Eigen::Vector3d& dpos_m) {
   return FitCylinderImage(img, s.cam, s.truth.boresight_az_rad, s.truth.boresight_el_rad,
-                          CylinderTarget{s.shape.length_m, s.shape.diameter_m}, s.truth.pose.tail_centre_enu + dpos_m,
-                          s.truth.pose.yaw_rad + DegToRad(dyaw_deg), s.truth.pose.pitch_rad + DegToRad(dpitch_deg),
-                          CylinderImageFitOptions{});
+                          CylinderTarget{s.shape.length_m, s.shape.diameter_m},
+                          s.truth.pose.tail_centre_enu + dpos_m, s.truth.pose.yaw_rad + DegToRad(dyaw_deg),
+                          s.truth.pose.pitch_rad + DegToRad(dpitch_deg), CylinderImageFitOptions{});
 }
 
 TEST(CylinderImageFit, NoiseFreeFrameFromAPerturbedStart) {
@@ -103,7 +104,8 @@ TEST(CylinderImageFit, OutlineLeavingTheFrameOrWrongImageFails) {
   std::mt19937_64 rng(3);
   const cv::Mat img = sim::RenderSilhouetteFrame(s.cam, s.truth, s.shape, ro, rng);
   // A start 2000 px to the side: the outline is not in the frame.
-  const Eigen::Vector3d side = 1224.0 * 2000.0 / s.cam.fx() * Eigen::Vector3d(1, 0, 0).cross(s.truth.pose.tail_centre_enu.normalized());
+  const Eigen::Vector3d side = 1224.0 * 2000.0 / s.cam.fx() *
+                               Eigen::Vector3d(1, 0, 0).cross(s.truth.pose.tail_centre_enu.normalized());
   EXPECT_EQ(FitFrom(s, img, 0, 0, side).status, CylinderImageFitStatus::kFailed);
   EXPECT_EQ(FitFrom(s, cv::Mat(), 0, 0, Eigen::Vector3d::Zero()).status, CylinderImageFitStatus::kFailed);
   cv::Mat colour(640, 640, CV_8UC3, cv::Scalar(0, 0, 0));
