@@ -165,14 +165,18 @@ bool SilhouetteRenderOptions::Check(std::string* why) const {
   return true;
 }
 
-cv::Mat RenderSilhouetteFrame(const camera::CameraModel& cam, const TheodoliteFrameTruth& f, const CylinderShape& shape,
-                              const SilhouetteRenderOptions& o, std::mt19937_64& rng) {
+namespace {
+
+// SilhouetteSignal in arithmetic T (float for the renderer, double for Fisher-information derivatives).
+template <typename T>
+cv::Mat SignalIn(const camera::CameraModel& cam, const TheodoliteFrameTruth& f, const CylinderShape& shape,
+                 const SilhouetteRenderOptions& o) {
   const int W = cam.width_px, H = cam.height_px;
   const double scale = o.sensor.bit_depth == 16 ? 256.0 : 1.0;
-  cv::Mat signal(H, W, CV_32FC1);
+  cv::Mat signal(H, W, cv::DataType<T>::type);
   for (int y = 0; y < H; ++y) {
-    const float v = static_cast<float>(scale * (o.sky_dn + o.sky_gradient_dn * (static_cast<double>(y) / std::max(1, H - 1) - 0.5)));
-    float* row = signal.ptr<float>(y);
+    const T v = static_cast<T>(scale * (o.sky_dn + o.sky_gradient_dn * (static_cast<double>(y) / std::max(1, H - 1) - 0.5)));
+    T* row = signal.ptr<T>(y);
     for (int x = 0; x < W; ++x) row[x] = v;
   }
   const std::vector<Eigen::Vector2d> poly = SilhouettePolygon(cam, f.pose, shape, f.boresight_az_rad, f.boresight_el_rad);
@@ -182,6 +186,7 @@ cv::Mat RenderSilhouetteFrame(const camera::CameraModel& cam, const TheodoliteFr
     roi &= cv::Rect(0, 0, W, H);
     if (roi.area() > 0) {
       cv::Mat cov = RasterizeConvexPolygon(poly, roi);
+      if (cov.type() != cv::DataType<T>::type) cov.convertTo(cov, cv::DataType<T>::type);
       if (o.psf_sigma_px > 0.0) {
         const int k = 2 * static_cast<int>(std::ceil(4.0 * o.psf_sigma_px)) + 1;
         cv::GaussianBlur(cov, cov, cv::Size(k, k), o.psf_sigma_px, o.psf_sigma_px, cv::BORDER_CONSTANT);
@@ -193,18 +198,32 @@ cv::Mat RenderSilhouetteFrame(const camera::CameraModel& cam, const TheodoliteFr
       const Eigen::Vector2d nrm(-dir.y(), dir.x());
       const double w = std::max(0.5 * (f.tail1_px - f.tail2_px).norm(), 1e-6);
       for (int i = 0; i < roi.height; ++i) {
-        const float* c = cov.ptr<float>(i);
-        float* s = signal.ptr<float>(roi.y + i);
+        const T* c = cov.ptr<T>(i);
+        T* s = signal.ptr<T>(roi.y + i);
         for (int j = 0; j < roi.width; ++j) {
-          if (c[j] == 0.0f) continue;
+          if (c[j] == T(0)) continue;
           const Eigen::Vector2d p(roi.x + j, roi.y + i);
           const double v = std::clamp((p - tail).dot(nrm) / w, -1.0, 1.0);
           const double body = scale * (o.body_dn + o.shading_dn * v);
-          s[roi.x + j] += static_cast<float>(c[j] * (body - s[roi.x + j]));
+          s[roi.x + j] += static_cast<T>(c[j] * (body - s[roi.x + j]));
         }
       }
     }
   }
+  return signal;
+}
+
+}  // namespace
+
+cv::Mat SilhouetteSignal(const camera::CameraModel& cam, const TheodoliteFrameTruth& f, const CylinderShape& shape,
+                         const SilhouetteRenderOptions& o, int depth) {
+  return depth == CV_64F ? SignalIn<double>(cam, f, shape, o) : SignalIn<float>(cam, f, shape, o);
+}
+
+cv::Mat RenderSilhouetteFrame(const camera::CameraModel& cam, const TheodoliteFrameTruth& f, const CylinderShape& shape,
+                              const SilhouetteRenderOptions& o, std::mt19937_64& rng) {
+  const cv::Mat signal = SilhouetteSignal(cam, f, shape, o);
+  const double scale = o.sensor.bit_depth == 16 ? 256.0 : 1.0;
   SensorOptions sensor = o.sensor;
   sensor.background_dn = 0.0;
   sensor.read_noise_dn *= scale;

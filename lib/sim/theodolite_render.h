@@ -57,7 +57,13 @@ struct SilhouetteRenderOptions {
   bool Check(std::string* why) const;
 };
 
-// Frame of a TheodoliteSimulator at its true boresight, with noise from `rng`.
+// Expected (noise-free) frame before the sensor: CV_32FC1 (depth CV_32F, what the renderer digitises) or
+// CV_64FC1 (computed in double: for derivatives), DN on the 8-bit scale (×256 for bit_depth 16).
+cv::Mat SilhouetteSignal(const camera::CameraModel& camera, const TheodoliteFrameTruth& frame,
+                         const CylinderShape& shape, const SilhouetteRenderOptions& options, int depth = CV_32F);
+
+// Frame of a TheodoliteSimulator at its true boresight, with noise from `rng`: SilhouetteSignal digitised by
+// sim::Digitise.
 cv::Mat RenderSilhouetteFrame(const camera::CameraModel& camera, const TheodoliteFrameTruth& frame,
                               const CylinderShape& shape, const SilhouetteRenderOptions& options,
                               std::mt19937_64& rng);
