@@ -370,8 +370,10 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
     row.range_m = p.range_m;
     row.edge_tilt_rad = p.edge_tilt_rad;
     row.axis_enu = p.axis_enu;
+    // σ: the image fit's covariance when it succeeded, else the three-point Jacobian's propagation.
+    const bool fitted = fits[primary] && fits[primary]->status != CylinderImageFitStatus::kFailed;
     CylinderJacobianMatrix J;
-    if (CylinderJacobian(cam, x, p.range_m, &J)) {
+    if (!fitted && CylinderJacobian(cam, x, p.range_m, &J)) {
       auto sigma = [&](int k) {
         double v = 0.0;
         for (int i = 2; i < 8; ++i) v += J(k, i) * J(k, i) * px_var;
@@ -384,7 +386,7 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
     if (fits[primary]) {
       const CylinderImageFitResult& g = *fits[primary];
       row.fit = g.status;
-      if (g.status != CylinderImageFitStatus::kFailed) {
+      if (fitted) {
         row.sigma_yaw_rad = g.sigma_yaw_rad;
         row.sigma_pitch_rad = g.sigma_pitch_rad;
         row.fit_rms_dn = g.rms_dn;
