@@ -7,7 +7,9 @@ import os
 import shutil
 import signal
 import sys
-import tempfile
+
+sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
+import rk_output  # noqa: E402
 
 VERSION = "0.1.0"
 
@@ -64,20 +66,8 @@ def die_with_parent():
 
 
 def write_atomic(path, text):
-    d = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(prefix="." + os.path.basename(path) + ".", dir=d)
-    try:
-        with os.fdopen(fd, "w") as f:
-            f.write(text)
-            f.flush()
-            os.fsync(f.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        try:
-            os.unlink(tmp)
-        except OSError:
-            pass
-        raise
+    """Summaries are written like every other output (scripts/rk_output.py, SPEC.md §2)."""
+    rk_output.write_output(path, text)
 
 
 def trial_label(manifest, root):

@@ -11,6 +11,7 @@
 #include <fstream>
 #include <iostream>
 #include <iterator>
+#include <regex>
 #include <sstream>
 
 #include "io/error.h"
@@ -37,51 +38,88 @@ std::string ReadFile(const std::string& path) {
 
 namespace {
 
-std::string TempNameBeside(const std::string& final_path, const std::string& suffix, int* fd_out) {
+std::string TempNameBeside(const std::string& final_path, int* fd_out) {
   fs::path p(final_path);
   fs::path dir = p.has_parent_path() ? p.parent_path() : fs::path(".");
   std::string templ = (dir / ("." + p.filename().string() + ".XXXXXX")).string();
   std::vector<char> buf(templ.begin(), templ.end());
   buf.push_back('\0');
   int fd = mkstemp(buf.data());
-  if (fd < 0) throw IoError(final_path, std::string("cannot create a file in its folder: ") + std::strerror(errno));
-  std::string name(buf.data());
-  if (!suffix.empty()) {
-    // Writers such as ffmpeg pick the container from the extension.
-    std::string with_suffix = name + suffix;
-    if (std::rename(name.c_str(), with_suffix.c_str()) != 0) {
-      ::close(fd);
-      ::unlink(name.c_str());
-      throw IoError(final_path, "cannot create a temporary file");
-    }
-    name = with_suffix;
-  }
+  if (fd < 0)
+    throw IoError(final_path, std::string("cannot create a file in its folder: ") + std::strerror(errno));
   *fd_out = fd;
-  return name;
+  return std::string(buf.data());
 }
 
-}  // namespace
+// "/dev/fd/N", "/proc/self/fd/N", "/proc/thread-self/fd/N", "/proc/<own pid>/fd/N" → N, else -1.
+int OwnDescriptor(const std::string& path) {
+  static const std::regex kFd(R"(^/(?:dev/fd|proc/(?:self|thread-self|(\d+))/fd)/(\d+)$)");
+  std::smatch m;
+  if (!std::regex_match(path, m, kFd)) return -1;
+  if (m[1].matched && std::stol(m[1].str()) != static_cast<long>(::getpid())) return -1;
+  return std::stoi(m[2].str());
+}
 
-void WriteFileAtomic(const std::string& path, const std::string& data) {
-  if (IsStdStream(path)) {
-    std::cout.write(data.data(), static_cast<std::streamsize>(data.size()));
-    std::cout.flush();
-    if (!std::cout) throw IoError("<stdout>", "write failed");
-    return;
-  }
+// Follows a chain of symbolic links from `path` to the first name that is not a link (which may
+// not exist). Stops early, returning the descriptor, at a link to one of this process's own
+// descriptors: /proc/self/fd/N is a "magic" link whose text (pipe:[123], /dev/pts/0, a deleted
+// file) is not a path to write to.
+struct LinkEnd {
+  std::string path;
   int fd = -1;
-  std::string tmp = TempNameBeside(path, "", &fd);
+};
+LinkEnd FollowLinks(const std::string& path) {
+  std::string cur = path;
+  for (int hops = 0; hops < 40; ++hops) {
+    if (const int fd = OwnDescriptor(cur); fd >= 0) return {cur, fd};
+    struct stat st {};
+    if (::lstat(cur.c_str(), &st) != 0 || !S_ISLNK(st.st_mode)) return {cur, -1};
+    std::vector<char> buf(static_cast<std::size_t>(st.st_size > 0 ? st.st_size : 255) + 2);
+    const ssize_t n = ::readlink(cur.c_str(), buf.data(), buf.size() - 1);
+    if (n < 0) throw IoError(path, std::string("cannot read the link ") + cur + ": " + std::strerror(errno));
+    fs::path target(std::string(buf.data(), static_cast<std::size_t>(n)));
+    if (target.is_relative()) target = fs::path(cur).parent_path() / target;
+    cur = target.lexically_normal().string();
+  }
+  throw IoError(path, "too many levels of symbolic links");
+}
+
+void WriteAll(int fd, const std::string& data, const std::string& name) {
   std::size_t done = 0;
   while (done < data.size()) {
-    ssize_t n = ::write(fd, data.data() + done, data.size() - done);
+    const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
     if (n < 0) {
       if (errno == EINTR) continue;
-      int e = errno;
-      ::close(fd);
-      ::unlink(tmp.c_str());
-      throw IoError(path, std::string("write failed: ") + std::strerror(e));
+      throw IoError(name, std::string("write failed: ") + std::strerror(errno));
     }
     done += static_cast<std::size_t>(n);
+  }
+}
+
+void WriteThrough(const std::string& path, const std::string& data) {
+  // No O_CREAT: this path exists and is not a regular file; if it vanished meanwhile, creating a
+  // regular file in its place is exactly what must not happen. No O_TRUNC: devices and FIFOs have
+  // nothing to truncate.
+  const int fd = ::open(path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
+  if (fd < 0) throw IoError(path, std::string("cannot open for writing: ") + std::strerror(errno));
+  try {
+    WriteAll(fd, data, path);
+  } catch (...) {
+    ::close(fd);
+    throw;
+  }
+  if (::close(fd) != 0) throw IoError(path, std::string("write failed: ") + std::strerror(errno));
+}
+
+void ReplaceAtomically(const std::string& path, const std::string& data) {
+  int fd = -1;
+  std::string tmp = TempNameBeside(path, &fd);
+  try {
+    WriteAll(fd, data, path);
+  } catch (...) {
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw;
   }
   // Files are created 0600 by mkstemp; give them the usual 0644 (less umask).
   mode_t mask = ::umask(0);
@@ -92,6 +130,13 @@ void WriteFileAtomic(const std::string& path, const std::string& data) {
     ::unlink(tmp.c_str());
     throw IoError(path, std::string("write failed: ") + std::strerror(e));
   }
+  // Last check before the rename: a device or FIFO that appeared at the path since it was resolved is
+  // never replaced.
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode)) {
+    ::unlink(tmp.c_str());
+    throw IoError(path, "changed into something other than a regular file while being written; not replaced");
+  }
   if (std::rename(tmp.c_str(), path.c_str()) != 0) {
     int e = errno;
     ::unlink(tmp.c_str());
@@ -99,31 +144,49 @@ void WriteFileAtomic(const std::string& path, const std::string& data) {
   }
 }
 
-PendingFile::PendingFile(const std::string& final_path, const std::string& suffix) : final_path_(final_path) {
-  int fd = -1;
-  temp_path_ = TempNameBeside(final_path, suffix, &fd);
-  mode_t mask = ::umask(0);
-  ::umask(mask);
-  ::fchmod(fd, 0666 & ~mask);
-  ::close(fd);
+}  // namespace
+
+OutputTarget ResolveOutput(const std::string& path) {
+  if (IsStdStream(path)) return {OutputTarget::Kind::kDescriptor, STDOUT_FILENO, path};
+  const LinkEnd end = FollowLinks(path);
+  if (end.fd >= 0) return {OutputTarget::Kind::kDescriptor, end.fd, path};
+  struct stat st {};
+  if (::stat(end.path.c_str(), &st) != 0) {
+    if (errno == ENOENT) return {OutputTarget::Kind::kReplace, -1, end.path};
+    throw IoError(path, std::string("cannot examine: ") + std::strerror(errno));
+  }
+  if (S_ISREG(st.st_mode)) return {OutputTarget::Kind::kReplace, -1, end.path};
+  if (S_ISDIR(st.st_mode)) throw IoError(path, "is a folder, not a file");
+  if (S_ISSOCK(st.st_mode)) throw IoError(path, "is a socket; cannot write a file there");
+  return {OutputTarget::Kind::kWriteThrough, -1, path};
 }
 
-PendingFile::~PendingFile() {
-  if (!committed_) {
-    std::error_code ec;
-    fs::remove_all(temp_path_, ec);
-  }
+std::string ResolveOutputFolder(const std::string& path) {
+  const LinkEnd end = FollowLinks(path);
+  if (end.fd >= 0) throw IoError(path, "is a file descriptor, not a folder");
+  return end.path;
 }
 
-void PendingFile::Commit() {
-  if (std::rename(temp_path_.c_str(), final_path_.c_str()) != 0) {
-    throw IoError(final_path_, std::string("cannot rename into place: ") + std::strerror(errno));
+void WriteFileAtomic(const std::string& path, const std::string& data) {
+  const OutputTarget target = ResolveOutput(path);
+  switch (target.kind) {
+    case OutputTarget::Kind::kDescriptor:
+      // Whatever std::cout buffered must come first.
+      std::cout.flush();
+      WriteAll(target.fd, data, target.fd == STDOUT_FILENO ? "<stdout>" : path);
+      return;
+    case OutputTarget::Kind::kWriteThrough:
+      WriteThrough(target.path, data);
+      return;
+    case OutputTarget::Kind::kReplace:
+      ReplaceAtomically(target.path, data);
+      return;
   }
-  committed_ = true;
 }
 
 void CheckOutputNotInput(const std::string& output, const std::vector<std::string>& inputs) {
   if (IsStdStream(output)) return;
+  ResolveOutput(output);  // a folder or a socket is refused now, before any work is done
   std::error_code ec;
   if (!fs::exists(output, ec)) return;
   for (const auto& in : inputs) {

@@ -10,31 +10,40 @@ namespace rk::io {
 // Reads a whole file, or stdin for "-". Throws IoError if it cannot be read.
 std::string ReadFile(const std::string& path);
 
-// Writes `data` to `path` atomically: a temporary file in the same folder is
-// written, flushed to disk and renamed over `path`, so a reader never sees a
-// half-written file and a failed run leaves nothing behind. "-" writes stdout.
+// Where and how an output path is written (SPEC.md §2, "Writes are atomic"). The one place that
+// decides it, for every writer of files and folders:
+//  - "-", and links that lead to one of this process's own descriptors (/dev/stdout, /dev/fd/N,
+//    /proc/self/fd/N): written to that descriptor, as the shell opened it;
+//  - a path that does not exist, or a regular file: replaced atomically (temporary file beside it,
+//    then rename);
+//  - a symbolic link (any chain of them): the link stays a link; its final target is replaced
+//    atomically, or written through if it is not a regular file;
+//  - an existing file that is not a regular file (a device such as /dev/null, a FIFO, a process
+//    substitution): written through in place, never replaced, never created — as root too.
+struct OutputTarget {
+  enum class Kind { kDescriptor, kReplace, kWriteThrough };
+  Kind kind = Kind::kReplace;
+  int fd = -1;       // kDescriptor: the descriptor to write to
+  std::string path;  // kReplace: the file to replace (a link's final target); kWriteThrough: the path to open
+};
+// Throws IoError for a folder, a socket, or a link chain that cannot be followed.
+OutputTarget ResolveOutput(const std::string& path);
+
+// The folder an output folder path stands for: the path itself, or, for a symbolic link (chain), its
+// final target, so that a tool replacing a whole folder (rk-run's out/, rk-sim's trial folders)
+// replaces the target and keeps the link. What is there (nothing, a folder, something else) is the
+// caller's to check. Throws IoError for a link to a file descriptor or a chain that cannot be followed.
+std::string ResolveOutputFolder(const std::string& path);
+
+// Writes `data` to `path` as ResolveOutput says: atomically for files (a temporary file in the same
+// folder is written, flushed to disk and renamed over the file, so a reader never sees a
+// half-written file and a failed run leaves nothing behind), in place for devices and FIFOs,
+// to the descriptor for "-" and /dev/stdout.
 void WriteFileAtomic(const std::string& path, const std::string& data);
 
-// A temporary path beside `final_path` for writers that stream (video). Commit()
-// renames it into place; the destructor removes it if Commit() was not called.
-class PendingFile {
- public:
-  explicit PendingFile(const std::string& final_path, const std::string& suffix = "");
-  ~PendingFile();
-  PendingFile(const PendingFile&) = delete;
-  PendingFile& operator=(const PendingFile&) = delete;
-  const std::string& temp_path() const { return temp_path_; }
-  const std::string& final_path() const { return final_path_; }
-  void Commit();
-
- private:
-  std::string final_path_;
-  std::string temp_path_;
-  bool committed_ = false;
-};
-
 // Throws UsageError if `output` names the same file as one of `inputs`
-// (nothing the user gave is overwritten). "-" is never compared.
+// (nothing the user gave is overwritten), IoError if it cannot be an output file at all (a folder:
+// ResolveOutput), so that tools refuse it before doing any work. "-" is never compared.
 void CheckOutputNotInput(const std::string& output, const std::vector<std::string>& inputs);
 
 // Creates a folder (and parents); throws IoError on failure.

@@ -642,7 +642,9 @@ void TrialRun::Execute() {
   const fs::path trial(s_.trial_dir);
   const fs::path out = trial / kOutDir;
   work_ = MakeWorkDir(s_.trial_dir);
-  work_rel_ = fs::path(work_).filename().string();
+  // Tools run in the trial folder: the working folder by its name there, or by its full path when
+  // out/ is a link to another folder.
+  work_rel_ = fs::path(work_).parent_path() == trial ? fs::path(work_).filename().string() : work_;
   fs::create_directories(fs::path(work_) / "steps");
   // Products of the steps that are up to date are hard-linked from the previous out/.
   for (auto& r : runs_) {

@@ -14,6 +14,7 @@
 #include <thread>
 
 #include "io/error.h"
+#include "io/file_util.h"
 
 namespace rk::run {
 namespace fs = std::filesystem;
@@ -31,13 +32,22 @@ std::string NowUtc() {
 
 bool StartsWith(const std::string& s, const std::string& p) { return s.compare(0, p.size(), p) == 0; }
 
+// The folder that TRIAL/out stands for: TRIAL/out itself, or the final target when TRIAL/out is a
+// symbolic link (results kept on another disk). The link stays a link: the target is what is
+// swapped, and its working and old folders are made beside it (a rename cannot cross file systems).
+fs::path OutTarget(const std::string& trial_dir) {
+  return fs::path(io::ResolveOutputFolder((fs::path(trial_dir) / kOutDir).string()));
+}
+
 }  // namespace
 
-std::unique_ptr<TrialLock> TrialLock::Acquire(const std::string& trial_dir, double wait_s, std::string* holder) {
+std::unique_ptr<TrialLock> TrialLock::Acquire(const std::string& trial_dir, double wait_s,
+                                              std::string* holder) {
   const std::string path = (fs::path(trial_dir) / kLockFile).string();
   const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
   if (fd < 0) throw IoError(path, std::string("cannot create the lock file: ") + std::strerror(errno));
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(0.0, wait_s));
+  const auto deadline =
+      std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(0.0, wait_s));
   for (;;) {
     if (::flock(fd, LOCK_EX | LOCK_NB) == 0) break;
     if (errno != EWOULDBLOCK && errno != EINTR) {
@@ -78,17 +88,18 @@ void RemoveOutTree(const std::string& path) {
 
 std::vector<std::string> RecoverAndClean(const std::string& trial_dir) {
   std::vector<std::string> notes;
-  const fs::path dir(trial_dir);
-  const fs::path out = dir / kOutDir;
+  const fs::path out = OutTarget(trial_dir);
+  const fs::path dir = out.parent_path();
+  const std::string stem = out.filename().string();
   std::vector<fs::path> tmps, olds;
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
     if (!it->is_directory(ec)) continue;
-    if (StartsWith(name, "out.tmp.")) tmps.push_back(it->path());
-    if (StartsWith(name, "out.old.")) olds.push_back(it->path());
+    if (StartsWith(name, stem + ".tmp.")) tmps.push_back(it->path());
+    if (StartsWith(name, stem + ".old.")) olds.push_back(it->path());
   }
-  if (ec) throw IoError(trial_dir, "cannot list the trial folder: " + ec.message());
+  if (ec) throw IoError(dir.string(), "cannot list the folder of out/: " + ec.message());
   std::error_code ec2;
   if (!fs::exists(out, ec2)) {
     // An interrupted two-rename swap: prefer the new complete folder, else the old one.
@@ -128,7 +139,8 @@ std::vector<std::string> RecoverAndClean(const std::string& trial_dir) {
 }
 
 std::string MakeWorkDir(const std::string& trial_dir) {
-  std::string templ = (fs::path(trial_dir) / "out.tmp.XXXXXX").string();
+  const fs::path out = OutTarget(trial_dir);
+  std::string templ = (out.parent_path() / (out.filename().string() + ".tmp.XXXXXX")).string();
   std::vector<char> buf(templ.begin(), templ.end());
   buf.push_back('\0');
   if (!::mkdtemp(buf.data())) {
@@ -157,13 +169,14 @@ void SyncPath(const std::string& path) {
 }
 
 std::string CommitOut(const std::string& trial_dir, const std::string& work_dir) {
-  const fs::path out = fs::path(trial_dir) / kOutDir;
+  const fs::path out = OutTarget(trial_dir);
   SyncPath(work_dir);
   std::error_code ec;
   std::string how;
   if (!fs::exists(out, ec)) {
     if (::rename(work_dir.c_str(), out.c_str()) != 0) {
-      throw IoError(out.string(), std::string("cannot move the new out/ into place: ") + std::strerror(errno));
+      throw IoError(out.string(),
+                    std::string("cannot move the new out/ into place: ") + std::strerror(errno));
     }
     how = "rename";
   } else if (::renameat2(AT_FDCWD, work_dir.c_str(), AT_FDCWD, out.c_str(), RENAME_EXCHANGE) == 0) {
@@ -171,14 +184,16 @@ std::string CommitOut(const std::string& trial_dir, const std::string& work_dir)
     RemoveOutTree(work_dir);
     how = "exchange";
   } else if (errno == EINVAL || errno == ENOSYS || errno == ENOTSUP || errno == EOPNOTSUPP) {
-    std::string old_templ = (fs::path(trial_dir) / "out.old.XXXXXX").string();
+    std::string old_templ = (out.parent_path() / (out.filename().string() + ".old.XXXXXX")).string();
     std::vector<char> buf(old_templ.begin(), old_templ.end());
     buf.push_back('\0');
-    if (!::mkdtemp(buf.data())) throw IoError(trial_dir, std::string("cannot create out.old: ") + std::strerror(errno));
+    if (!::mkdtemp(buf.data()))
+      throw IoError(trial_dir, std::string("cannot create out.old: ") + std::strerror(errno));
     const std::string old(buf.data());
     // rename(2) onto an empty folder replaces it.
     if (::rename(out.c_str(), old.c_str()) != 0) {
-      throw IoError(out.string(), std::string("cannot move the previous out/ aside: ") + std::strerror(errno));
+      throw IoError(out.string(),
+                    std::string("cannot move the previous out/ aside: ") + std::strerror(errno));
     }
     if (::rename(work_dir.c_str(), out.c_str()) != 0) {
       const int e = errno;
@@ -190,7 +205,7 @@ std::string CommitOut(const std::string& trial_dir, const std::string& work_dir)
   } else {
     throw IoError(out.string(), std::string("cannot swap in the new out/: ") + std::strerror(errno));
   }
-  SyncPath(trial_dir);
+  SyncPath(out.parent_path().string());
   return how;
 }
 

@@ -7,6 +7,8 @@
 //   exchange (EINVAL/ENOTSUP, e.g. NFS), two renames are used (out → out.old.XXXXXX, tmp → out) and
 //   RecoverAndClean() completes an interrupted swap. A folder counts as complete when it holds
 //   report.json, which is written last.
+// - TRIAL/out may be a symbolic link (to keep products on another disk): the link stays a link; its
+//   target folder T is swapped, with T.tmp.XXXXXX / T.old.XXXXXX made beside T (SPEC.md §2).
 #pragma once
 
 #include <memory>
@@ -39,7 +41,7 @@ class TrialLock {
 // Returns one line per action, for the log.
 std::vector<std::string> RecoverAndClean(const std::string& trial_dir);
 
-// Creates TRIAL/out.tmp.XXXXXX and returns its absolute path.
+// Creates TRIAL/out.tmp.XXXXXX (beside the link target when out/ is a link) and returns its path.
 std::string MakeWorkDir(const std::string& trial_dir);
 
 // Hard-links src to dst (copies, keeping the modification time, where links are impossible); dst's

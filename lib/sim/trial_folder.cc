@@ -39,6 +39,9 @@ TrialFolder::TrialFolder(const std::string& out_dir, bool force) {
   if (out.filename() == "." || out.filename() == ".." || out_.empty()) {
     throw UsageError("--out '" + out_dir + "' must name a new folder");
   }
+  // A link to a folder stays a link: the folder it leads to is what gets replaced (SPEC.md §2).
+  out = fs::path(io::ResolveOutputFolder(out_));
+  out_ = out.string();
   std::error_code ec;
   if (fs::exists(fs::symlink_status(out, ec))) {
     if (!fs::is_directory(out, ec)) throw UsageError("--out " + out_ + " exists and is not a folder");
@@ -60,7 +63,9 @@ TrialFolder::~TrialFolder() {
   }
 }
 
-std::string TrialFolder::Path(const std::string& relative) const { return (fs::path(tmp_) / relative).string(); }
+std::string TrialFolder::Path(const std::string& relative) const {
+  return (fs::path(tmp_) / relative).string();
+}
 
 void TrialFolder::MakeSubfolder(const std::string& relative) const { io::MakeDirectories(Path(relative)); }
 
