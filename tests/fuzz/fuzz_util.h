@@ -29,15 +29,17 @@ inline std::string_view AsText(const std::uint8_t* data, std::size_t size) {
   return {reinterpret_cast<const char*>(data), size};
 }
 
-// A private folder for parsers that only take a path (made once per process, removed at exit).
+// A private folder for parsers that only take a path (made once per process, removed at exit; the
+// name is never destroyed, so the exit handler can still use it).
 inline const std::string& ScratchDir() {
-  static const std::string dir = [] {
+  static const std::string& dir = *[] {
     const char* tmp = std::getenv("TMPDIR");
-    std::string templ = std::string(tmp && *tmp ? tmp : "/tmp") + "/rk-fuzz-XXXXXX";
-    if (!::mkdtemp(templ.data())) std::abort();
-    std::atexit([] { (void)std::system(("rm -rf '" + ScratchDir() + "'").c_str()); });
-    return templ;
+    auto* name = new std::string(std::string(tmp && *tmp ? tmp : "/tmp") + "/rk-fuzz-XXXXXX");
+    if (!::mkdtemp(name->data())) std::abort();
+    return name;
   }();
+  static const int removed_at_exit = std::atexit([] { (void)std::system(("rm -rf '" + ScratchDir() + "'").c_str()); });
+  (void)removed_at_exit;
   return dir;
 }
 
