@@ -97,6 +97,10 @@ std::string RequireString(const Json& j, const std::string& key, const std::stri
   return j.at(key).get<std::string>();
 }
 
-void WriteJson(const std::string& path, const Json& j) { WriteFileAtomic(path, j.dump(2) + "\n"); }
+// Strings taken from input files (a CSV cell quoted in a problem message, a file name) need not be valid
+// UTF-8; nlohmann::json would throw type_error 316 while writing them. Invalid bytes become U+FFFD.
+void WriteJson(const std::string& path, const Json& j) {
+  WriteFileAtomic(path, j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
+}
 
 }  // namespace rk::io

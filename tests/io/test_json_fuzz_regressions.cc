@@ -2,9 +2,13 @@
 // committed fuzz corpus (tests/fuzz/corpus/<harness>/crash-*).
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <string>
 
+#include <unistd.h>
+
 #include "io/error.h"
+#include "io/file_util.h"
 #include "io/json_util.h"
 
 namespace rk::io {
@@ -29,6 +33,18 @@ TEST(JsonFuzzRegression, NumberOutOfRangeIsADataErrorWithItsPosition) {
             "cam.json:3:5: invalid JSON: number out of range '0.03E77777777777777777777777777777777777777777'");
   EXPECT_EQ(JsonErrorOf("{\"focal_length_mm\": -1e400}"), "cam.json:1:21: invalid JSON: number out of range '-1e400'");
   EXPECT_EQ(JsonErrorOf("{\"focal_length_mm\": 1e308}"), "");  // still a double
+}
+
+// fuzz_recover: `rk-capture recover` quotes a bad frames.csv cell ("0\xdc") in its problem list, and
+// writing that list (the manifest's capture.recover, --report) threw nlohmann's type_error 316 (invalid
+// UTF-8): the recovery ended in an internal error. WriteJson now writes invalid bytes as U+FFFD.
+TEST(JsonFuzzRegression, WriteJsonReplacesInvalidUtf8) {
+  const std::string path =
+      (std::filesystem::temp_directory_path() / ("rk_json_utf8_" + std::to_string(::getpid()) + ".json")).string();
+  WriteJson(path, Json{{"problems", {"az/frames.csv:4:7: column 'segment': '0\xdc' is not an integer"}}});
+  const Json back = ParseJson(ReadFile(path), path);
+  EXPECT_EQ(back["problems"][0], "az/frames.csv:4:7: column 'segment': '0\xef\xbf\xbd' is not an integer");
+  std::filesystem::remove(path);
 }
 
 }  // namespace
