@@ -6,8 +6,8 @@
 #include <vector>
 
 #include "capture/dimetix.h"
-#include "capture/serial_port.h"
 #include "fuzz_util.h"
+#include "serial_lines.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 2) return 0;
@@ -15,14 +15,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::size_t chunk = 1 + data[1] % 64;
   const std::string_view bytes = rk::fuzz::AsText(data + 2, size - 2);
   rk::fuzz::ExpectOnlyInputErrors([&] {
-    rk::capture::LineSplitter splitter;
-    std::vector<std::string> lines;
-    for (std::size_t at = 0; at < bytes.size(); at += chunk) {
-      const std::string_view piece = bytes.substr(at, chunk);
-      splitter.Feed(piece.data(), piece.size(), &lines);
-    }
-    for (const std::string& line : lines) {
-      if (line.size() > 256) std::abort();  // LineSplitter's limit
+    for (const std::string& line : rk::fuzz::SerialLines(bytes, chunk)) {
       const rk::capture::DimetixReply r = rk::capture::ParseDimetixReply(line, device_id);
       if (r.kind == rk::capture::DimetixReplyKind::kInvalid) (void)rk::capture::EscapeForLog(line);
       if (r.kind == rk::capture::DimetixReplyKind::kDistance && (r.value > 9999999999 || r.value < -9999999999)) {

@@ -8,22 +8,16 @@
 #include <vector>
 
 #include "capture/ptu.h"
-#include "capture/serial_port.h"
 #include "fuzz_util.h"
+#include "serial_lines.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
   const std::size_t chunk = 1 + data[0] % 64;
   const std::string_view bytes = rk::fuzz::AsText(data + 1, size - 1);
   rk::fuzz::ExpectOnlyInputErrors([&] {
-    rk::capture::LineSplitter splitter;
-    std::vector<std::string> lines;
-    for (std::size_t at = 0; at < bytes.size(); at += chunk) {
-      const std::string_view piece = bytes.substr(at, chunk);
-      splitter.Feed(piece.data(), piece.size(), &lines);
-    }
     const rk::capture::PtuAngleMap map;
-    for (const std::string& line : lines) {
+    for (const std::string& line : rk::fuzz::SerialLines(bytes, chunk)) {
       const rk::capture::PtuReply r = rk::capture::ParsePtuReply(line);
       if (r.kind == rk::capture::PtuReplyKind::kInvalid) (void)rk::capture::EscapeForLog(line);
       if (r.value && !std::isfinite(*r.value)) std::abort();
