@@ -966,7 +966,7 @@ RunSummary TrialRun::Run() {
     Plan();
     previous_ = LoadJsonOrNull((fs::path(s_.trial_dir) / kOutDir / kReportFile).string());
     if (!previous_.is_null() && !IsUsableReport(previous_)) {
-      if (previous_.value("tool", Json()) == "rk-run") Say("warning: out/report.json is damaged; every step runs again");
+      if (previous_.is_object() && previous_.value("tool", Json()) == "rk-run") Say("warning: out/report.json is damaged; every step runs again");
       previous_ = Json(nullptr);
     }
     digests_ = std::make_unique<DigestCache>(s_.trial_dir, previous_.is_object() ? previous_.value("inputs", Json()) : Json(),
