@@ -5,16 +5,19 @@
 #   scripts/setup.sh --asan     also an ASan+UBSan build in build-asan/
 #   scripts/setup.sh --asan-only  only the ASan+UBSan build (what scripts/test.sh needs)
 #   scripts/setup.sh --slurm    also Slurm and munge (for the rk-slurm test, tests/run/slurm_array_test.sh)
+#   scripts/setup.sh --fuzz     also clang and libFuzzer, and the fuzz harnesses in build-fuzz/ (tests/fuzz)
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 ASAN=0
 RELEASE=1
 SLURM=0
+FUZZ=0
 for arg in "$@"; do
   case "$arg" in
     --asan) ASAN=1 ;;
     --asan-only) ASAN=1; RELEASE=0 ;;
     --slurm) SLURM=1 ;;
+    --fuzz) FUZZ=1 ;;
     *) echo "setup.sh: error: unknown option $arg" >&2; exit 2 ;;
   esac
 done
@@ -28,6 +31,8 @@ PACKAGES=(
 # Slurm daemons only on request: nobody needs them to use rangekit on one machine (rk-nightly); the
 # test that starts a one-node cluster installs them through --slurm.
 if [ "$SLURM" = 1 ]; then PACKAGES+=(slurmctld slurmd slurm-client munge); fi
+# clang 14 and its runtime libraries (libFuzzer, ASan, UBSan) for the fuzz harnesses only.
+if [ "$FUZZ" = 1 ]; then PACKAGES+=(clang libclang-rt-14-dev); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
@@ -55,4 +60,12 @@ if [ "$ASAN" = 1 ]; then
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DRANGEKIT_ENABLE_ASAN=ON \
     -DRANGEKIT_BUILD_BENCH=OFF >&2
   cmake --build "$ROOT/build-asan" -j"$JOBS" >&2
+fi
+if [ "$FUZZ" = 1 ]; then
+  # clang++ with -fsanitize=fuzzer,address,undefined in a folder of its own; -O1 -g1 and assertions on
+  # (no NDEBUG: a failed assert is a finding). Only the harnesses and the modules they link are built.
+  cmake -S "$ROOT" -B "$ROOT/build-fuzz" -DCMAKE_CXX_COMPILER=clang++ -DRANGEKIT_BUILD_FUZZ=ON \
+    -DRANGEKIT_BUILD_TESTS=OFF -DRANGEKIT_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" >&2
+  cmake --build "$ROOT/build-fuzz" -j"$JOBS" --target fuzz_all >&2
 fi

@@ -8,13 +8,20 @@ set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # CI (CI=true, root) also installs Slurm so that the one-node Slurm test runs; elsewhere it is skipped
 # unless Slurm is installed (RK_SLURM_TEST=1 installs it here too).
-if [ "${CI:-}" = true ] || [ "${RK_SLURM_TEST:-}" = 1 ]; then
-  "$ROOT/scripts/setup.sh" --asan-only --slurm
-else
-  "$ROOT/scripts/setup.sh" --asan-only
-fi
+# CI also installs clang and builds the libFuzzer harnesses (build-fuzz/, tests/fuzz) for a smoke run of
+# a few seconds each after the suite; RK_FUZZ_TEST=1 does the same here.
+SETUP=(--asan-only)
+if [ "${CI:-}" = true ] || [ "${RK_SLURM_TEST:-}" = 1 ]; then SETUP+=(--slurm); fi
+FUZZ=0
+if [ "${CI:-}" = true ] || [ "${RK_FUZZ_TEST:-}" = 1 ]; then FUZZ=1; SETUP+=(--fuzz); fi
+"$ROOT/scripts/setup.sh" "${SETUP[@]}"
 JOBS=$(nproc)
 echo "== ASan+UBSan build: ctest"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 (cd "$ROOT/build-asan" && ctest --output-on-failure -j"$JOBS")
+if [ "$FUZZ" = 1 ]; then
+  # One harness at a time: each uses one core for RANGEKIT_FUZZ_SMOKE_SECONDS (5) on its committed corpus.
+  echo "== libFuzzer harnesses: smoke run (ctest -L fuzz)"
+  (cd "$ROOT/build-fuzz" && ctest --output-on-failure -L fuzz)
+fi

@@ -1,31 +1,54 @@
 #include "io/json_util.h"
 
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "io/error.h"
 #include "io/file_util.h"
 
 namespace rk::io {
 
+namespace {
+
+// 1-based line and column of byte `offset` (0-based) of `text`.
+std::pair<std::size_t, std::size_t> LineColumn(const std::string& text, std::size_t offset) {
+  std::size_t line = 1, col = 1;
+  const std::size_t end = std::min(offset, text.size());
+  for (std::size_t i = 0; i < end; ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      col = 1;
+    } else {
+      ++col;
+    }
+  }
+  return {line, col};
+}
+
+std::string FromParseError(const std::string& what) {
+  const auto p = what.find("parse error");
+  return p == std::string::npos ? what : what.substr(p);
+}
+
+}  // namespace
+
 Json ParseJson(const std::string& text, const std::string& name) {
   try {
     return Json::parse(text, nullptr, true, /*ignore_comments=*/true);
   } catch (const nlohmann::json::parse_error& e) {
-    // e.byte is the 1-based offset of the offending byte; turn it into line/col.
-    std::size_t line = 1, col = 1;
-    std::size_t end = std::min<std::size_t>(e.byte > 0 ? e.byte - 1 : 0, text.size());
-    for (std::size_t i = 0; i < end; ++i) {
-      if (text[i] == '\n') {
-        ++line;
-        col = 1;
-      } else {
-        ++col;
-      }
-    }
-    std::string what = e.what();
-    auto p = what.find("parse error");
-    if (p != std::string::npos) what = what.substr(p);
-    throw DataError(name, line, col, "invalid JSON: " + what);
+    // e.byte is the 1-based offset of the offending byte.
+    const auto [line, col] = LineColumn(text, e.byte > 0 ? e.byte - 1 : 0);
+    throw DataError(name, line, col, "invalid JSON: " + FromParseError(e.what()));
+  } catch (const nlohmann::json::out_of_range& e) {
+    // A number too large for a double (1e400) is reported as out_of_range 406 "number overflow parsing
+    // '<token>'", without a position: find the token in the text.
+    const std::string what = e.what();
+    const auto q = what.find('\''), r = what.rfind('\'');
+    const std::string token = q < r && r != std::string::npos ? what.substr(q + 1, r - q - 1) : std::string();
+    const std::size_t at = token.empty() ? std::string::npos : text.find(token);
+    const auto [line, col] = at == std::string::npos ? std::pair<std::size_t, std::size_t>{0, 0} : LineColumn(text, at);
+    throw DataError(name, line, col, "invalid JSON: number out of range '" + token + "'");
   }
 }
 
@@ -74,6 +97,10 @@ std::string RequireString(const Json& j, const std::string& key, const std::stri
   return j.at(key).get<std::string>();
 }
 
-void WriteJson(const std::string& path, const Json& j) { WriteFileAtomic(path, j.dump(2) + "\n"); }
+// Strings taken from input files (a CSV cell quoted in a problem message, a file name) need not be valid
+// UTF-8; nlohmann::json would throw type_error 316 while writing them. Invalid bytes become U+FFFD.
+void WriteJson(const std::string& path, const Json& j) {
+  WriteFileAtomic(path, j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
+}
 
 }  // namespace rk::io

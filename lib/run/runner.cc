@@ -161,6 +161,70 @@ ExitCode ExitCodeOfStep(const ChildResult& r) {
   }
 }
 
+// Shape checks of what rk-run reads back from the last report (out/report.json) and from the shared
+// --tool-cache file, field by field with the type it is read as. These files are rk-run's own output,
+// but a hand edit, another program or another version can leave anything in them: a record that is not
+// of this shape is not trusted (its steps run again) instead of ending the run in a JSON type error.
+bool OptionalOf(const Json& j, const char* key, bool (Json::*is)() const noexcept) {
+  return !j.contains(key) || (j.at(key).*is)();
+}
+bool StringsOnly(const Json& j, std::initializer_list<const char*> keys) {
+  for (const char* k : keys) {
+    if (!OptionalOf(j, k, &Json::is_string)) return false;
+  }
+  return true;
+}
+// {path?, bytes?, mtime_ns?, ...} as file digests, tool identities and step outputs are written.
+bool IsFileRecord(const Json& j) {
+  return j.is_object() && OptionalOf(j, "bytes", &Json::is_number_unsigned) &&
+         OptionalOf(j, "mtime_ns", &Json::is_number_integer) && OptionalOf(j, "files", &Json::is_number_unsigned) &&
+         StringsOnly(j, {"path", "sha256", "id", "version"});
+}
+bool IsStepRecord(const Json& s) {
+  if (!s.is_object() || !StringsOnly(s, {"id", "status", "reason", "key", "report", "log"})) return false;
+  if (s.contains("outputs")) {
+    if (!s["outputs"].is_array()) return false;
+    for (const auto& o : s["outputs"]) {
+      if (!IsFileRecord(o)) return false;
+    }
+  }
+  if (!s.contains("key_parts")) return true;
+  const Json& k = s["key_parts"];
+  if (!k.is_object()) return false;
+  if (k.contains("tool") && !(k["tool"].is_object() && StringsOnly(k["tool"], {"version"}))) return false;
+  if (k.contains("inputs") && k["inputs"].is_array()) {
+    for (const auto& i : k["inputs"]) {
+      if (!i.is_object() || !StringsOnly(i, {"path", "sha256"})) return false;
+    }
+  }
+  if (k.contains("upstream")) {
+    if (!k["upstream"].is_object()) return false;
+    for (const auto& [id, key] : k["upstream"].items()) {
+      if (!key.is_string()) return false;
+    }
+  }
+  return true;
+}
+// A report of rk-run whose every part rk-run reads has the expected type.
+bool IsUsableReport(const Json& r) {
+  if (!r.is_object() || r.value("tool", Json()) != "rk-run") return false;
+  for (const char* records : {"inputs", "tools"}) {
+    if (!r.contains(records)) continue;
+    if (!r[records].is_object()) return false;
+    for (const auto& [name, rec] : r[records].items()) {
+      if (!IsFileRecord(rec)) return false;
+    }
+  }
+  if (r.contains("trial") && !(r["trial"].is_object() && StringsOnly(r["trial"], {"manifest_sha256"}))) return false;
+  if (r.contains("steps")) {
+    if (!r["steps"].is_array()) return false;
+    for (const auto& s : r["steps"]) {
+      if (!IsStepRecord(s)) return false;
+    }
+  }
+  return true;
+}
+
 struct ToolIdentity {
   std::string name, path, version;
   std::string id;  // "build-id:<hex>" (ELF GNU build ID) or "sha256:<hex>" (scripts)
@@ -197,7 +261,7 @@ class Tools {
     id.path = path;
     if (!StatFile(path, &id.bytes, &id.mtime_ns)) throw IoError(path, "cannot read the executable");
     const auto matches = [&](const Json* prev) {
-      return prev && prev->is_object() && prev->value("path", "") == path &&
+      return prev && IsFileRecord(*prev) && prev->value("path", "") == path &&
              prev->value("bytes", std::uintmax_t{0}) == id.bytes &&
              prev->value("mtime_ns", std::int64_t{0}) == id.mtime_ns && prev->contains("id") &&
              prev->contains("version");
@@ -903,7 +967,10 @@ RunSummary TrialRun::Run() {
     }
     Plan();
     previous_ = LoadJsonOrNull((fs::path(s_.trial_dir) / kOutDir / kReportFile).string());
-    if (previous_.is_object() && previous_.value("tool", "") != "rk-run") previous_ = Json(nullptr);
+    if (!previous_.is_null() && !IsUsableReport(previous_)) {
+      if (previous_.is_object() && previous_.value("tool", Json()) == "rk-run") Say("warning: out/report.json is damaged; every step runs again");
+      previous_ = Json(nullptr);
+    }
     digests_ = std::make_unique<DigestCache>(s_.trial_dir, previous_.is_object() ? previous_.value("inputs", Json()) : Json(),
                                              !o_.rehash);
     digests_->Digest(fs::path(manifest_file_).filename().string());

@@ -49,6 +49,16 @@ std::string FirstLine(const std::string& s) {
   return e == std::string::npos ? s : s.substr(0, e);
 }
 
+// cv::imread, with OpenCV's own refusals (cv::Exception, e.g. a header promising a frame beyond
+// CV_IO_MAX_IMAGE_HEIGHT) turned into the DataError a file that cannot be decoded gets.
+cv::Mat ReadImage(const std::string& path) {
+  try {
+    return cv::imread(path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw DataError(path, 0, 0, "cannot decode image (" + e.err + ")");
+  }
+}
+
 void CheckReadable(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw IoError(path, "no such file");
@@ -85,7 +95,7 @@ VideoInfo ProbeVideo(const std::string& path) {
     for (std::int64_t start : {0, 1}) {
       std::string first = SequenceFramePath(path, start);
       if (fs::exists(first)) {
-        cv::Mat img = cv::imread(first, cv::IMREAD_UNCHANGED);
+        cv::Mat img = ReadImage(first);
         if (img.empty()) throw DataError(first, 0, 0, "cannot decode image");
         return {img.cols, img.rows, img.depth() == CV_16U ? 16 : 8};
       }
@@ -212,7 +222,7 @@ bool FrameSource::ReadFromPipe(cv::Mat* frame) {
 bool FrameSource::ReadFromSequence(cv::Mat* frame) {
   std::string path = SequenceFramePath(current_, seq_index_);
   if (!fs::exists(path)) return false;
-  cv::Mat img = cv::imread(path, cv::IMREAD_UNCHANGED);
+  cv::Mat img = ReadImage(path);
   if (img.empty()) throw DataError(path, 0, 0, "cannot decode image (truncated or not an image)");
   if (img.channels() == 3) cv::cvtColor(img, img, cv::COLOR_BGR2GRAY);
   if (img.channels() == 4) cv::cvtColor(img, img, cv::COLOR_BGRA2GRAY);
