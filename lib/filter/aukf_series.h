@@ -198,7 +198,8 @@ std::string AccelColumnName(const std::string& column);
 // Output table `t_s,kind,<columns>,status[,<rate>,<accel> per column][,<base>_sigma_<unit> per column]`, rows in
 // time order: `estimate` (sample times) / `prediction` (mid-times), each followed by its `smoothed`
 // row when smoothing. Angles in degrees, in [0, 360) for azimuth/yaw-like columns (name starts with
-// `az` or `yaw`) or when some input value exceeds 180°, else in (−180, 180] (AngleColumnIs360).
+// `az` or `yaw`) or when some input value exceeds 180°, else in (−180, 180] (AngleColumnIs360). Empty fields:
+// a column before its first value (AukfResult::HasValue); a forward row's 1σ before its noise is known (HasSigma).
 io::CsvWriter AukfCsv(const Series& series, const AukfResult& result, const AukfOutputOptions& out);
 
 // Options, counters, final Q and R (SI/radians) and NIS for the JSON report.
