@@ -18,7 +18,8 @@ namespace rk::app {
 namespace {
 
 struct AukfArgs {
-  std::string input, output, columns, adapt = "auto", meas_sigma, q, noise_estimate = "ml";
+  std::string input, output, columns, adapt = "auto", meas_sigma, q, noise_estimate = "ml", noise_fit = "causal",
+                                  smooth_noise_fit = "file";
   int window = 40;
   double fading = 0.0;
   bool fading_set = false;
@@ -85,6 +86,17 @@ Command AddAukfCommand(CLI::App& app) {
          "by maximum likelihood of the innovations) or moments (third differences at lags 1-8 only)")
       ->check(CLI::IsMember({"ml", "moments"}))
       ->capture_default_str();
+  sub->add_option("--noise-fit", args->noise_fit,
+                  "Data the fitted noise of the estimate/prediction rows may use: causal (the rows up to each "
+                  "time, refitted as the file goes: no row depends on a later sample) or file (the whole file, "
+                  "the old default: earlier rows then depend on later samples)")
+      ->check(CLI::IsMember({"causal", "file"}))
+      ->capture_default_str();
+  sub->add_option("--smooth-noise-fit", args->smooth_noise_fit,
+                  "Noise fit behind the 'smoothed' rows: file (an extra forward pass with the whole-file fit) or "
+                  "causal (smooth the causal pass)")
+      ->check(CLI::IsMember({"causal", "file"}))
+      ->capture_default_str();
   sub->add_option("--kappa", args->opt.kappa, "Sigma-point parameter kappa: W0 = kappa/(n+kappa)")
       ->capture_default_str();
   sub->add_flag("--derivatives", args->out.derivatives,
@@ -102,6 +114,10 @@ Command AddAukfCommand(CLI::App& app) {
     }
     if (!filter::ParseNoiseEstimator(a.noise_estimate, &opt.noise_estimator)) {
       throw UsageError("--noise-estimate: unknown method " + a.noise_estimate);
+    }
+    if (!filter::ParseNoiseFit(a.noise_fit, &opt.noise_fit) ||
+        !filter::ParseNoiseFit(a.smooth_noise_fit, &opt.smooth_noise_fit)) {
+      throw UsageError("--noise-fit/--smooth-noise-fit: causal or file");
     }
     opt.adapt.window = a.window;
     if (sub->count("--fading") > 0) {

@@ -13,14 +13,15 @@
 #   (prediction, smoothed). Targets: prediction std ≤ 1.02 × measurement std; smoothed std
 #   ≤ 0.6 × measurement std at sample and mid-times.
 # Part 2 (NEES): MC runs of `rk-sim posetrack --scenario head` (maneuvering 6-DOF, 20 s),
-#   `rk-smooth aukf --sigmas`; NEES of the estimate from the per-column sigmas (expected 6),
+#   `rk-smooth aukf --sigmas`; NEES of the estimate (or NEES_KIND) from the per-column sigmas (expected 6),
 #   fraction of runs inside the 95 % chi-square band, divergence = |error| > 10 sigma.
 #   Skipped (with a note) when rk-smooth aukf has no --sigmas option.
 # A run on which rk-smooth fails (non-zero exit) is not analysed but counted: in the tables
 # as "rk-smooth failed" (for NEES it counts as a divergence); its stderr is kept in the run
 # folder (aukf_stderr.txt).
 # Environment: BIN (default <repo>/build/apps), SEEDS (20), MC (100), AFTER (1.0),
-#   COLUMN (yaw_deg), AUKF_OPTS (extra rk-smooth aukf options, default none),
+#   COLUMN (yaw_deg), AUKF_OPTS (extra rk-smooth aukf options, default none), NEES_KIND (estimate or
+#   prediction: the rows whose NEES part 2 reports),
 #   PYTHON (python3; the analysis uses the standard library only).
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -31,6 +32,7 @@ MC=${MC:-100}
 AFTER=${AFTER:-1.0}
 COLUMN=${COLUMN:-yaw_deg}
 AUKF_OPTS=${AUKF_OPTS:-}
+NEES_KIND=${NEES_KIND:-estimate}
 PYTHON=${PYTHON:-python3}
 PY="$PYTHON $ROOT/bench/aukf_table1.py"
 COLS=x_m,y_m,z_m,yaw_deg,pitch_deg,roll_deg
@@ -83,7 +85,7 @@ if "$BIN/rk-smooth" aukf --help 2>&1 | grep -q -- '--sigmas'; then
     fi
   done
   if [ ${#runs[@]} -gt 0 ]; then
-    $PY nees --columns "$COLS" --after "$AFTER" --kind estimate --failed ${#failed[@]} --json "$OUT/nees.json" \
+    $PY nees --columns "$COLS" --after "$AFTER" --kind "$NEES_KIND" --failed ${#failed[@]} --json "$OUT/nees.json" \
       "${runs[@]}" | tee -a "$S"
   else
     say "rk-smooth aukf failed on every head run"

@@ -43,7 +43,7 @@ bool AukfOptions::Check(std::string* why) const {
     *why = "--meas-sigma/--q: at most 12 values";
     return false;
   }
-  return adapt.Check(why);
+  return adapt.Check(why) && causal.Check(why);
 }
 
 bool ParseNoiseEstimator(const std::string& s, NoiseEstimator* e) {
@@ -226,10 +226,10 @@ double Median(std::vector<double> v) {
 
 }  // namespace
 
-bool EstimateColumnNoise(const Series& series, int column, double T, double* sigma, double* q) {
+bool EstimateColumnNoise(const Series& series, int column, double T, double* sigma, double* q, std::size_t rows) {
   const bool angle = series.is_angle[static_cast<std::size_t>(column)];
   const auto& z = series.values;
-  const Eigen::Index N = z.rows();
+  const Eigen::Index N = static_cast<Eigen::Index>(std::min(rows, series.rows()));
   // v_h = mean (Δ³_h z)² for lags h = 1, 2, 4, 8; model v_h = a + b h⁵ (a = 20σ², b = 0.55 q T⁵),
   // fitted by least squares weighted by 1/v_h² (each v_h has a relative error ~ √(2/count)).
   constexpr int kLags[] = {1, 2, 4, 8};
@@ -269,6 +269,311 @@ bool EstimateColumnNoise(const Series& series, int column, double T, double* sig
   return true;
 }
 
+bool CausalNoiseOptions::Check(std::string* why) const {
+  if (first_fit < 4 || dense_until < first_fit || restart_until < 0) {
+    *why = "causal noise schedule: need 4 <= first_fit <= dense_until and restart_until >= 0";
+    return false;
+  }
+  return true;
+}
+
+bool CausalNoiseOptions::IsRefit(std::size_t rows) const {
+  const std::size_t first = static_cast<std::size_t>(first_fit), dense = static_cast<std::size_t>(dense_until);
+  if (rows < first) return false;
+  if (rows < dense) return true;
+  if (rows % dense != 0) return false;
+  const std::size_t r = rows / dense;
+  return (r & (r - 1)) == 0;  // dense · 2^j
+}
+
+bool ParseNoiseFit(const std::string& s, NoiseFit* f) {
+  if (s == "causal") {
+    *f = NoiseFit::kCausal;
+  } else if (s == "file") {
+    *f = NoiseFit::kFile;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+const char* NoiseFitName(NoiseFit f) { return f == NoiseFit::kCausal ? "causal" : "file"; }
+
+namespace {
+
+// Median sample interval of the rows [0, rows) (rows ≥ 2).
+double MedianInterval(const std::vector<double>& t, std::size_t rows) {
+  std::vector<double> dt;
+  dt.reserve(rows);
+  for (std::size_t k = 1; k < rows; ++k) dt.push_back(t[k] - t[k - 1]);
+  return Median(std::move(dt));
+}
+
+// σ and q of every column not given, fitted on the rows [0, rows); given values are copied. `known[c]` is
+// set when column c has its noise (given, or estimated now). Columns that cannot be estimated yet (no 4
+// consecutive values) keep their previous entries.
+struct NoiseFitOut {
+  std::vector<double> sigma, q;
+  std::vector<bool> known;
+  std::vector<NoiseMlFit> ml;
+  std::vector<bool> ml_used;
+  double interval_s = 0.0;
+};
+
+constexpr int kCausalBurnIn = 3;  // innovations left out by a causal ML fit (its start is diffuse in 3 states)
+
+void FitNoise(const Series& series, std::size_t rows, const AukfOptions& options, bool est_sigma, bool est_q,
+              bool causal, NoiseFitOut* out) {
+  const int m = static_cast<int>(series.columns.size());
+  const double T = MedianInterval(series.t_s, rows);
+  out->interval_s = T;
+  const Eigen::MatrixXd& Z = series.values;
+  for (int c = 0; c < m; ++c) {
+    const std::size_t cu = static_cast<std::size_t>(c);
+    const double given_sigma = est_sigma ? 0.0 : options.meas_sigma[options.meas_sigma.size() == 1 ? 0 : cu];
+    const double given_q = est_q ? 0.0 : options.q[options.q.size() == 1 ? 0 : cu];
+    if (!est_sigma && !est_q) {
+      out->sigma[cu] = given_sigma;
+      out->q[cu] = given_q;
+      out->known[cu] = true;
+      continue;
+    }
+    double sig = 0, qq = 0;
+    if (!EstimateColumnNoise(series, c, T, &sig, &qq, rows)) continue;
+    if (options.noise_estimator == NoiseEstimator::kMaxLikelihood) {
+      // σ: given, or the least motion-contaminated high-order difference estimate; q: maximum likelihood
+      // of the innovations with that σ, started from the moments (noise_ml.h).
+      double s_ml = given_sigma;
+      if (est_sigma) {
+        const std::vector<double> col(Z.col(c).data(), Z.col(c).data() + rows);
+        // Orders up to 8 when each has ≥ 8 differences per order (72 rows): the smallest over many orders of
+        // few differences each is biased low.
+        const int max_order = std::clamp(static_cast<int>(rows / 9), 3, 8);
+        const double s_diff = NoiseSigmaFromDifferences(col, series.is_angle[cu], 3, max_order);
+        if (std::isfinite(s_diff) && s_diff > 0) sig = s_diff;
+        s_ml = std::max(sig, 1e-12);
+      }
+      if (est_q) {
+        const double q0 = std::max(qq, 1e-6 * s_ml * s_ml / std::pow(T, 5));
+        NoiseMlFit fit;
+        NoiseMlOptions ml = options.noise_ml;
+        if (causal) ml.burn_in = std::min(ml.burn_in, kCausalBurnIn);
+        const bool ok =
+            FitWhiteJerkQMl(series.t_s.data(), Z.col(c).data(), rows, series.is_angle[cu], s_ml, q0, ml, &fit);
+        out->ml[cu] = fit;
+        out->ml_used[cu] = ok;
+        // Causal fits start on few samples, where the likelihood of q is flat and an under-estimated q makes the
+        // filter over-confident: they take the upper end of q's 95 % likelihood interval (→ q̂ as data grow).
+        if (ok) qq = causal ? fit.q_upper : fit.q;
+      }
+    }
+    double s = est_sigma ? sig : given_sigma;
+    if (est_sigma) {
+      // Noise-free or quantised data: keep R positive (1e-9 of the column's magnitude, at least 1e-12).
+      double mag = 0;
+      for (std::size_t k = 0; k < rows; ++k) {
+        const double z = Z(static_cast<Eigen::Index>(k), c);
+        if (std::isfinite(z)) mag = std::max(mag, std::abs(z));
+      }
+      s = std::max(s, std::max(1e-9 * mag, 1e-12));
+    }
+    out->sigma[cu] = s;
+    // Floor: a filter bandwidth of about 1/(10 T) when the data look noise-only.
+    out->q[cu] = est_q ? std::max(qq, 1e-6 * s * s / std::pow(T, 5)) : given_q;
+    out->known[cu] = true;
+  }
+}
+
+struct Counters {
+  std::size_t updates = 0, partial_updates = 0, skipped_updates = 0, adapt_steps = 0, adapt_skipped = 0;
+  std::size_t q_repairs = 0, r_repairs = 0, p_repairs = 0;
+  double nis_sum = 0.0;
+  std::size_t nis_dof = 0;
+};
+
+// The forward cycle (prediction to the lead time, second half step, update) over the rows of a series,
+// restartable from row 0 so that the state can be recomputed with new noise.
+class Forward {
+ public:
+  Forward(const Series& series, const AukfOptions& options, Model* model)
+      : s_(series), o_(options), model_(model), m_(model->m), n_(model->n) {
+    initialised_.assign(static_cast<std::size_t>(m_), false);
+    first_row_.assign(static_cast<std::size_t>(m_), series.rows());
+    sigma_.assign(static_cast<std::size_t>(m_), 0.0);
+    R0_ = MeasMat::Zero(m_, m_);
+    r_scale_.resize(m_);
+  }
+
+  // Noise from now on: σ (initial R) and q per column; T scales the repairs and the diffuse start.
+  void SetNoise(const std::vector<double>& sigma, const std::vector<double>& q, double T) {
+    sigma_ = sigma;
+    T_ = T;
+    model_->q = q;
+    for (int c = 0; c < m_; ++c) {
+      const double sc = sigma[static_cast<std::size_t>(c)];
+      model_->scale(3 * c) = sc;
+      model_->scale(3 * c + 1) = sc / T;
+      model_->scale(3 * c + 2) = sc / (T * T);
+      R0_(c, c) = sc * sc;
+      r_scale_(c) = sc;
+    }
+    if (!(AdaptsR(o_.adapt.mode) && r_adapted_)) R_ = R0_;
+  }
+
+  // State at row 0: columns measured there start at their value, the others wait for their first value.
+  void Start() {
+    x_ = StateVec::Zero(n_);
+    P_ = StateMat::Zero(n_, n_);
+    std::fill(initialised_.begin(), initialised_.end(), false);
+    for (int c = 0; c < m_; ++c) InitColumn(c, 0);
+    R_ = R0_;
+    r_adapted_ = false;
+    q_adapted_ = false;
+    innov_.Reset(m_, o_.adapt);
+  }
+
+  // Interval t_{k−1} → t_k: x_mid, P_mid at the lead time, then x, P updated with row k.
+  void Step(std::size_t k, Counters* cnt) {
+    const double tau = s_.t_s[k] - s_.t_s[k - 1];
+    const double s1 = o_.lead * tau, s2 = tau - s1;
+    const StateMat* Qr = q_adapted_ ? &Q_rate_ : nullptr;
+    model_->Predict(x_, &P_, s1, Qr, &x_mid_, &P_mid_, &cnt->p_repairs);
+    model_->Predict(x_mid_, &P_mid_, s2, Qr, &x_, &P_, &cnt->p_repairs);
+    const Eigen::MatrixXd& Z = s_.values;
+    const Eigen::Index row = static_cast<Eigen::Index>(k);
+    int avail[ukf::kMaxColumns];
+    int ma = 0, measured = 0;
+    for (int c = 0; c < m_; ++c) {
+      if (!std::isfinite(Z(row, c))) continue;
+      ++measured;
+      if (initialised_[static_cast<std::size_t>(c)]) {
+        avail[ma++] = c;
+      } else {
+        InitColumn(c, k);
+      }
+    }
+    if (measured == 0) {
+      ++cnt->skipped_updates;
+      return;
+    }
+    ++cnt->updates;
+    if (measured < m_) ++cnt->partial_updates;
+    if (ma == 0) return;
+    const StateVec x_pred = x_;
+    const StateMat P_pred = P_;
+    MeasMat S(ma, ma);
+    ukf::GainMat Pxy(n_, ma);
+    MeasVec d(ma);
+    for (int a = 0; a < ma; ++a) {
+      const int ca = avail[a], ra = 3 * ca;
+      d(a) = Diff(Z(row, ca), x_pred(ra), s_.is_angle[static_cast<std::size_t>(ca)]);
+      Pxy.col(a) = P_pred.col(ra);
+      for (int b = 0; b < ma; ++b) S(a, b) = P_pred(ra, 3 * avail[b]) + R_(ca, avail[b]);
+    }
+    ukf::Symmetrise(&S);
+    Eigen::LLT<MeasMat> llt(S);
+    if (llt.info() != Eigen::Success) {
+      MeasVec sc(ma);
+      for (int a = 0; a < ma; ++a) sc(a) = r_scale_(avail[a]);
+      ukf::RepairSpd(&S, sc, o_.adapt.r_floor);
+      ++cnt->p_repairs;
+      llt.compute(S);
+      if (llt.info() != Eigen::Success) throw ProcessingError("innovation covariance is not positive definite");
+    }
+    // K = Pxy S⁻¹  ⇔  Kᵀ = S⁻¹ Pxyᵀ
+    const ukf::GainMat K = llt.solve(Pxy.transpose()).transpose();
+    cnt->nis_sum += d.dot(llt.solve(d));
+    cnt->nis_dof += static_cast<std::size_t>(ma);
+    x_.noalias() += K * d;
+    ukf::WrapAngles(model_->angles, &x_);
+    P_.noalias() -= K * S * K.transpose();
+    ukf::Symmetrise(&P_);
+    if (o_.adapt.mode != AdaptMode::kNone) Adapt(ma, d, P_pred, K, tau, cnt);
+  }
+
+  const StateVec& x() const { return x_; }
+  const StateMat& P() const { return P_; }
+  const StateVec& x_mid() const { return x_mid_; }
+  const StateMat& P_mid() const { return P_mid_; }
+  const MeasMat& R() const { return R_; }
+  bool q_adapted() const { return q_adapted_; }
+  const StateMat& Q_rate() const { return Q_rate_; }
+  const std::vector<std::size_t>& first_row() const { return first_row_; }
+
+ private:
+  // Column c starts at its value of row k (a placeholder at the row-0 start when it has none there):
+  // x = [z, 0, 0], P = diag(σ², (30σ/T)², (100σ/T²)²), no correlation with the other columns.
+  void InitColumn(int c, std::size_t k) {
+    const std::size_t cu = static_cast<std::size_t>(c);
+    const int r = 3 * c;
+    const double z = s_.values(static_cast<Eigen::Index>(k), c);
+    const bool have = std::isfinite(z);
+    x_.segment(r, 3).setZero();
+    if (have) {
+      x_(r) = s_.is_angle[cu] ? geo::WrapPi(z) : z;
+      initialised_[cu] = true;
+      first_row_[cu] = std::min(first_row_[cu], k);
+    }
+    P_.middleRows(r, 3).setZero();
+    P_.middleCols(r, 3).setZero();
+    const double sg = sigma_[cu];
+    P_(r, r) = sg * sg;
+    P_(r + 1, r + 1) = std::pow(kDiffuseRate * sg / T_, 2);
+    P_(r + 2, r + 2) = std::pow(kDiffuseAccel * sg / (T_ * T_), 2);
+  }
+
+  // Adaptation (rows with every column only).
+  void Adapt(int ma, const MeasVec& d, const StateMat& P_pred, const ukf::GainMat& K, double tau, Counters* cnt) {
+    if (ma < m_) {
+      ++cnt->adapt_skipped;
+      return;
+    }
+    MeasMat HPH(m_, m_);
+    for (int a = 0; a < m_; ++a) {
+      for (int b = 0; b < m_; ++b) HPH(a, b) = P_pred(3 * a, 3 * b);
+    }
+    innov_.Add(d, HPH);
+    if (!innov_.Ready()) return;
+    ++cnt->adapt_steps;
+    if (AdaptsR(o_.adapt.mode)) {
+      MeasMat Rn(m_, m_);
+      for (int a = 0; a < m_; ++a) {
+        for (int b = 0; b < m_; ++b) Rn(a, b) = innov_.C()(a, b) - innov_.HPH()(a, b);
+      }
+      if (ukf::RepairSpd(&Rn, r_scale_, o_.adapt.r_floor, o_.adapt.r_ceiling)) ++cnt->r_repairs;
+      R_ = Rn;
+      r_adapted_ = true;
+    }
+    if (AdaptsQ(o_.adapt.mode)) {
+      StateMat Qn = K * innov_.C() * K.transpose();
+      if (ukf::RepairSpd(&Qn, model_->scale, o_.adapt.q_floor, o_.adapt.q_ceiling)) ++cnt->q_repairs;
+      Q_rate_ = Qn / tau;
+      q_adapted_ = true;
+    }
+  }
+
+  static constexpr double kDiffuseRate = 30.0;    // prior 1σ of p' in σ/T
+  static constexpr double kDiffuseAccel = 100.0;  // prior 1σ of p'' in σ/T²
+
+  const Series& s_;
+  const AukfOptions& o_;
+  Model* model_;
+  int m_, n_;
+  std::vector<bool> initialised_;
+  std::vector<std::size_t> first_row_;
+  std::vector<double> sigma_;
+  double T_ = 1.0;
+  StateVec x_, x_mid_;
+  StateMat P_, P_mid_;
+  MeasMat R0_, R_;
+  MeasVec r_scale_;
+  InnovationCovariance innov_;
+  StateMat Q_rate_;
+  bool q_adapted_ = false, r_adapted_ = false;
+};
+
+}  // namespace
+
 AukfResult RunAukf(const Series& series, const AukfOptions& options) {
   std::string why;
   if (!options.Check(&why)) throw UsageError(why);
@@ -282,270 +587,199 @@ AukfResult RunAukf(const Series& series, const AukfOptions& options) {
   }
   const std::size_t N = series.rows();
   if (N < 3) throw DataError(series.source, 0, 0, "needs at least 3 samples, has " + std::to_string(N));
+  if (!(m * 3 + options.kappa > 0)) throw UsageError("--kappa: n + kappa must be > 0");
   const int n = 3 * m;
+  const std::size_t mu = static_cast<std::size_t>(m);
+  const Eigen::MatrixXd& Z = series.values;
 
   AukfResult res;
   res.m = m;
   res.n = n;
   res.samples = N;
-  {
-    std::vector<double> dt;
-    for (std::size_t k = 1; k < N; ++k) dt.push_back(series.t_s[k] - series.t_s[k - 1]);
-    res.interval_s = Median(dt);
-  }
+  res.interval_s = MedianInterval(series.t_s, N);
   const double T = res.interval_s;
-  const Eigen::MatrixXd& Z = series.values;
+  for (int c = 0; c < m; ++c) {
+    std::size_t values = 0;
+    for (std::size_t k = 0; k < N; ++k) values += std::isfinite(Z(static_cast<Eigen::Index>(k), c)) ? 1 : 0;
+    if (values < 2) {
+      throw DataError(series.source, 0, 0, "column '" + series.columns[static_cast<std::size_t>(c)] + "' has fewer than 2 values");
+    }
+  }
 
-  // Noise per column: given, or estimated from the data.
-  res.meas_sigma.assign(static_cast<std::size_t>(m), 0.0);
-  res.q.assign(static_cast<std::size_t>(m), 0.0);
+  // Noise per column: given, or fitted (on the whole file, or on the rows up to each refit).
   res.meas_sigma_estimated = options.meas_sigma.empty();
   res.q_estimated = options.q.empty();
-  if (options.noise_estimator == NoiseEstimator::kMaxLikelihood && (res.meas_sigma_estimated || res.q_estimated)) {
-    res.noise_fit.assign(static_cast<std::size_t>(m), NoiseMlFit{});
-    res.noise_fit_used.assign(static_cast<std::size_t>(m), false);
-  }
-  for (int c = 0; c < m; ++c) {
-    const std::size_t cu = static_cast<std::size_t>(c);
-    double sig = 0, qq = 0;
-    bool have = (res.meas_sigma_estimated || res.q_estimated) && EstimateColumnNoise(series, c, T, &sig, &qq);
-    if (have && options.noise_estimator == NoiseEstimator::kMaxLikelihood) {
-      // σ: given, or the least motion-contaminated high-order difference estimate; q: maximum likelihood
-      // of the innovations with that σ, started from the moments (noise_ml.h).
-      double s_ml = res.meas_sigma_estimated ? 0.0 : options.meas_sigma[options.meas_sigma.size() == 1 ? 0 : cu];
-      if (res.meas_sigma_estimated) {
-        const std::vector<double> col(series.values.col(c).data(), series.values.col(c).data() + N);
-        const double s_diff = NoiseSigmaFromDifferences(col, series.is_angle[cu]);
-        if (std::isfinite(s_diff) && s_diff > 0) sig = s_diff;
-        s_ml = std::max(sig, 1e-12);
+  const bool estimated = res.meas_sigma_estimated || res.q_estimated;
+  const bool causal = estimated && options.noise_fit == NoiseFit::kCausal;
+  NoiseFitOut noise;
+  noise.sigma.assign(mu, 0.0);
+  noise.q.assign(mu, 0.0);
+  noise.known.assign(mu, false);
+  noise.ml.assign(mu, NoiseMlFit{});
+  noise.ml_used.assign(mu, false);
+  if (estimated) {
+    // A column that cannot be estimated even on the whole file is an error (no 4 consecutive values).
+    for (int c = 0; c < m; ++c) {
+      double sg = 0, qq = 0;
+      if (res.meas_sigma_estimated && !EstimateColumnNoise(series, c, T, &sg, &qq)) {
+        throw DataError(series.source, 0, 0,
+                        "column '" + series.columns[static_cast<std::size_t>(c)] +
+                            "': cannot estimate the measurement noise (no 4 consecutive values); give --meas-sigma");
       }
-      if (res.q_estimated) {
-        const double q0 = std::max(qq, 1e-6 * s_ml * s_ml / std::pow(T, 5));
-        NoiseMlFit fit;
-        const bool ok = FitWhiteJerkQMl(series.t_s.data(), series.values.col(c).data(), N, series.is_angle[cu], s_ml,
-                                        q0, options.noise_ml, &fit);
-        res.noise_fit[cu] = fit;
-        res.noise_fit_used[cu] = ok;
-        if (ok) qq = fit.q;
-      }
-    }
-    if (res.meas_sigma_estimated && !have) {
-      throw DataError(series.source, 0, 0,
-                      "column '" + series.columns[cu] +
-                          "': cannot estimate the measurement noise (no 4 consecutive values); give --meas-sigma");
-    }
-    res.meas_sigma[cu] = res.meas_sigma_estimated ? sig : options.meas_sigma[options.meas_sigma.size() == 1 ? 0 : cu];
-    if (res.meas_sigma_estimated) {
-      // Noise-free or quantised data: keep R positive (1e-9 of the column's magnitude, at least 1e-12).
-      double mag = 0;
-      for (std::size_t k = 0; k < N; ++k) {
-        if (std::isfinite(Z(static_cast<Eigen::Index>(k), c))) mag = std::max(mag, std::abs(Z(static_cast<Eigen::Index>(k), c)));
-      }
-      res.meas_sigma[cu] = std::max(res.meas_sigma[cu], std::max(1e-9 * mag, 1e-12));
-    }
-    if (res.q_estimated) {
-      // Floor: a filter bandwidth of about 1/(10 T) when the data look noise-only.
-      const double floor = 1e-6 * res.meas_sigma[cu] * res.meas_sigma[cu] / std::pow(T, 5);
-      res.q[cu] = std::max(have ? qq : 0.0, floor);
-    } else {
-      res.q[cu] = options.q[options.q.size() == 1 ? 0 : cu];
     }
   }
+  // The noise in use per column (provisional until its first fit in causal mode).
+  std::vector<double> sigma_use(mu), q_use(mu);
+  double T_use = T;
+  if (causal) {
+    // Provisional noise: the given values, or σ_p with q_p = σ_p²/T⁵ (the means do not depend on the scale).
+    constexpr double kProvisionalSigma = 1e-3;  // file units or radians; only its ratio to q matters
+    T_use = series.t_s[1] - series.t_s[0];
+    for (std::size_t c = 0; c < mu; ++c) {
+      sigma_use[c] = res.meas_sigma_estimated ? kProvisionalSigma : options.meas_sigma[options.meas_sigma.size() == 1 ? 0 : c];
+      q_use[c] = res.q_estimated ? sigma_use[c] * sigma_use[c] / std::pow(T_use, 5) : options.q[options.q.size() == 1 ? 0 : c];
+    }
+  } else {
+    FitNoise(series, N, options, res.meas_sigma_estimated, res.q_estimated, false, &noise);
+    sigma_use = noise.sigma;
+    q_use = noise.q;
+  }
+  res.noise_known_row.assign(mu, causal ? N : 0);
 
   Model model;
   model.m = m;
   model.n = n;
   model.kappa = options.kappa;
-  if (!(n + options.kappa > 0)) throw UsageError("--kappa: n + kappa must be > 0");
   model.w = ukf::MakeWeights(n, options.kappa);
-  model.q = res.q;
   model.is_angle = series.is_angle;
   model.block_diagonal = options.adapt.mode == AdaptMode::kNone && !options.joint_transform;
   model.scale.resize(n);
   for (int c = 0; c < m; ++c) {
-    const double s = res.meas_sigma[static_cast<std::size_t>(c)];
-    model.scale(3 * c) = s;
-    model.scale(3 * c + 1) = s / T;
-    model.scale(3 * c + 2) = s / (T * T);
     if (series.is_angle[static_cast<std::size_t>(c)]) model.angles.Add(3 * c);
   }
-
-  // Initial state from the first two values of each column.
-  StateVec x = StateVec::Zero(n);
-  StateMat P = StateMat::Zero(n, n);
-  for (int c = 0; c < m; ++c) {
-    const std::size_t cu = static_cast<std::size_t>(c);
-    const bool angle = series.is_angle[cu];
-    std::vector<std::size_t> first;
-    for (std::size_t k = 0; k < N && first.size() < 3; ++k) {
-      if (std::isfinite(Z(static_cast<Eigen::Index>(k), c))) first.push_back(k);
-    }
-    if (first.size() < 2) {
-      throw DataError(series.source, 0, 0, "column '" + series.columns[cu] + "' has fewer than 2 values");
-    }
-    const auto zi = Z(static_cast<Eigen::Index>(first[0]), c), zj = Z(static_cast<Eigen::Index>(first[1]), c);
-    const double dt = series.t_s[first[1]] - series.t_s[first[0]];
-    const double v = Diff(zj, zi, angle) / dt;
-    double a3 = 0;
-    if (first.size() == 3) {
-      const double dt2 = series.t_s[first[2]] - series.t_s[first[1]];
-      const double v2 = Diff(Z(static_cast<Eigen::Index>(first[2]), c), zj, angle) / dt2;
-      a3 = (v2 - v) / (0.5 * (dt + dt2));
-    }
-    const double s2 = res.meas_sigma[cu] * res.meas_sigma[cu];
-    const int r = 3 * c;
-    x(r) = zi - v * (series.t_s[first[0]] - series.t_s[0]);
-    if (angle) x(r) = geo::WrapPi(x(r));
-    x(r + 1) = v;
-    x(r + 2) = 0;
-    P(r, r) = s2;
-    P(r, r + 1) = P(r + 1, r) = -s2 / dt;
-    P(r + 1, r + 1) = 2 * s2 / (dt * dt);
-    P(r + 2, r + 2) = 600 * s2 / (dt * dt * dt * dt) + a3 * a3;
-  }
-
-  MeasMat R0 = MeasMat::Zero(m, m);
-  for (int c = 0; c < m; ++c) R0(c, c) = res.meas_sigma[static_cast<std::size_t>(c)] * res.meas_sigma[static_cast<std::size_t>(c)];
-  MeasMat R = R0;
-  MeasVec r_scale(m);
-  for (int c = 0; c < m; ++c) r_scale(c) = res.meas_sigma[static_cast<std::size_t>(c)];
-  InnovationCovariance innov;
-  innov.Reset(m, options.adapt);
-  StateMat Q_rate;  // adapted process noise per unit time
-  bool q_adapted = false;
+  Forward fwd(series, options, &model);
+  fwd.SetNoise(sigma_use, q_use, T_use);
+  fwd.Start();
 
   const std::size_t J = 2 * N - 1;
-  const bool keep_cov = options.keep_covariance || options.smooth;
+  const bool smooth_here = options.smooth && (!estimated || options.smooth_noise_fit == options.noise_fit);
+  const bool keep_cov = options.keep_covariance || smooth_here;
   const std::size_t packed = static_cast<std::size_t>(n * (n + 1) / 2);
   if (keep_cov) res.cov_filter.reserve(J * packed);
-  // Adapted Q per interval for the smoother (only when Q is adapted and smoothing).
-  const bool store_q = options.smooth && AdaptsQ(options.adapt.mode);
-  std::vector<double> q_store;            // packed Q_rate per sample interval
-  std::vector<char> q_store_used;         // 1 if the interval used an adapted Q
+  // Per-interval noise for the smoother: adapted Q, or the q of a causal refit schedule.
+  const bool store_q = smooth_here && AdaptsQ(options.adapt.mode);
+  const bool store_model_q = smooth_here && causal;
+  std::vector<double> q_store;        // packed Q_rate per sample interval
+  std::vector<char> q_store_used;     // 1 if the interval used an adapted Q
+  std::vector<double> model_q_store;  // m per sample interval
   res.t_s.reserve(J);
   res.x_filter.resize(n, static_cast<Eigen::Index>(J));
   res.sd_filter.resize(n, static_cast<Eigen::Index>(J));
 
-  auto store = [&](double t, bool mid, int sample, AukfStatus st, const StateVec& xs, const StateMat& Ps) {
-    const Eigen::Index j = static_cast<Eigen::Index>(res.t_s.size());
-    res.t_s.push_back(t);
-    res.is_mid.push_back(mid);
-    res.sample.push_back(sample);
-    res.status.push_back(st);
-    res.x_filter.col(j) = xs;
-    res.sd_filter.col(j) = Ps.diagonal().cwiseMax(0.0).cwiseSqrt();
-    if (keep_cov) Pack(Ps, &res.cov_filter);
-  };
   auto row_status = [&](std::size_t k) {
     for (int c = 0; c < m; ++c) {
       if (std::isfinite(Z(static_cast<Eigen::Index>(k), c))) return AukfStatus::kOk;
     }
     return AukfStatus::kPredicted;
   };
+  auto store = [&](double t, bool mid, std::size_t sample, const StateVec& xs, const StateMat& Ps) {
+    const Eigen::Index j = static_cast<Eigen::Index>(res.t_s.size());
+    res.t_s.push_back(t);
+    res.is_mid.push_back(mid);
+    res.sample.push_back(static_cast<int>(sample));
+    res.status.push_back(mid ? AukfStatus::kOk : row_status(sample));
+    res.x_filter.col(j) = xs;
+    res.sd_filter.col(j) = Ps.diagonal().cwiseMax(0.0).cwiseSqrt();
+    if (keep_cov) Pack(Ps, &res.cov_filter);
+  };
+  Counters cnt;
+  // After the update of row k − 1 (rows 0..k−1 in): refit on those rows when the schedule says so.
+  auto maybe_refit = [&](std::size_t rows) {
+    if (!causal || !options.causal.IsRefit(rows)) return;
+    FitNoise(series, rows, options, res.meas_sigma_estimated, res.q_estimated, true, &noise);
+    bool any = false;
+    for (std::size_t c = 0; c < mu; ++c) {
+      if (!noise.known[c]) continue;
+      any = true;
+      sigma_use[c] = noise.sigma[c];
+      q_use[c] = noise.q[c];
+      res.noise_known_row[c] = std::min(res.noise_known_row[c], rows - 1);
+    }
+    if (!any) return;
+    T_use = noise.interval_s;
+    fwd.SetNoise(sigma_use, q_use, T_use);
+    AukfResult::NoiseRefit rf;
+    rf.rows = rows;
+    rf.restarted = rows <= static_cast<std::size_t>(options.causal.restart_until);
+    rf.meas_sigma = sigma_use;
+    rf.q = q_use;
+    if (rf.restarted) {
+      // Re-run the filter over the rows so far with the new noise (no output; repairs are counted).
+      Counters replay;
+      fwd.Start();
+      for (std::size_t k = 1; k < rows; ++k) fwd.Step(k, &replay);
+      cnt.p_repairs += replay.p_repairs;
+      cnt.q_repairs += replay.q_repairs;
+      cnt.r_repairs += replay.r_repairs;
+    }
+    res.noise_refits.push_back(std::move(rf));
+  };
 
-  StateVec x_mid, x_pred;
-  StateMat P_mid, P_pred;
-  const AukfStatus st0 = row_status(0);
+  maybe_refit(1);
+  store(series.t_s[0], false, 0, fwd.x(), fwd.P());
   for (std::size_t k = 1; k < N; ++k) {
-    const double tau = series.t_s[k] - series.t_s[k - 1];
-    const double s1 = options.lead * tau, s2 = tau - s1;
-    const StateMat* Qr = q_adapted ? &Q_rate : nullptr;
     if (store_q) {
-      q_store_used.push_back(q_adapted ? 1 : 0);
-      if (q_adapted) Pack(Q_rate, &q_store);
+      q_store_used.push_back(fwd.q_adapted() ? 1 : 0);
+      if (fwd.q_adapted()) Pack(fwd.Q_rate(), &q_store);
     }
-    // Half step 1 (may repair P of node k−1 in place; the node is stored after that).
-    model.Predict(x, &P, s1, Qr, &x_mid, &P_mid, &res.p_repairs);
-    if (k == 1) store(series.t_s[0], false, 0, st0, x, P);
-    else store(series.t_s[k - 1], false, static_cast<int>(k - 1), row_status(k - 1), x, P);
-    // Half step 2.
-    model.Predict(x_mid, &P_mid, s2, Qr, &x_pred, &P_pred, &res.p_repairs);
-    store(series.t_s[k - 1] + s1, true, static_cast<int>(k - 1), AukfStatus::kOk, x_mid, P_mid);
-
-    // Measurement update with the measured columns.
-    int avail[ukf::kMaxColumns];
-    int ma = 0;
-    for (int c = 0; c < m; ++c) {
-      if (std::isfinite(Z(static_cast<Eigen::Index>(k), c))) avail[ma++] = c;
-    }
-    x = x_pred;
-    P = P_pred;
-    if (ma == 0) {
-      ++res.skipped_updates;
-      continue;
-    }
-    ++res.updates;
-    if (ma < m) ++res.partial_updates;
-    MeasMat S(ma, ma);
-    ukf::GainMat Pxy(n, ma);
-    MeasVec d(ma);
-    for (int a = 0; a < ma; ++a) {
-      const int ca = avail[a], ra = 3 * ca;
-      d(a) = Diff(Z(static_cast<Eigen::Index>(k), ca), x_pred(ra), series.is_angle[static_cast<std::size_t>(ca)]);
-      Pxy.col(a) = P_pred.col(ra);
-      for (int b = 0; b < ma; ++b) S(a, b) = P_pred(ra, 3 * avail[b]) + R(ca, avail[b]);
-    }
-    ukf::Symmetrise(&S);
-    Eigen::LLT<MeasMat> llt(S);
-    if (llt.info() != Eigen::Success) {
-      MeasVec sc(ma);
-      for (int a = 0; a < ma; ++a) sc(a) = r_scale(avail[a]);
-      ukf::RepairSpd(&S, sc, options.adapt.r_floor);
-      ++res.p_repairs;
-      llt.compute(S);
-      if (llt.info() != Eigen::Success) throw ProcessingError("innovation covariance is not positive definite");
-    }
-    // K = Pxy S⁻¹  ⇔  Kᵀ = S⁻¹ Pxyᵀ
-    ukf::GainMat K = llt.solve(Pxy.transpose()).transpose();
-    res.nis_sum += d.dot(llt.solve(d));
-    res.nis_dof += static_cast<std::size_t>(ma);
-    x.noalias() += K * d;
-    ukf::WrapAngles(model.angles, &x);
-    P.noalias() -= K * S * K.transpose();
-    ukf::Symmetrise(&P);
-
-    // Adaptation (rows with every column only).
-    if (options.adapt.mode != AdaptMode::kNone) {
-      if (ma < m) {
-        ++res.adapt_skipped;
-      } else {
-        MeasMat HPH(m, m);
-        for (int a = 0; a < m; ++a) {
-          for (int b = 0; b < m; ++b) HPH(a, b) = P_pred(3 * a, 3 * b);
-        }
-        innov.Add(d, HPH);
-        if (innov.Ready()) {
-          ++res.adapt_steps;
-          if (AdaptsR(options.adapt.mode)) {
-            MeasMat Rn(m, m);
-            for (int a = 0; a < m; ++a) {
-              for (int b = 0; b < m; ++b) Rn(a, b) = innov.C()(a, b) - innov.HPH()(a, b);
-            }
-            if (ukf::RepairSpd(&Rn, r_scale, options.adapt.r_floor, options.adapt.r_ceiling)) ++res.r_repairs;
-            R = Rn;
-          }
-          if (AdaptsQ(options.adapt.mode)) {
-            StateMat Qn = K * innov.C() * K.transpose();
-            if (ukf::RepairSpd(&Qn, model.scale, options.adapt.q_floor, options.adapt.q_ceiling)) ++res.q_repairs;
-            Q_rate = Qn / tau;
-            q_adapted = true;
-          }
-        }
-      }
-    }
+    if (store_model_q) model_q_store.insert(model_q_store.end(), model.q.begin(), model.q.end());
+    fwd.Step(k, &cnt);
+    store(series.t_s[k - 1] + options.lead * (series.t_s[k] - series.t_s[k - 1]), true, k - 1, fwd.x_mid(),
+          fwd.P_mid());
+    maybe_refit(k + 1);
+    store(series.t_s[k], false, k, fwd.x(), fwd.P());
   }
-  store(series.t_s[N - 1], false, static_cast<int>(N - 1), row_status(N - 1), x, P);
+  res.first_row = fwd.first_row();
 
-  res.final_R = R;
-  res.final_Q_adapted = q_adapted;
-  if (q_adapted) {
-    res.final_Q = Q_rate * T;
+  res.updates = cnt.updates;
+  res.partial_updates = cnt.partial_updates;
+  res.skipped_updates = cnt.skipped_updates;
+  res.adapt_steps = cnt.adapt_steps;
+  res.adapt_skipped = cnt.adapt_skipped;
+  res.q_repairs = cnt.q_repairs;
+  res.r_repairs = cnt.r_repairs;
+  res.p_repairs = cnt.p_repairs;
+  res.nis_sum = cnt.nis_sum;
+  res.nis_dof = cnt.nis_dof;
+  res.meas_sigma = sigma_use;
+  res.q = q_use;
+  if (estimated && options.noise_estimator == NoiseEstimator::kMaxLikelihood) {
+    res.noise_fit = noise.ml;
+    res.noise_fit_used = noise.ml_used;
+  }
+  res.final_R = fwd.R();
+  res.final_Q_adapted = fwd.q_adapted();
+  if (fwd.q_adapted()) {
+    res.final_Q = fwd.Q_rate() * T;
   } else {
     res.final_Q = StateMat::Zero(n, n);
     model.AddQ(T, nullptr, &res.final_Q);
   }
 
-  if (options.smooth) {
+  if (options.smooth && !smooth_here) {
+    // Smoothed rows from a forward pass with the other noise fit (they may use every sample).
+    AukfOptions o = options;
+    o.noise_fit = options.smooth_noise_fit;
+    o.keep_covariance = false;
+    AukfResult r = RunAukf(series, o);
+    res.x_smooth = std::move(r.x_smooth);
+    res.sd_smooth = std::move(r.sd_smooth);
+    res.smooth_meas_sigma = r.meas_sigma;
+    res.smooth_q = r.q;
+    res.p_repairs += r.p_repairs;
+    return res;
+  }
+  if (smooth_here) {
     res.x_smooth.resize(n, static_cast<Eigen::Index>(J));
     res.sd_smooth.resize(n, static_cast<Eigen::Index>(J));
     StateVec xs = res.x_filter.col(static_cast<Eigen::Index>(J - 1));
@@ -574,6 +808,7 @@ AukfResult RunAukf(const Series& series, const AukfOptions& options) {
         Unpack(q_store.data() + q_offset[interval], n, &Qr_k);
         Qr = &Qr_k;
       }
+      if (store_model_q) std::copy_n(model_q_store.begin() + static_cast<std::ptrdiff_t>(interval * mu), mu, model.q.begin());
       StateVec xp;
       StateMat Pp;
       StateMat C;
@@ -584,7 +819,12 @@ AukfResult RunAukf(const Series& series, const AukfOptions& options) {
         ++smoother_repairs;
         llt.compute(Pp);
       }
-      const StateMat G = llt.solve(C.transpose()).transpose();
+      StateMat G = llt.solve(C.transpose()).transpose();
+      // A column that starts at node jj + 1 was not predicted from node jj: nothing flows back to it.
+      for (int c = 0; c < m; ++c) {
+        const std::size_t f = res.first_row[static_cast<std::size_t>(c)];
+        if (f > 0 && jj + 1 == 2 * f) G.middleRows(3 * c, 3).setZero();
+      }
       StateVec diff = xs - xp;
       ukf::WrapAngles(model.angles, &diff);
       StateVec xs_new = xf + G * diff;
@@ -640,7 +880,10 @@ io::CsvWriter AukfCsv(const Series& series, const AukfResult& result, const Aukf
     wrap360[static_cast<std::size_t>(c)] = AngleColumnIs360(series.columns[static_cast<std::size_t>(c)], v);
   }
   io::CsvWriter w(header);
-  auto write_row = [&](std::size_t j, const char* kind, const Eigen::MatrixXd& X, const Eigen::MatrixXd& SD) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  // Empty fields: a column before its first value; its 1σ in the forward pass before its noise is known.
+  auto write_row = [&](std::size_t j, const char* kind, const Eigen::MatrixXd& X, const Eigen::MatrixXd& SD,
+                       bool forward) {
     const Eigen::Index jc = static_cast<Eigen::Index>(j);
     w.Add(result.t_s[j], out.decimals).Add(kind);
     for (int c = 0; c < m; ++c) {
@@ -649,27 +892,29 @@ io::CsvWriter AukfCsv(const Series& series, const AukfResult& result, const Aukf
         v = geo::RadToDeg(v);
         v = wrap360[static_cast<std::size_t>(c)] ? geo::WrapDeg360(v) : geo::WrapDeg180(v);
       }
-      w.Add(v, out.decimals);
+      w.Add(result.HasValue(j, c) ? v : kNaN, out.decimals);
     }
     w.Add(result.status[j] == AukfStatus::kOk ? "ok" : "predicted");
     if (out.derivatives) {
       for (int c = 0; c < m; ++c) {
         const double f = series.is_angle[static_cast<std::size_t>(c)] ? geo::RadToDeg(1.0) : 1.0;
-        w.Add(f * X(3 * c + 1, jc), out.decimals).Add(f * X(3 * c + 2, jc), out.decimals);
+        const bool have = result.HasValue(j, c);
+        w.Add(have ? f * X(3 * c + 1, jc) : kNaN, out.decimals).Add(have ? f * X(3 * c + 2, jc) : kNaN, out.decimals);
       }
     }
     if (out.sigmas) {
       for (int c = 0; c < m; ++c) {
         const double f = series.is_angle[static_cast<std::size_t>(c)] ? geo::RadToDeg(1.0) : 1.0;
-        w.Add(f * SD(3 * c, jc), out.decimals);
+        const bool have = forward ? result.HasSigma(j, c) : result.HasValue(j, c);
+        w.Add(have ? f * SD(3 * c, jc) : kNaN, out.decimals);
       }
     }
     w.EndRow();
   };
   const bool smoothed = result.x_smooth.cols() == static_cast<Eigen::Index>(result.t_s.size());
   for (std::size_t j = 0; j < result.t_s.size(); ++j) {
-    write_row(j, result.is_mid[j] ? "prediction" : "estimate", result.x_filter, result.sd_filter);
-    if (smoothed) write_row(j, "smoothed", result.x_smooth, result.sd_smooth);
+    write_row(j, result.is_mid[j] ? "prediction" : "estimate", result.x_filter, result.sd_filter, true);
+    if (smoothed) write_row(j, "smoothed", result.x_smooth, result.sd_smooth, false);
   }
   return w;
 }
@@ -719,6 +964,8 @@ io::Json AukfReportJson(const Series& series, const AukfOptions& options, const 
                   {"meas_sigma_estimated", result.meas_sigma_estimated},
                   {"q_estimated", result.q_estimated},
                   {"noise_estimate", NoiseEstimatorName(options.noise_estimator)},
+                  {"noise_fit", NoiseFitName(options.noise_fit)},
+                  {"smooth_noise_fit", NoiseFitName(options.smooth_noise_fit)},
                   {"process_model", "white jerk, Q(tau) = q [[tau^5/20, tau^4/8, tau^3/6], [tau^4/8, tau^3/3, "
                                     "tau^2/2], [tau^3/6, tau^2/2, tau]] per column"},
                   {"columns", cols}};
@@ -732,6 +979,25 @@ io::Json AukfReportJson(const Series& series, const AukfOptions& options, const 
                  {"repairs_q", result.q_repairs},
                  {"repairs_r", result.r_repairs},
                  {"repairs_p", result.p_repairs}};
+  // σ and q per column in file units.
+  auto noise_json = [&](const std::vector<double>& sigma, const std::vector<double>& q) {
+    io::Json sg = io::Json::array(), qq = io::Json::array();
+    for (int c = 0; c < result.m; ++c) {
+      const double f = series.is_angle[static_cast<std::size_t>(c)] ? geo::RadToDeg(1.0) : 1.0;
+      sg.push_back(f * sigma[static_cast<std::size_t>(c)]);
+      qq.push_back(f * f * q[static_cast<std::size_t>(c)]);
+    }
+    return io::Json{{"meas_sigma", sg}, {"q", qq}};
+  };
+  io::Json refits = io::Json::array();
+  for (const auto& rf : result.noise_refits) {
+    io::Json e = noise_json(rf.meas_sigma, rf.q);
+    e["rows"] = rf.rows;
+    e["restarted"] = rf.restarted;
+    refits.push_back(e);
+  }
+  j["noise_refits"] = refits;
+  if (!result.smooth_meas_sigma.empty()) j["smooth_noise"] = noise_json(result.smooth_meas_sigma, result.smooth_q);
   j["interval_s"] = result.interval_s;
   j["nis_mean"] = result.NisMean();
   j["nis_mean_per_dof"] = result.nis_dof ? result.nis_sum / static_cast<double>(result.nis_dof) : 0.0;

@@ -29,10 +29,10 @@
 //   (Q̂/τ_k) and scaled by the sub-step length for each half step.
 // Angles (columns ending `_deg`, radians inside): wrap-safe sigma-point means, innovations, state
 //   after each update, smoother differences (all wrapped to (−π, π]).
-// Initialisation (documented in docs/rk-smooth.md): for each column, from its first two values
-//   z_i, z_j: p = z_i − v (t_i − t_0), v = (z_j − z_i)/(t_j − t_i), p'' = 0, with
-//   P = [[σ², −σ²/Δ, 0], [−σ²/Δ, 2σ²/Δ², 0], [0, 0, 600 σ²/Δ⁴ + a₃²]] (Δ = t_j − t_i, a₃ = second
-//   difference of the first three values / Δ²: deliberately loose).
+// Initialisation (documented in docs/rk-smooth.md), causal: each column starts at its first value z_i,
+//   x = [z_i, 0, 0], P = diag(σ², (30σ/T)², (100σ/T²)²) (diffuse in rate and acceleration: the next two
+//   values determine them, as a two- or three-point start would, without reading ahead). Before its first
+//   value a column has no estimate (empty output fields).
 // Default noise (when not given), per column (NoiseEstimator::kMaxLikelihood):
 //   σ̂ from high-order differences (NoiseSigmaFromDifferences, singer_series.h), q̂ by maximum likelihood of
 //   the innovations with that σ̂ (FitWhiteJerkQMl, noise_ml.h), started from the moments below.
@@ -40,6 +40,18 @@
 //   v_h = mean (Δ³_h z)², with E v_h = 20σ² + 0.55 q (hT)⁵ for white jerk (0.55 = ∫B₂², B₂ the quadratic
 //   B-spline): weighted least-squares fit of a + b h⁵ (weights 1/v_h²), q̂ = b/(0.55 T⁵) ≥ 0,
 //   σ̂² = (v₁ − b)/20 (T = median interval; assumes near-regular sampling).
+// When the noise is fitted (NoiseFit):
+//   kCausal (default): every `estimate` and `prediction` depends on no later sample. The fit is redone on the
+//     rows 0..k−1 after the update of row k−1, for k = first_fit … dense_until − 1 and k = dense_until·2^j
+//     (CausalNoiseOptions), and used from that node on; a refit with k ≤ restart_until re-runs the filter over
+//     rows 0..k−1 with the new noise (cheap, and the early state then matches its noise), later refits keep
+//     the state. Causal fits start on few samples: σ̂ uses difference orders 3…min(8, rows/9), the likelihood
+//     leaves out 3 innovations, and q̂ is the upper end of q's 95 % likelihood interval (NoiseMlFit::q_upper),
+//     since an under-estimated q makes the filter over-confident. Before a column's first fit, the filter runs with a provisional noise (σ_p, q_p = σ_p²/T⁵:
+//     the means of a linear filter do not depend on the common scale of P₀, Q and R) and the column's 1σ is
+//     not output (empty).
+//   kFile: σ and q fitted once on the whole file (the rows before k then depend on later samples).
+// The smoothed rows (smooth_noise_fit) may use everything: by default a second forward pass with the whole-file fit.
 // Smoother: unscented RTS over the sequence of half steps (sample and mid-times alike): from the
 //   stored filtered (x_j, P_j) of every node, sigma points are propagated to node j+1,
 //   x⁻ = Σ W ΦX, P⁻ = Σ W (ΦX − x⁻)(·)ᵀ + Q_j, C = Σ W (X − x_j)(ΦX − x⁻)ᵀ, G = C (P⁻)⁻¹,
@@ -63,6 +75,20 @@ enum class NoiseEstimator { kMaxLikelihood, kDifferences };
 bool ParseNoiseEstimator(const std::string& s, NoiseEstimator* e);
 const char* NoiseEstimatorName(NoiseEstimator e);
 
+// Which samples the fitted σ and q of the forward pass may use: those up to each time, or the whole file.
+enum class NoiseFit { kCausal, kFile };
+bool ParseNoiseFit(const std::string& s, NoiseFit* f);
+const char* NoiseFitName(NoiseFit f);
+
+// Refit schedule of NoiseFit::kCausal, in rows available (see the header comment).
+struct CausalNoiseOptions {
+  int first_fit = 16;       // rows before the first fit (≥ 4: the moments need 4 consecutive values)
+  int dense_until = 32;     // refit after every row below this count, then at dense_until·2^j rows
+  int restart_until = 256;  // refits at up to this many rows re-run the filter over the rows so far
+  bool Check(std::string* why) const;
+  bool IsRefit(std::size_t rows) const;
+};
+
 struct AukfOptions {
   double lead = 0.5;   // fraction ℓ of each interval at which the prediction is output, in (0, 1)
   double kappa = 1.0;  // sigma-point parameter κ (the paper's m): W0 = κ/(n+κ); n + κ > 0
@@ -75,6 +101,12 @@ struct AukfOptions {
   // moments alone.
   NoiseEstimator noise_estimator = NoiseEstimator::kMaxLikelihood;
   NoiseMlOptions noise_ml;
+  // Data the fitted noise of the forward pass (estimate and prediction rows) may use; and of the smoothed
+  // rows (kFile: an extra forward pass with the whole-file fit feeds the smoother; measured better, see
+  // docs/rk-smooth.md). Both only matter for σ or q not given.
+  NoiseFit noise_fit = NoiseFit::kCausal;
+  NoiseFit smooth_noise_fit = NoiseFit::kFile;
+  CausalNoiseOptions causal;
   AdaptiveNoiseOptions adapt;
   bool smooth = false;           // run the unscented RTS smoother
   bool keep_covariance = false;  // keep every node's filtered covariance (tests, NEES)
@@ -97,14 +129,30 @@ struct AukfResult {
   Eigen::MatrixXd x_smooth, sd_smooth;  // n × nodes, when smoothing
   std::vector<double> cov_filter;       // packed upper triangles, n(n+1)/2 per node (keep_covariance/smooth)
   ukf::StateMat FilterCovariance(std::size_t node) const;
+  // Per column: first sample row with a value (nodes of earlier rows have no estimate for the column), and
+  // first sample row from which its noise is known (given or fitted: the 1σ of earlier nodes is not output).
+  std::vector<std::size_t> first_row, noise_known_row;
+  bool HasValue(std::size_t node, int column) const { return sample_row(node) >= first_row[static_cast<std::size_t>(column)]; }
+  bool HasSigma(std::size_t node, int column) const {
+    return HasValue(node, column) && sample_row(node) >= noise_known_row[static_cast<std::size_t>(column)];
+  }
+  std::size_t sample_row(std::size_t node) const { return static_cast<std::size_t>(sample[node]); }
 
   // What was used.
   double interval_s = 0.0;          // median sample interval T
   std::vector<double> meas_sigma;   // initial σ per column (SI/radians)
   std::vector<double> q;            // white-jerk intensity per column (SI/radians)
   bool meas_sigma_estimated = false, q_estimated = false;
-  std::vector<NoiseMlFit> noise_fit;  // per column, when σ or q came from maximum likelihood
+  std::vector<NoiseMlFit> noise_fit;  // per column, when σ or q came from maximum likelihood (the last fit)
   std::vector<bool> noise_fit_used;   // per column: the ML fit was used (false: moments only)
+  struct NoiseRefit {                 // NoiseFit::kCausal: one fit on the rows 0..rows−1
+    std::size_t rows = 0;
+    bool restarted = false;           // the filter was re-run over those rows with the new noise
+    std::vector<double> meas_sigma, q;
+  };
+  std::vector<NoiseRefit> noise_refits;
+  // Noise of the smoothed rows when they came from an extra whole-file-fit pass (smooth_noise_fit kFile).
+  std::vector<double> smooth_meas_sigma, smooth_q;
   ukf::MeasMat final_R;             // R at the end (SI/radians²)
   ukf::StateMat final_Q;            // process noise of one interval T at the end
   bool final_Q_adapted = false;
@@ -132,7 +180,9 @@ Eigen::Matrix3d WhiteJerkQ(double tau_s, double q);
 
 // Per-column noise estimate from third differences (see header comment). Returns false when the
 // column has no run of 4 consecutive values.
-bool EstimateColumnNoise(const Series& series, int column, double interval_s, double* sigma, double* q);
+// `rows`: use the rows [0, rows) only (the data up to a time).
+bool EstimateColumnNoise(const Series& series, int column, double interval_s, double* sigma, double* q,
+                         std::size_t rows = static_cast<std::size_t>(-1));
 
 struct AukfOutputOptions {
   bool derivatives = false;  // <base>_rate_<unit>_s, <base>_accel_<unit>_s2 columns (singer_series.h naming)
@@ -148,7 +198,8 @@ std::string AccelColumnName(const std::string& column);
 // Output table `t_s,kind,<columns>,status[,<rate>,<accel> per column][,<base>_sigma_<unit> per column]`, rows in
 // time order: `estimate` (sample times) / `prediction` (mid-times), each followed by its `smoothed`
 // row when smoothing. Angles in degrees, in [0, 360) for azimuth/yaw-like columns (name starts with
-// `az` or `yaw`) or when some input value exceeds 180°, else in (−180, 180] (AngleColumnIs360).
+// `az` or `yaw`) or when some input value exceeds 180°, else in (−180, 180] (AngleColumnIs360). Empty fields:
+// a column before its first value (AukfResult::HasValue); a forward row's 1σ before its noise is known (HasSigma).
 io::CsvWriter AukfCsv(const Series& series, const AukfResult& result, const AukfOutputOptions& out);
 
 // Options, counters, final Q and R (SI/radians) and NIS for the JSON report.

@@ -176,6 +176,24 @@ bool FitWhiteJerkQMl(const double* t_s, const double* z, std::size_t n, bool ang
                                       std::log10(q0), &fit->evaluations, &fit->on_bound));
   fit->nll = nll(fit->q, &fit->innovations);
   ++fit->evaluations;
+  // Upper end of the likelihood interval: step up by the grid step until the total −log L has risen by
+  // χ²₁(0.95)/2 = 1.92, then bisect (in log q).
+  constexpr double kHalfChi2Of95 = 1.920729;
+  const double target = fit->nll + kHalfChi2Of95 / static_cast<double>(fit->innovations);
+  const double u_best = std::log10(fit->q);
+  double lo = u_best, hi = u_best;
+  while (hi < u_best + 2 * kGridHalfWidth) {
+    hi += kGridStep;
+    ++fit->evaluations;
+    if (nll(std::pow(10.0, hi), nullptr) > target) break;
+    lo = hi;
+  }
+  for (int i = 0; i < 20 && hi - lo > kGoldenTol; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    ++fit->evaluations;
+    (nll(std::pow(10.0, mid), nullptr) > target ? hi : lo) = mid;
+  }
+  fit->q_upper = std::pow(10.0, hi);
   return true;
 }
 

@@ -34,6 +34,9 @@ struct NoiseMlFit {
   std::size_t innovations = 0;  // innovations in the likelihood
   int evaluations = 0;          // filter passes
   bool on_bound = false;        // optimum at the edge of the search range (the model may not fit)
+  // Upper end of the 95 % profile-likelihood interval of q: −log L(q_upper) = −log L(q) + χ²₁(0.95)/2 (total,
+  // not per innovation); q_upper ≥ q, and it approaches q as the innovations grow in number.
+  double q_upper = 0.0;
 };
 
 // Fits q for the series t_s[i], z[i] (i < n; NaN = missing) with measurement noise sigma > 0; the start

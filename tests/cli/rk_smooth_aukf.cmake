@@ -53,9 +53,13 @@ assert c['samples'] == 60 and c['updates'] == 58 and c['skipped_updates'] == 1 a
 for k in ('repairs_q', 'repairs_r', 'repairs_p'): assert k in c
 assert len(rep['final_Q']) == 6 and len(rep['final_R']) == 2
 o = rep['options']
-assert o['noise_estimate'] == 'ml', o
-for col in o['columns']:  # σ and q estimated: q by maximum likelihood, reported with its search
-    ml = col['noise_ml']; assert ml['used'] and ml['evaluations'] > 30 and ml['innovations'] > 30, col
+assert o['noise_estimate'] == 'ml' and o['noise_fit'] == 'causal' and o['smooth_noise_fit'] == 'file', o
+for col in o['columns']:  # σ and q estimated: q by maximum likelihood, reported with its search (last refit: 32 rows)
+    ml = col['noise_ml']; assert ml['used'] and ml['evaluations'] > 30 and ml['innovations'] > 20, col
+rows = [f['rows'] for f in rep['noise_refits']]  # causal refits: every row 16…31, then 32 (60 rows in all)
+assert rows == list(range(16, 33)), rows
+assert all(f['restarted'] and len(f['meas_sigma']) == 2 and len(f['q']) == 2 for f in rep['noise_refits'])
+assert len(rep['smooth_noise']['meas_sigma']) == 2, rep.get('smooth_noise')
 EOF
 # --noise-estimate moments: no likelihood search
 rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --noise-estimate moments -o "$o/mom.csv" --report "$o/mom.json" 2>/dev/null
@@ -83,8 +87,69 @@ $expect 2 "$o/x.csv" 'meas-sigma'                 -- rk-smooth aukf -i "$d/in.cs
 $expect 2 "$o/x.csv" 'adapt'                      -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --adapt both -o "$o/x.csv"
 $expect 2 "$o/x.csv" 'fading'                     -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --fading 1.5 -o "$o/x.csv"
 $expect 2 "$o/x.csv" 'noise-estimate'             -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --noise-estimate mad -o "$o/x.csv"
+$expect 2 "$o/x.csv" 'noise-fit'                  -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --noise-fit online -o "$o/x.csv"
+$expect 2 "$o/x.csv" 'smooth-noise-fit'           -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg --smooth-noise-fit all -o "$o/x.csv"
 $expect 4 "$o/x.csv" 'nothere.csv'                -- rk-smooth aukf -i "$d/nothere.csv" --columns yaw_deg -o "$o/x.csv"
 $expect 4 - ''                                    -- rk-smooth aukf -i "$d/in.csv" --columns yaw_deg -o "$o/nodir/x.csv"
 cp "$d/in.csv" "$o/same.csv"
 $expect 2 - 'input'                               -- rk-smooth aukf -i "$o/same.csv" --columns yaw_deg -o "$o/same.csv"
+]==] REQUIRES smooth_aukf_data)
+
+# Causality (issue: predictions used the future): truncating the input at a row leaves every earlier
+# prediction and estimate row identical (values, rates, 1σ), with the default causal noise fit; with the old
+# whole-file fit (--noise-fit file) they change, so the comparison can fail.
+rk_smooth_aukf_script(rk_smooth_aukf_causal [==[
+d=$data/aukf; o=$d/causal; rm -rf "$o"; mkdir -p "$o"
+awk 'BEGIN { print "t_s,yaw_deg,x_m"; for (k = 0; k < 120; k++) { t = 0.05 * k;
+  a = 350 + 10 * t + 8 * sin(2.1 * t) + 0.05 * sin(7.3 * k); a = a - 360 * int(a / 360);
+  if (k == 45) printf "%.6f,%.6f,\n", t, a;
+  else printf "%.6f,%.6f,%.6f\n", t, a, 2 + 0.5 * t + 0.2 * sin(1.7 * t) + 0.001 * sin(3.1 * k) } }' > "$o/full.csv"
+for fit in causal file; do
+  rk-smooth aukf -i "$o/full.csv" --columns yaw_deg,x_m --smooth --derivatives --sigmas --noise-fit $fit \
+    -o "$o/full_$fit.out.csv" 2>/dev/null
+  for n in 5 12 33 64 97; do
+    head -n $((n + 1)) "$o/full.csv" > "$o/cut_$n.csv"
+    rk-smooth aukf -i "$o/cut_$n.csv" --columns yaw_deg,x_m --smooth --derivatives --sigmas --noise-fit $fit \
+      -o "$o/cut_${n}_$fit.out.csv" 2>/dev/null
+  done
+done
+python3 - "$o" <<'EOF'
+import csv, sys
+o = sys.argv[1]
+TOL = 2e-9  # values printed with 9 decimals
+def forward(path):
+    return [r for r in csv.DictReader(open(path)) if r['kind'] in ('estimate', 'prediction')]
+def worst(full, cut):
+    assert len(cut) <= len(full)
+    w = 0.0
+    for a, b in zip(full, cut):
+        assert a.keys() == b.keys() and a['kind'] == b['kind'] and a['status'] == b['status'], (a, b)
+        for k in a:
+            if k in ('kind', 'status'): continue
+            if (a[k] == '') != (b[k] == ''): return float('inf')
+            if a[k] == '': continue
+            d = abs(float(a[k]) - float(b[k]))
+            if k == 'yaw_deg': d = min(d, 360 - d)
+            w = max(w, d)
+    return w
+for fit in ('causal', 'file'):
+    full = forward(f'{o}/full_{fit}.out.csv')
+    assert len(full) == 239, len(full)
+    ws = []
+    for n in (5, 12, 33, 64, 97):
+        cut = forward(f'{o}/cut_{n}_{fit}.out.csv')
+        assert len(cut) == 2 * n - 1, (n, len(cut))
+        ws.append(worst(full, cut))
+    print(fit, ws)
+    if fit == 'causal':
+        assert max(ws) <= TOL, ws
+    else:
+        assert max(ws) > 1e-6, ws  # the whole-file fit moves earlier rows: the check can fail
+# Before the first noise fit (16 rows) the 1σ is unknown (empty), after it every forward row carries it.
+full = forward(f'{o}/full_causal.out.csv')
+for r in full:
+    t = float(r['t_s'])
+    if t < 0.7: assert r['yaw_sigma_deg'] == '', r
+    if t >= 0.75: assert float(r['yaw_sigma_deg']) > 0 and float(r['x_sigma_m']) > 0, r
+EOF
 ]==] REQUIRES smooth_aukf_data)
