@@ -852,6 +852,7 @@ Json TrialRun::BuildSummaryJson() const {
   j["result"] = TrialResultName(s_.result);
   j["exit_code"] = static_cast<int>(s_.exit_code);
   j["error"] = s_.error.empty() ? Json(nullptr) : Json(s_.error);
+  j["status"] = s_.exit_code == ExitCode::kOk ? "ok" : "failed";  // the key every tool's report uses
   j["started_utc"] = started_utc_;
   j["finished_utc"] = UtcNow();
   j["wall_s"] = Round3(Seconds(t0_));
