@@ -81,7 +81,9 @@ void WriteFailureReport(const CLI::App& app, const std::string& tool, int argc, 
     for (const auto& in : read) {
       bool listed = false;
       for (const auto& [k, v] : inputs.items()) {
-        if (v.is_object() && v.value("path", std::string()) == in.path) listed = true;
+        if ((v.is_object() && v.value("path", std::string()) == in.path) || (v.is_string() && v == in.path)) {
+          listed = true;
+        }
       }
       if (listed) continue;
       std::string base = RoleOf(app, in.path);
