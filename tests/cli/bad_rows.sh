@@ -21,6 +21,34 @@ dirty() {
   cat "$2.added"; rm -f "$2.added"
 }
 
+# skip_same W ROLE N [ROLE N ...] -- CMD ARG...: an argument @F stands for W/clean/F in one run and for
+# W/F (its dirty copy) in the other, with --bad-rows skip; both runs write -o, and the outputs must be
+# byte-identical, with each ROLE's rows_skipped N in the report W/skip.json.
+skip_same() {
+  local w=$1 roles=() clean=() skip=() a
+  shift
+  while [ "$1" != "--" ]; do roles+=("$1"); shift; done
+  shift
+  for a in "$@"; do
+    case "$a" in
+      @*) clean+=("$w/clean/${a#@}"); skip+=("$w/${a#@}") ;;
+      *) clean+=("$a"); skip+=("$a") ;;
+    esac
+  done
+  "${clean[@]}" -o "$w/clean.out" -q
+  "${skip[@]}" -o "$w/skip.out" -q --bad-rows skip --report "$w/skip.json"
+  cmp "$w/clean.out" "$w/skip.out"
+  report_ok "$w/skip.json" "${roles[@]}"
+}
+
+# dirty_in W FILE [COLUMN]: copies FILE to W/clean/ and its dirty version to W/ (same name); prints
+# the number of bad rows added.
+dirty_in() {
+  mkdir -p "$1/clean"
+  cp "$2" "$1/clean/"
+  dirty "$2" "$1/$(basename "$2")" "${3:-}"
+}
+
 # report_ok REPORT ROLE N: REPORT says status ok, exit code 0 and ROLE's rows_skipped is N.
 report_ok() {
   python3 - "$@" <<'PY'

@@ -51,11 +51,9 @@ echo ok
 
 rk_bad_rows_script(rk_bad_rows_extract [==[
 d=$data/extract; w=$data/bad_rows/extract; rm -rf "$w"; mkdir -p "$w"
-n=$(dirty "$d/frames.csv" "$w/frames.csv" frame)
-rk-extract beacon --video "$d/beacon.mkv" --frames "$d/frames.csv" -o "$w/clean.csv" -q
-rk-extract beacon --video "$d/beacon.mkv" --frames "$w/frames.csv" -o "$w/skip.csv" --bad-rows skip --report "$w/rep.json" 2> "$w/err"
-cmp "$w/clean.csv" "$w/skip.csv"
-report_ok "$w/rep.json" frames "$n"
+n=$(dirty_in "$w" "$d/frames.csv" frame)
+skip_same "$w" frames "$n" -- rk-extract beacon --video "$d/beacon.mkv" --frames @frames.csv
+rk-extract beacon --video "$d/beacon.mkv" --frames "$w/frames.csv" -o "$w/skip2.csv" --bad-rows skip 2> "$w/err"
 test "$(grep -c 'skipped bad row' "$w/err")" = "$n"
 "$expect" 3 "$w/x.csv" 'frames.csv:4:[0-9]+:' -- rk-extract beacon --video "$d/beacon.mkv" --frames "$w/frames.csv" -o "$w/x.csv"
 fails 3 "$w/r3.json" "$w/x.csv" "$d/frames_text.csv" -- rk-extract beacon --video "$d/beacon.mkv" --frames "$d/frames_text.csv" -o "$w/x.csv" --report "$w/r3.json"
@@ -66,22 +64,15 @@ echo ok
 
 rk_bad_rows_script(rk_bad_rows_extract_features [==[
 d=$data/att_small; w=$data/bad_rows/features; rm -rf "$w"; mkdir -p "$w"
-n=$(dirty "$d/att/frames.csv" "$w/frames.csv" t_s)
-rk-extract features --video "$d/att/video.mkv" --frames "$d/att/frames.csv" --target "$d/target.json" -o "$w/clean.csv" -q
-rk-extract features --video "$d/att/video.mkv" --frames "$w/frames.csv" --target "$d/target.json" -o "$w/skip.csv" \
-  --bad-rows skip --report "$w/rep.json" -q
-cmp "$w/clean.csv" "$w/skip.csv"
-report_ok "$w/rep.json" frames "$n"
+n=$(dirty_in "$w" "$d/att/frames.csv" t_s)
+skip_same "$w" frames "$n" -- rk-extract features --video "$d/att/video.mkv" --frames @frames.csv --target "$d/target.json"
 echo ok
 ]==] REQUIRES sim_attitude_small)
 
 rk_bad_rows_script(rk_bad_rows_extract_silhouette [==[
 T=$data/theo_trial; w=$data/bad_rows/silhouette; rm -rf "$w"; mkdir -p "$w"
-n=$(dirty "$T/theo/frames.csv" "$w/frames.csv" t_s)
-rk-extract silhouette --video "$T/theo/%06d.png" --frames "$T/theo/frames.csv" -o "$w/clean.csv" -q
-rk-extract silhouette --video "$T/theo/%06d.png" --frames "$w/frames.csv" -o "$w/skip.csv" --bad-rows skip --report "$w/rep.json" -q
-cmp "$w/clean.csv" "$w/skip.csv"
-report_ok "$w/rep.json" frames "$n"
+n=$(dirty_in "$w" "$T/theo/frames.csv" t_s)
+skip_same "$w" frames "$n" -- rk-extract silhouette --video "$T/theo/%06d.png" --frames @frames.csv
 echo ok
 ]==] REQUIRES sim_theodolite_trial)
 
@@ -114,13 +105,10 @@ echo ok
 
 rk_bad_rows_script(rk_bad_rows_attitude [==[
 d=$data/att_small; w=$data/bad_rows/attitude; rm -rf "$w"; mkdir -p "$w"
-np=$(dirty "$d/truth/points.csv" "$w/points.csv" y_px)
-nu=$(dirty "$d/turret.csv" "$w/turret.csv" az_deg)
+np=$(dirty_in "$w" "$d/truth/points.csv" y_px)
+nu=$(dirty_in "$w" "$d/turret.csv" az_deg)
 a=(--camera "$d/att/camera.json" --target "$d/target.json")
-rk-attitude oi --points "$d/truth/points.csv" --turret "$d/turret.csv" "${a[@]}" -o "$w/clean.csv" -q
-rk-attitude oi --points "$w/points.csv" --turret "$w/turret.csv" "${a[@]}" -o "$w/skip.csv" --bad-rows skip --report "$w/rep.json" -q
-cmp "$w/clean.csv" "$w/skip.csv"
-report_ok "$w/rep.json" points "$np" turret "$nu"
+skip_same "$w" points "$np" turret "$nu" -- rk-attitude oi --points @points.csv --turret @turret.csv "${a[@]}"
 "$expect" 3 "$w/x.csv" 'points.csv:4:[0-9]+:' -- rk-attitude oi --points "$w/points.csv" --turret "$d/turret.csv" "${a[@]}" -o "$w/x.csv"
 fails 3 "$w/r3.json" "$w/x.csv" "$w/points.csv" -- rk-attitude oi --points "$w/points.csv" --turret "$d/turret.csv" "${a[@]}" -o "$w/x.csv" --report "$w/r3.json"
 fails 2 "$w/r2.json" "$w/x.csv" -- rk-attitude oi --points "$d/truth/points.csv" --turret "$d/turret.csv" --boresight 10,5 "${a[@]}" -o "$w/x.csv" --report "$w/r2.json"
@@ -130,25 +118,19 @@ echo ok
 
 rk_bad_rows_script(rk_bad_rows_attitude_cylinder [==[
 T=$data/theo_trial; w=$data/bad_rows/cylinder; rm -rf "$w"; mkdir -p "$w"
-np=$(dirty "$T/points.csv" "$w/points.csv" x_px)
-nu=$(dirty "$T/theodolite.csv" "$w/theodolite.csv" el_deg)
+np=$(dirty_in "$w" "$T/points.csv" x_px)
+nu=$(dirty_in "$w" "$T/theodolite.csv" el_deg)
 a=(--camera "$T/theo/camera.json" --target "$T/target.json")
-rk-attitude cylinder --points "$T/points.csv" --theodolite "$T/theodolite.csv" "${a[@]}" -o "$w/clean.csv" -q
-rk-attitude cylinder --points "$w/points.csv" --theodolite "$w/theodolite.csv" "${a[@]}" -o "$w/skip.csv" --bad-rows skip --report "$w/rep.json" -q
-cmp "$w/clean.csv" "$w/skip.csv"
-report_ok "$w/rep.json" points "$np" theodolite "$nu"
+skip_same "$w" points "$np" theodolite "$nu" -- rk-attitude cylinder --points @points.csv --theodolite @theodolite.csv "${a[@]}"
 "$expect" 3 "$w/x.csv" 'theodolite.csv:[0-9]+:[0-9]+:' -- rk-attitude cylinder --points "$T/points.csv" --theodolite "$w/theodolite.csv" "${a[@]}" -o "$w/x.csv"
 echo ok
 ]==] REQUIRES sim_theodolite_trial)
 
 rk_bad_rows_script(rk_bad_rows_register [==[
 d=$data/radar3; w=$data/bad_rows/register; rm -rf "$w"; mkdir -p "$w"
-np=$(dirty "$d/plots.csv" "$w/plots.csv" az_deg)
-nn=$(dirty "$d/nav.csv" "$w/nav.csv" yaw_deg)
-rk-register kf --plots "$d/plots.csv" --nav "$d/nav.csv" -o "$w/clean.csv" -q
-rk-register kf --plots "$w/plots.csv" --nav "$w/nav.csv" -o "$w/skip.csv" --bad-rows skip --report "$w/rep.json" -q
-cmp "$w/clean.csv" "$w/skip.csv"
-report_ok "$w/rep.json" plots "$np" nav "$nn"
+np=$(dirty_in "$w" "$d/plots.csv" az_deg)
+nn=$(dirty_in "$w" "$d/nav.csv" yaw_deg)
+skip_same "$w" plots "$np" nav "$nn" -- rk-register kf --plots @plots.csv --nav @nav.csv
 "$expect" 3 "$w/x.csv" 'nav.csv:[0-9]+:[0-9]+:' -- rk-register kf --plots "$d/plots.csv" --nav "$w/nav.csv" -o "$w/x.csv"
 fails 3 "$w/r3.json" "$w/x.csv" "$w/plots.csv" -- rk-register bernoulli --plots "$w/plots.csv" --nav "$d/nav.csv" -o "$w/x.csv" --report "$w/r3.json"
 fails 2 "$w/r2.json" "$w/x.csv" -- rk-register kf --plots "$d/plots.csv" --nav "$d/nav.csv" -o "$w/x.csv" --bogus --report "$w/r2.json"
