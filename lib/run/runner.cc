@@ -827,6 +827,8 @@ Json TrialRun::BuildReport() const {
                   {"station", m_->station}};
   rep["tools"] = tools_->ToJson();
   rep["result"] = "done";
+  rep["status"] = "ok";  // out/report.json is only written by a run that succeeded (same keys as every report)
+  rep["exit_code"] = 0;
   rep["started_utc"] = started_utc_;
   rep["finished_utc"] = UtcNow();
   rep["wall_s"] = Round3(Seconds(t0_));
