@@ -112,7 +112,7 @@ Command AddBudgetCommand(CLI::App& parent) {
             }
             io::WriteJson(a->out_path, out);
             if (!ctx.common.report_path.empty() && ctx.common.report_path != a->out_path)
-              io::WriteJson(ctx.common.report_path, out);
+              cli::WriteReport(ctx.common.report_path, out);
             if (a->table) {
               const std::string text = analysis::FormatBudgetTable(*model, sources, r);
               if (io::IsStdStream(a->out_path)) {

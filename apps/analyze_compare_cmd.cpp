@@ -23,6 +23,7 @@ struct CompareArgs {
   analysis::CompareOptions opt;
   CLI::Option* after_opt = nullptr;
   CLI::Option* before_opt = nullptr;
+  io::BadRows bad_rows = io::BadRows::kError;
 };
 
 }  // namespace
@@ -48,6 +49,7 @@ Command AddCompareCommand(CLI::App& parent) {
   compare->add_option("--estimate", est_path, "Estimate CSV with t_s and the columns ('-' = stdin)")
       ->required();
   compare->add_option("--reference", ref_path, "Reference CSV with t_s and the columns")->required();
+  cli::AddBadRowsOption(compare, &a->bad_rows);
   compare
       ->add_option("--columns", columns_arg, "Comma-separated columns to compare, e.g. az_deg,el_deg,range_m")
       ->required();
@@ -105,8 +107,9 @@ Command AddCompareCommand(CLI::App& parent) {
           throw rk::UsageError("--errors and -o name the same file " + out_path);
         }
 
-        const rk::io::CsvTable estimate = rk::io::CsvTable::Read(est_path);
-        const rk::io::CsvTable reference = rk::io::CsvTable::Read(ref_path);
+        const rk::io::CsvReadOptions read{a->bad_rows, rk::analysis::CompareRowRule(opt.columns)};
+        const rk::io::CsvTable estimate = rk::io::CsvTable::Read(est_path, read);
+        const rk::io::CsvTable reference = rk::io::CsvTable::Read(ref_path, read);
         const rk::analysis::CompareResult result = rk::analysis::Compare(estimate, reference, opt);
         for (const auto& cc : result.columns) {
           if (!cc.stats) {
@@ -137,7 +140,7 @@ Command AddCompareCommand(CLI::App& parent) {
         if (!errors_path.empty()) rk::analysis::ErrorsCsv(result).Write(errors_path);
         rk::io::WriteJson(out_path, report);
         if (!common.report_path.empty() && common.report_path != out_path) {
-          rk::io::WriteJson(common.report_path, report);
+          rk::cli::WriteReport(common.report_path, report);
         }
         if (table) {
           const std::string text = rk::analysis::FormatTable(result);

@@ -26,6 +26,7 @@ struct CylinderArgs {
   std::string method = "p3p", theodolite_interp = "cubic";
   double max_edge_tilt_deg = 60.0;
   attitude::CylinderRunOptions opt;
+  io::BadRows bad_rows = io::BadRows::kError;
 };
 
 }  // namespace
@@ -41,6 +42,7 @@ Command AddCylinderCommand(CLI::App& parent) {
   c->add_option("--points", a->points_path, "Image points CSV frame,t_s,id,x_px,y_px with ids nose, tail1, tail2 ('-' = stdin)")
       ->required();
   c->add_option("--theodolite", a->theodolite_path, "Theodolite log CSV t_s,az_deg,el_deg (boresight)")->required();
+  cli::AddBadRowsOption(c, &a->bad_rows);
   c->add_option("--camera", a->camera_path, "Camera model JSON (SPEC.md 3)")->required();
   c->add_option("--target", a->target_path, "Target model JSON {\"length_m\", \"diameter_m\"} (length = nose to tail plane)")
       ->required();
@@ -104,8 +106,9 @@ Command AddCylinderCommand(CLI::App& parent) {
 
             const camera::CameraModel cam = camera::LoadCameraModel(a->camera_path);
             const attitude::CylinderTarget target = attitude::LoadCylinderTarget(a->target_path);
-            const attitude::CylinderPointsFile points = attitude::ReadCylinderPoints(io::CsvTable::Read(a->points_path));
-            const locate::TurretLog theo = locate::ReadTurretLog(io::CsvTable::Read(a->theodolite_path));
+            const attitude::CylinderPointsFile points = attitude::ReadCylinderPoints(
+                io::CsvTable::Read(a->points_path, {a->bad_rows, attitude::CylinderPointsRowRule()}));
+            const locate::TurretLog theo = locate::ReadTurretLog(io::CsvTable::Read(a->theodolite_path, {a->bad_rows, locate::TurretLogRowRule()}));
             // Frames for the image fit, read forward in decode order (rows come in frame order).
             std::unique_ptr<video::FrameSource> source;
             cv::Mat image;
@@ -175,7 +178,7 @@ Command AddCylinderCommand(CLI::App& parent) {
               for (std::size_t i = 0; i < a->videos.size(); ++i)
                 cli::AddReportInput(&rep, "video_" + std::to_string(i), a->videos[i]);
               rep["summary"] = res.SummaryJson();
-              io::WriteJson(ctx.common.report_path, rep);
+              cli::WriteReport(ctx.common.report_path, rep);
             }
             return 0;
           }};

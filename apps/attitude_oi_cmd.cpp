@@ -32,6 +32,7 @@ struct OiArgs {
   double turret_sigma_deg = 0.003 / std::sqrt(12.0);
   bool pure_oi = false, no_reject = false;
   pose::AttitudeOiOptions opt;
+  io::BadRows bad_rows = io::BadRows::kError;
 };
 
 geo::AzEl ParseBoresight(const std::string& text) {
@@ -91,10 +92,10 @@ int RunOi(const OiArgs& a, const Context& ctx) {
 
   const extract::TargetModel model = extract::LoadTargetModel(a.target);
   const camera::CameraModel camera = camera::LoadCameraModel(a.camera);
-  const extract::ImagePoints points = extract::ReadImagePoints(io::CsvTable::Read(a.points), model);
+  const extract::ImagePoints points = extract::ReadImagePoints(io::CsvTable::Read(a.points, {a.bad_rows, extract::ImagePointsRowRule()}), model);
   if (points.frames.empty()) throw DataError(points.source, 0, 0, "no image points (header only)");
   std::optional<locate::TurretLog> turret_log;
-  if (!a.turret.empty()) turret_log = locate::ReadTurretLog(io::CsvTable::Read(a.turret));
+  if (!a.turret.empty()) turret_log = locate::ReadTurretLog(io::CsvTable::Read(a.turret, {a.bad_rows, locate::TurretLogRowRule()}));
   const locate::BoresightSource boresight =
       fixed ? locate::BoresightSource::Fixed(fixed->az_rad, fixed->el_rad)
             : locate::BoresightSource::FromLog(*turret_log, turret_method, a.turret_max_gap_s);
@@ -157,7 +158,7 @@ int RunOi(const OiArgs& a, const Context& ctx) {
                     {"near_planar_ratio", opt.pnp.near_planar_ratio},
                     {"continuity_s", opt.continuity_s},
                     {"polish", opt.pnp.polish}};
-    io::WriteJson(ctx.common.report_path, r);
+    cli::WriteReport(ctx.common.report_path, r);
   }
   return 0;
 }
@@ -179,6 +180,7 @@ Command AddOiCommand(CLI::App& parent) {
   auto* o_turret = s->add_option("--turret", a->turret, "Turret log CSV t_s,az_deg,el_deg (the camera rides on the turret)");
   auto* o_bore = s->add_option("--boresight", a->boresight, "Fixed boresight AZ,EL (degrees) instead of a turret log");
   o_turret->excludes(o_bore);
+  cli::AddBadRowsOption(s, &a->bad_rows);
   s->add_option("-o,--output", a->output, "Pose CSV ('-' = stdout)")->required();
   s->add_option("--turret-interp", a->turret_interp, "Turret angle interpolation to frame times: linear or cubic")
       ->capture_default_str();

@@ -23,6 +23,7 @@ struct BeaconArgs {
   std::string frames_path, out_path;
   std::optional<double> fps, t0;
   bool decode_only = false;
+  io::BadRows bad_rows = io::BadRows::kError;  // --frames rows
 };
 
 }  // namespace
@@ -53,6 +54,7 @@ Command AddBeaconCommand(CLI::App& parent) {
   auto* o_fps = beacon->add_option("--fps", fps, "Constant frame rate (Hz): t = t0 + frame / fps");
   beacon->add_option("--t0", t0, "Time of frame 0 (s) with --fps [default 0]")->needs(o_fps);
   o_frames->excludes(o_fps);
+  cli::AddBadRowsOption(beacon, &a->bad_rows);
   beacon->add_option("-o,--output", out_path, "Output track CSV ('-' = stdout)");
   beacon->add_flag(
       "--decode-only", decode_only,
@@ -142,7 +144,7 @@ Command AddBeaconCommand(CLI::App& parent) {
 
             const rk::extract::FrameClock clock =
                 frames_path.empty() ? rk::extract::FrameClock::FromRate(*fps, t0.value_or(0.0))
-                                    : rk::extract::FrameClock::FromCsv(frames_path);
+                                    : rk::extract::FrameClock::FromCsv(frames_path, a->bad_rows);
             const bool progress = rk::cli::ShowProgress(common);
             const rk::extract::BeaconRunResult res =
                 rk::extract::RunBeacon(videos, clock, opt, [&](std::int64_t n) {
@@ -203,7 +205,7 @@ Command AddBeaconCommand(CLI::App& parent) {
               } else {
                 rep["frame_times"] = {{"source", "fps"}, {"fps_hz", *fps}, {"t0_s", t0.value_or(0.0)}};
               }
-              rk::io::WriteJson(common.report_path, rep);
+              rk::cli::WriteReport(common.report_path, rep);
             }
             if (progress) {
               std::cerr << kBeaconTool << ": " << res.frames << " frames: " << s.ok << " ok, " << s.reacquired

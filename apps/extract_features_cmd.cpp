@@ -25,6 +25,7 @@ struct FeaturesArgs {
   extract::FeatureTrackOptions opt;
   std::vector<std::string> videos;
   std::string frames_path, out_path, target_path, polarity = "bright";
+  io::BadRows bad_rows = io::BadRows::kError;  // --frames rows
   std::optional<double> fps, t0;
 };
 
@@ -47,7 +48,7 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
   }
   const extract::TargetModel model = extract::LoadTargetModel(a.target_path);
   const extract::FrameClock clock = a.frames_path.empty() ? extract::FrameClock::FromRate(*a.fps, a.t0.value_or(0.0))
-                                                          : extract::FrameClock::FromCsv(a.frames_path);
+                                                          : extract::FrameClock::FromCsv(a.frames_path, a.bad_rows);
   const bool progress = cli::ShowProgress(ctx.common);
   const extract::FeatureRunResult res = extract::RunFeatures(a.videos, clock, model, opt, [&](std::int64_t n) {
     if (progress) std::cerr << "\r" << kFeaturesTool << ": " << n << " frames" << std::flush;
@@ -100,7 +101,7 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
                       {"ambiguity_ratio", id.ambiguity_ratio}};
     rep["frame_times"] = clock.from_file() ? io::Json{{"source", "frames"}}
                                            : io::Json{{"source", "fps"}, {"fps_hz", *a.fps}, {"t0_s", a.t0.value_or(0.0)}};
-    io::WriteJson(ctx.common.report_path, rep);
+    cli::WriteReport(ctx.common.report_path, rep);
   }
   if (progress) {
     std::cerr << kFeaturesTool << ": " << res.frames << " frames, " << s.frames_with_4 << " with >= 4 markers, "
@@ -126,6 +127,7 @@ Command AddFeaturesCommand(CLI::App& parent) {
   auto* o_fps = s->add_option("--fps", a->fps, "Constant frame rate (Hz): t = t0 + frame / fps");
   s->add_option("--t0", a->t0, "Time of frame 0 (s) with --fps [default 0]")->needs(o_fps);
   o_frames->excludes(o_fps);
+  cli::AddBadRowsOption(s, &a->bad_rows);
   s->add_option("--target", a->target_path, "Target model JSON {\"points\": {\"<id>\": [x, y, z], ...}} (body m)")
       ->required();
   s->add_option("-o,--output", a->out_path, "Image points CSV ('-' = stdout)")->required();

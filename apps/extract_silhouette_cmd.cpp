@@ -21,6 +21,7 @@ struct SilhouetteArgs {
   extract::SilhouetteOptions opt;
   std::vector<std::string> videos;
   std::string frames_path, out_path;
+  io::BadRows bad_rows = io::BadRows::kError;  // --frames rows
   std::optional<double> fps, t0;
 };
 
@@ -41,6 +42,7 @@ Command AddSilhouetteCommand(CLI::App& parent) {
   auto* o_fps = c->add_option("--fps", a->fps, "Constant frame rate (Hz): t = t0 + frame / fps");
   c->add_option("--t0", a->t0, "Time of frame 0 (s) with --fps [default 0]")->needs(o_fps);
   o_frames->excludes(o_fps);
+  cli::AddBadRowsOption(c, &a->bad_rows);
   c->add_option("-o,--output", a->out_path, "Output image points CSV ('-' = stdout)")->required();
   c->add_option("--k-detect", a->opt.k_detect, "Detection threshold in sky-noise sigmas")->capture_default_str();
   c->add_option("--min-area", a->opt.min_area_px, "Smallest target region (px)")->capture_default_str();
@@ -63,7 +65,7 @@ Command AddSilhouetteCommand(CLI::App& parent) {
             if (!ctx.common.report_path.empty()) io::CheckOutputNotInput(ctx.common.report_path, inputs);
             const extract::FrameClock clock = a->frames_path.empty()
                                                   ? extract::FrameClock::FromRate(*a->fps, a->t0.value_or(0.0))
-                                                  : extract::FrameClock::FromCsv(a->frames_path);
+                                                  : extract::FrameClock::FromCsv(a->frames_path, a->bad_rows);
             const bool progress = cli::ShowProgress(ctx.common);
             const extract::SilhouetteRunResult res = extract::RunSilhouette(a->videos, clock, a->opt, [&](std::int64_t n) {
               if (progress) std::cerr << "\r" << kSilhouetteTool << ": " << n << " frames" << std::flush;
@@ -97,7 +99,7 @@ Command AddSilhouetteCommand(CLI::App& parent) {
               rep["options"] = {{"k_detect", a->opt.k_detect},     {"min_area_px", a->opt.min_area_px},
                                 {"border_px", a->opt.border_px},   {"psf_sigma_px", a->opt.psf_sigma_px},
                                 {"min_width_px", a->opt.min_width_px}, {"min_length_ratio", a->opt.min_length_ratio}};
-              io::WriteJson(ctx.common.report_path, rep);
+              cli::WriteReport(ctx.common.report_path, rep);
             }
             return 0;
           }};

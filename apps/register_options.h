@@ -29,6 +29,7 @@ struct InputArgs {
   double sigma_el_deg = geo::RadToDeg(0.0087);
   std::string linearize = "estimate";
   std::string p0, q;  // six values each, file units (m, deg)
+  io::BadRows bad_rows = io::BadRows::kError;
 };
 
 inline void AddInputOptions(CLI::App* sub, InputArgs* a) {
@@ -36,6 +37,7 @@ inline void AddInputOptions(CLI::App* sub, InputArgs* a) {
       ->required();
   sub->add_option("--nav", a->nav, "Platform nav CSV: t_s,radar,lat_deg,lon_deg,h_m,yaw_deg,pitch_deg,roll_deg")
       ->required();
+  cli::AddBadRowsOption(sub, &a->bad_rows);
   sub->add_option("-o,--output", a->output, "Biases CSV, one row per step ('-' = stdout)")->required();
   sub->add_flag("--sigmas", a->sigmas, "Add the 1-sigma columns <radar>_range_sigma_m ... <radar>_roll_sigma_deg");
   sub->add_option("--pair-tol", a->input.pair_tol_s,
@@ -130,8 +132,8 @@ inline registration::RegistrationInput ReadInput(const InputArgs& a, bool requir
   io_opt.require_track_id = require_track_id;
   std::string why;
   if (!io_opt.Check(&why)) throw UsageError(why);
-  const io::CsvTable plots = io::CsvTable::Read(a.plots);
-  const io::CsvTable nav = io::CsvTable::Read(a.nav);
+  const io::CsvTable plots = io::CsvTable::Read(a.plots, {a.bad_rows, registration::PlotsRowRule()});
+  const io::CsvTable nav = io::CsvTable::Read(a.nav, {a.bad_rows, registration::NavRowRule()});
   registration::RegistrationInput in = registration::ReadRegistrationInput(plots, nav, io_opt);
   registration::RequirePairedSteps(in, io_opt.pair_tol_s);
   return in;
@@ -163,7 +165,7 @@ inline void WriteOutputs(const InputArgs& a, const Context& ctx, const std::stri
     report["rows_written"] = csv.rows();
   }
   csv.Write(a.output);
-  if (!ctx.common.report_path.empty()) io::WriteJson(ctx.common.report_path, report);
+  if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
   for (int r = 0; r < 2; ++r) {
     if (in.summary.nav_unfolded_rows[r] > 0) {
       cli::Warn(ctx.tool, ctx.common,

@@ -50,7 +50,7 @@ int RunRecover(const std::string& dir, bool check_only, const rk::cli::CommonOpt
     rk::io::Json r = rk::cli::MakeReport(kTool, argc, argv);
     r["subcommand"] = "recover";
     r["summary"] = s.ToJson();
-    rk::io::WriteJson(common.report_path, r);
+    rk::cli::WriteReport(common.report_path, r);
   }
   if (!s.readable()) {
     throw rk::DataError(dir, 0, 0,
@@ -110,7 +110,7 @@ int RunRecord(const std::string& config_path, const std::string& out, double dur
     rk::cli::AddReportInput(&r, "config", config_path);
     r["out"] = out;
     r["summary"] = s.ToJson();
-    rk::io::WriteJson(common.report_path, r);
+    rk::cli::WriteReport(common.report_path, r);
   }
   if (s.write_failures > 0) {
     throw rk::IoError(out, std::to_string(s.write_failures) +

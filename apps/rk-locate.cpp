@@ -55,6 +55,8 @@ int main(int argc, char** argv) {
   app.add_option("--range-window", opt.range_window,
                  "local-quadratic/local-cubic: range samples used on each side of the frame interval, 2..50")
       ->default_val(opt.range_window);
+  rk::io::BadRows bad_rows = rk::io::BadRows::kError;
+  rk::cli::AddBadRowsOption(&app, &bad_rows);
 
   return rk::cli::Run(app, kTool, argc, argv, [&]() -> int {
     if (!rk::track::ParseInterpMethod(turret_interp, &opt.turret_method) ||
@@ -76,11 +78,11 @@ int main(int argc, char** argv) {
       }
     }
 
-    const rk::locate::Track track = rk::locate::ReadTrack(rk::io::CsvTable::Read(track_path));
+    const rk::locate::Track track = rk::locate::ReadTrack(rk::io::CsvTable::Read(track_path, {bad_rows, rk::locate::TrackRowRule()}));
     const rk::camera::CameraModel camera = rk::camera::LoadCameraModel(camera_path);
-    const rk::locate::TurretLog turret = rk::locate::ReadTurretLog(rk::io::CsvTable::Read(turret_path));
+    const rk::locate::TurretLog turret = rk::locate::ReadTurretLog(rk::io::CsvTable::Read(turret_path, {bad_rows, rk::locate::TurretLogRowRule()}));
     std::optional<rk::locate::RangeLog> range;
-    if (!range_path.empty()) range = rk::locate::ReadRangeLog(rk::io::CsvTable::Read(range_path));
+    if (!range_path.empty()) range = rk::locate::ReadRangeLog(rk::io::CsvTable::Read(range_path, {bad_rows, rk::locate::RangeLogRowRule()}));
 
     const rk::locate::LocateResult result =
         rk::locate::Locate(track, camera, turret, range ? &*range : nullptr, opt);
@@ -132,7 +134,7 @@ int main(int argc, char** argv) {
                           {"range_duplicate_times", result.range_duplicate_times},
                           {"range_device_errors", result.range_device_errors}};
       report["range_coverage"] = std::isfinite(coverage) ? rk::io::Json(coverage) : rk::io::Json(nullptr);
-      rk::io::WriteJson(common.report_path, report);
+      rk::cli::WriteReport(common.report_path, report);
     }
     return 0;
   });

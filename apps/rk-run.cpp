@@ -63,7 +63,7 @@ int main(int argc, char** argv) {
     }
     rk::run::InstallStopHandlers();
     const rk::run::RunSummary s = rk::run::RunTrial(opt);
-    if (!common.report_path.empty()) rk::io::WriteJson(common.report_path, s.summary);
+    if (!common.report_path.empty()) rk::cli::WriteReport(common.report_path, s.summary);
     if (s.result == rk::run::TrialResult::kFailed || s.result == rk::run::TrialResult::kLocked) {
       throw rk::Error(s.exit_code, s.error);
     }

@@ -86,7 +86,7 @@ int RunAttitude(AttitudeCli& c, const Context& ctx) {
     r["out"] = c.w.out_dir;
     r["options"] = sim::AttitudeSimOptionsToJson(simulator.options());
     r["summary"] = sum.ToJson();
-    io::WriteJson(ctx.common.report_path, r);
+    cli::WriteReport(ctx.common.report_path, r);
   }
   return 0;
 }

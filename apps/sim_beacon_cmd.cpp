@@ -222,7 +222,7 @@ Command AddBeaconCommand(CLI::App& parent) {
               r["out"] = c.w.out_dir;
               r["options"] = rk::sim::BeaconSimOptionsToJson(o);
               r["summary"] = sum.ToJson();
-              rk::io::WriteJson(common.report_path, r);
+              rk::cli::WriteReport(common.report_path, r);
             }
             return 0;
           }};

@@ -83,7 +83,7 @@ int Serve(rk::capture::DeviceEmulator* emu, const DeviceCli& c, const Context& c
     const rk::capture::EmulatorStats st = emu->stats();
     r["summary"] = {{"sent", st.sent},         {"dropped", st.dropped},   {"garbage", st.garbage},
                     {"received", st.received}, {"ignored", st.ignored},   {"disconnects", st.disconnects}};
-    rk::io::WriteJson(ctx.common.report_path, r);
+    rk::cli::WriteReport(ctx.common.report_path, r);
   }
   return 0;
 }

@@ -88,7 +88,7 @@ int RunPosetrack(const PosetrackCli& p, const CLI::App& sub, const rk::cli::Comm
     r["out"] = p.w.out_dir;
     r["options"] = rk::sim::PoseTrackOptionsToJson(o);
     r["summary"] = sum.ToJson();
-    rk::io::WriteJson(common.report_path, r);
+    rk::cli::WriteReport(common.report_path, r);
   }
   return 0;
 }

@@ -56,7 +56,7 @@ int RunRadar(RadarCli& p, const Context& ctx) {
     r["out"] = p.w.out_dir;
     r["options"] = rk::sim::RadarSimOptionsToJson(o);
     r["summary"] = sum.ToJson();
-    io::WriteJson(ctx.common.report_path, r);
+    cli::WriteReport(ctx.common.report_path, r);
   }
   return 0;
 }

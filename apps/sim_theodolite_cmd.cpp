@@ -127,7 +127,7 @@ Command AddTheodoliteCommand(CLI::App& parent) {
               r["options"] = sim::TheodoliteSimOptionsToJson(s);
               r["images"] = w.images;
               r["summary"] = sum.ToJson();
-              io::WriteJson(ctx.common.report_path, r);
+              cli::WriteReport(ctx.common.report_path, r);
             }
             return 0;
           }};

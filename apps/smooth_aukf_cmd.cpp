@@ -25,6 +25,7 @@ struct AukfArgs {
   bool fading_set = false;
   filter::AukfOptions opt;
   filter::AukfOutputOptions out;
+  io::BadRows bad_rows = io::BadRows::kError;
 };
 
 std::vector<double> ParseNumbers(const std::string& list, const std::string& option) {
@@ -56,6 +57,7 @@ Command AddAukfCommand(CLI::App& app) {
       "wrap-safe angles. --smooth adds an unscented RTS pass (kind 'smoothed' at sample and mid-times).");
   sub->add_option("-i,--input", args->input, "Input CSV with t_s and the value columns ('-' = stdin)")
       ->required();
+  cli::AddBadRowsOption(sub, &args->bad_rows);
   sub->add_option("--columns", args->columns,
                   "Comma-separated value columns, 1 to 12 (e.g. e_m,n_m,u_m,yaw_deg)")
       ->required();
@@ -158,7 +160,7 @@ Command AddAukfCommand(CLI::App& app) {
       }
     }
 
-    const io::CsvTable table = io::CsvTable::Read(a.input);
+    const io::CsvTable table = io::CsvTable::Read(a.input, {a.bad_rows, filter::SeriesRowRule(columns)});
     const filter::Series series = filter::ReadSeries(table, columns, 3);
     const filter::AukfResult result = filter::RunAukf(series, opt);
     const io::CsvWriter csv = filter::AukfCsv(series, result, a.out);
@@ -174,7 +176,7 @@ Command AddAukfCommand(CLI::App& app) {
       report["rows_written"] = csv.rows();
     }
     csv.Write(a.output);
-    if (!ctx.common.report_path.empty()) io::WriteJson(ctx.common.report_path, report);
+    if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
     if (result.skipped_updates > 0) {
       cli::Warn("rk-smooth", ctx.common,
                 std::to_string(result.skipped_updates) +

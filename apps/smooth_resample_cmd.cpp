@@ -32,6 +32,7 @@ struct ResampleArgs {
   CLI::Option* t0_opt = nullptr;
   CLI::Option* t1_opt = nullptr;
   CLI::Option* gap_opt = nullptr;
+  io::BadRows bad_rows = io::BadRows::kError;
 };
 
 constexpr int kResampleDecimals = 9;
@@ -69,7 +70,7 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
   if (!opt.Check(&why)) throw UsageError(why);
 
   const std::vector<std::string> columns = io::SplitList(args.columns);
-  const io::CsvTable table = io::CsvTable::Read(args.input);
+  const io::CsvTable table = io::CsvTable::Read(args.input, {args.bad_rows, filter::SeriesRowRule(columns)});
   filter::Series series = filter::ReadSeries(table, columns, 3);
   const std::size_t masked = args.ignore_status ? 0 : filter::MaskByStatus(table, &series, 3);
   opt.singer.accel_sigma = filter::ColumnUnitsToInternal(opt.singer.accel_sigma, series, "--accel-sigma");
@@ -81,7 +82,10 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
   std::vector<int> pass_cols;
   io::CsvTable at_table = io::CsvTable::Parse("t_s\n", "none");
   if (have_at) {
-    at_table = io::CsvTable::Read(args.at);
+    io::CsvReadOptions at_read;
+    at_read.bad_rows = args.bad_rows;
+    at_read.rule.non_decreasing = "t_s";
+    at_table = io::CsvTable::Read(args.at, at_read);
     const int c_t = at_table.RequireColumn("t_s");
     at_table.RequireNonDecreasing(c_t);
     for (std::size_t r = 0; r < at_table.rows(); ++r) targets.push_back(at_table.Double(r, c_t));
@@ -196,7 +200,7 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
     }
   }
   w.Write(args.output);
-  if (!ctx.common.report_path.empty()) io::WriteJson(ctx.common.report_path, report);
+  if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
   return 0;
 }
 
@@ -211,6 +215,7 @@ Command AddResampleCommand(CLI::App& app) {
       "(docs/rk-smooth-singer-resample.md)");
   sub->add_option("-i,--input", args->input, "Input CSV with t_s and the value columns ('-' = stdin)")
       ->required();
+  cli::AddBadRowsOption(sub, &args->bad_rows);
   sub->add_option("--columns", args->columns, "Value columns, comma-separated (e.g. range_m)")->required();
   args->at_opt = sub->add_option("--at", args->at,
                                  "CSV of target times (column t_s, non-decreasing); its other columns (e.g. "

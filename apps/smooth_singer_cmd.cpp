@@ -20,6 +20,7 @@ struct SingerArgs {
   std::vector<double> accel_sigma, meas_sigma;  // column units (degrees for _deg columns)
   double maneuver_time_s = filter::kDefaultManeuverTimeS;
   bool no_smooth = false, derivatives = true, sigmas = false, ignore_status = false;
+  io::BadRows bad_rows = io::BadRows::kError;
 };
 
 constexpr int kDecimals = 9;
@@ -42,7 +43,7 @@ int RunSinger(const SingerArgs& args, const Context& ctx) {
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
 
-  const io::CsvTable table = io::CsvTable::Read(args.input);
+  const io::CsvTable table = io::CsvTable::Read(args.input, {args.bad_rows, filter::SeriesRowRule(columns)});
   filter::Series series = filter::ReadSeries(table, columns, 3);
   const std::size_t masked = args.ignore_status ? 0 : filter::MaskByStatus(table, &series, 3);
   opt.accel_sigma = filter::ColumnUnitsToInternal(opt.accel_sigma, series, "--accel-sigma");
@@ -147,7 +148,7 @@ int RunSinger(const SingerArgs& args, const Context& ctx) {
     }
   }
   w.Write(args.output);
-  if (!ctx.common.report_path.empty()) io::WriteJson(ctx.common.report_path, report);
+  if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
   return 0;
 }
 
@@ -161,6 +162,7 @@ Command AddSingerCommand(CLI::App& app) {
       "(docs/rk-smooth-singer-resample.md)");
   sub->add_option("-i,--input", args->input, "Input CSV with t_s and the value columns ('-' = stdin)")
       ->required();
+  cli::AddBadRowsOption(sub, &args->bad_rows);
   sub->add_option("--columns", args->columns, "Value columns, comma-separated (e.g. range_m,az_deg,el_deg)")
       ->required();
   sub->add_option("-o,--output", args->output, "Output CSV ('-' = stdout)")->required();

@@ -204,4 +204,11 @@ std::string FormatTable(const CompareResult& result) {
   return out;
 }
 
+io::CsvRowRule CompareRowRule(const std::vector<std::string>& columns) {
+  io::CsvRowRule rule;
+  rule.non_decreasing = "t_s";
+  rule.optional_numbers = columns;
+  return rule;
+}
+
 }  // namespace rk::analysis

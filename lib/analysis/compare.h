@@ -64,6 +64,9 @@ struct CompareResult {
 // and backwards time name file:line:col), UsageError for bad options.
 CompareResult Compare(const io::CsvTable& estimate, const io::CsvTable& reference,
                       const CompareOptions& options);
+// The cells Compare needs of every row of either file (io::CsvReadOptions::rule, --bad-rows skip):
+// t_s non-decreasing, each of `columns` empty or a number.
+io::CsvRowRule CompareRowRule(const std::vector<std::string>& columns);
 
 // {"<C>": {"n","max","min","mean","std","rms","p95_abs","unit","n_skipped":{...}}}
 // (statistics null when n = 0; std null when n < 2).

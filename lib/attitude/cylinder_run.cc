@@ -473,4 +473,13 @@ io::CsvWriter CylinderCsv(const CylinderRunResult& result) {
   return w;
 }
 
+io::CsvRowRule CylinderPointsRowRule() {
+  io::CsvRowRule rule;
+  rule.non_decreasing = "t_s";
+  rule.texts = {"id"};
+  rule.optional_numbers = {"x_px", "y_px"};
+  rule.integers = {"frame"};
+  return rule;
+}
+
 }  // namespace rk::attitude

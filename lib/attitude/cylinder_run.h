@@ -96,6 +96,8 @@ struct CylinderPointsFile {
 // by equal consecutive t_s). DataError (file:line:col) for: an id other than nose/tail1/tail2, an id twice in
 // a frame, a frame whose rows are not together or disagree on t_s, time going backwards, bad numbers.
 CylinderPointsFile ReadCylinderPoints(const io::CsvTable& table);
+// The cells ReadCylinderPoints needs of every row (for io::CsvReadOptions::rule, --bad-rows skip).
+io::CsvRowRule CylinderPointsRowRule();
 
 struct CylinderRunOptions {
   CylinderSolveOptions solve;

@@ -98,4 +98,13 @@ ImagePoints ReadImagePoints(const io::CsvTable& table, const TargetModel& model)
   return out;
 }
 
+io::CsvRowRule ImagePointsRowRule() {
+  io::CsvRowRule rule;
+  rule.non_decreasing = "t_s";
+  rule.texts = {"id"};
+  rule.optional_numbers = {"x_px", "y_px", "sigma_px"};
+  rule.integers = {"frame"};
+  return rule;
+}
+
 }  // namespace rk::extract

@@ -50,5 +50,7 @@ struct ImagePoints {
 };
 
 ImagePoints ReadImagePoints(const io::CsvTable& table, const TargetModel& model);
+// The cells ReadImagePoints needs of every row (for io::CsvReadOptions::rule, --bad-rows skip).
+io::CsvRowRule ImagePointsRowRule();
 
 }  // namespace rk::extract

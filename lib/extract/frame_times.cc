@@ -8,8 +8,12 @@
 
 namespace rk::extract {
 
-FrameClock FrameClock::FromCsv(const std::string& path) {
-  const io::CsvTable table = io::CsvTable::Read(path);
+FrameClock FrameClock::FromCsv(const std::string& path, io::BadRows bad_rows) {
+  io::CsvReadOptions read;
+  read.bad_rows = bad_rows;
+  read.rule.integers = {"frame"};
+  read.rule.non_decreasing = "t_s";
+  const io::CsvTable table = io::CsvTable::Read(path, read);
   const int c_frame = table.RequireColumn("frame");
   const int c_t = table.RequireColumn("t_s");
   FrameClock clock;

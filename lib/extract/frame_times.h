@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "io/csv.h"
+
 namespace rk::extract {
 
 class FrameClock {
@@ -14,7 +16,9 @@ class FrameClock {
   // Reads frame,t_s by column name ("-" = stdin). Throws DataError (file:line:col)
   // for a non-numeric or non-finite cell, time going backwards, or frame numbers
   // that do not count 0, 1, 2, ...; IoError if unreadable.
-  static FrameClock FromCsv(const std::string& path);
+  // `bad_rows`: io::BadRows::kSkip drops rows without an integer frame and a time, or whose time
+  // goes backwards (the frame numbers of the rows kept must still count 0, 1, 2, ...).
+  static FrameClock FromCsv(const std::string& path, io::BadRows bad_rows = io::BadRows::kError);
   // t = t0 + frame / fps; throws UsageError unless fps > 0 and both finite.
   static FrameClock FromRate(double fps_hz, double t0_s);
 

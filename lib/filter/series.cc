@@ -64,4 +64,12 @@ Series ReadSeries(const io::CsvTable& table, const std::vector<std::string>& col
   return s;
 }
 
+io::CsvRowRule SeriesRowRule(const std::vector<std::string>& columns) {
+  io::CsvRowRule rule;
+  rule.non_decreasing = "t_s";
+  rule.increasing = true;
+  rule.optional_numbers = columns;
+  return rule;
+}
+
 }  // namespace rk::filter

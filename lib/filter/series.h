@@ -26,6 +26,9 @@ struct Series {
 // backwards, or fewer than `min_samples` rows carry at least one value. Throws UsageError
 // (exit 2) for an empty or repeated column list. Angle columns are converted to radians.
 Series ReadSeries(const io::CsvTable& table, const std::vector<std::string>& columns, std::size_t min_samples = 3);
+// The cells ReadSeries needs of every row (for io::CsvReadOptions::rule, --bad-rows skip):
+// t_s increasing, each of `columns` empty or a number.
+io::CsvRowRule SeriesRowRule(const std::vector<std::string>& columns);
 
 // True if a column name is an angle in degrees (SPEC.md units: suffix `_deg`).
 bool IsAngleColumn(const std::string& name);

@@ -2,22 +2,135 @@
 
 #include <unistd.h>
 
+#include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "io/error.h"
+#include "io/file_util.h"
+#include "io/run_record.h"
 #include "io/version.h"
 
 namespace rk::cli {
+namespace {
+
+// The report the tool last wrote with WriteReport (Run rewrites it if the run then fails).
+std::optional<io::Json>& LastReport() {
+  static std::optional<io::Json> report;
+  return report;
+}
+
+// The value of --report in argv (its index in *at), or "" if absent. Read from argv rather than
+// from the parsed options so that it is found after a parse error too.
+std::string ReportPathInArgv(int argc, char** argv, int* at) {
+  static const char kOpt[] = "--report";
+  for (int i = 1; i < argc; ++i) {
+    if (std::strcmp(argv[i], "--") == 0) break;
+    if (std::strcmp(argv[i], kOpt) == 0 && i + 1 < argc) {
+      *at = i + 1;
+      return argv[i + 1];
+    }
+    if (std::strncmp(argv[i], kOpt, sizeof kOpt - 1) == 0 && argv[i][sizeof kOpt - 1] == '=') {
+      *at = i;
+      return argv[i] + sizeof kOpt;
+    }
+  }
+  return "";
+}
+
+// The name under which a path given to `app` (or its subcommands) is reported: the option's long
+// name without dashes ("turret"), else its short name or positional name; "" if no option has it.
+std::string RoleOf(const CLI::App& app, const std::string& path) {
+  for (const CLI::Option* opt : app.get_options()) {
+    for (const std::string& r : opt->results()) {
+      if (r != path) continue;
+      if (!opt->get_lnames().empty()) return opt->get_lnames().front();
+      if (!opt->get_snames().empty()) return opt->get_snames().front();
+      return opt->get_name();
+    }
+  }
+  for (const CLI::App* sub : app.get_subcommands()) {
+    const std::string role = RoleOf(*sub, path);
+    if (!role.empty()) return role;
+  }
+  return "";
+}
+
+// Writes the report of a failed run; never throws (a failure to write it is a warning).
+void WriteFailureReport(const CLI::App& app, const std::string& tool, int argc, char** argv, int exit_code,
+                        const std::string& error) {
+  int at = -1;
+  const std::string path = ReportPathInArgv(argc, argv, &at);
+  if (path.empty()) return;
+  try {
+    // Never over an input, nor over any other path on the command line (an output, say).
+    std::vector<std::string> others;
+    for (int i = 1; i < argc; ++i) {
+      if (i == at) continue;
+      const char* eq = std::strchr(argv[i], '=');
+      others.push_back(argv[i][0] == '-' && eq ? std::string(eq + 1) : std::string(argv[i]));
+    }
+    const std::vector<io::InputRead> read = io::InputsRead();
+    for (const auto& in : read) others.push_back(in.path);
+    io::CheckOutputNotInput(path, others);
+
+    io::Json rep = LastReport() ? *LastReport() : MakeReport(tool, argc, argv);
+    if (!rep.contains("inputs") || !rep["inputs"].is_object()) rep["inputs"] = io::Json::object();
+    io::Json& inputs = rep["inputs"];
+    for (const auto& in : read) {
+      bool listed = false;
+      for (const auto& [k, v] : inputs.items()) {
+        if ((v.is_object() && v.value("path", std::string()) == in.path) || (v.is_string() && v == in.path)) {
+          listed = true;
+        }
+      }
+      if (listed) continue;
+      std::string base = RoleOf(app, in.path);
+      if (base.empty()) base = in.path;
+      std::string role = base;
+      for (int n = 2; inputs.contains(role); ++n) role = base + "_" + std::to_string(n);
+      AddReportInput(&rep, role, in.path);
+    }
+    rep["status"] = "failed";
+    rep["exit_code"] = exit_code;
+    rep["error"] = error;
+    io::WriteJson(path, rep);
+  } catch (const std::exception& e) {
+    std::cerr << tool << ": warning: the report " << path << " was not written: " << e.what() << "\n";
+  }
+}
+
+}  // namespace
 
 void AddCommonOptions(CLI::App& app, const std::string& tool, CommonOptions* common) {
   app.set_version_flag("--version", tool + " (rangekit) " + kVersion);
-  app.add_option("--report", common->report_path, "Write a JSON run report (inputs, options, statistics)");
+  app.add_option("--report", common->report_path,
+                 "Write a JSON run report (inputs, options, statistics; status, exit code and error of a "
+                 "failed run too)");
   app.add_flag("--quiet,-q", common->quiet, "No progress display and no warnings on stderr");
   app.fallthrough();
+  io::SetWarningSink([tool, common](const std::string& what) { Warn(tool, *common, what); });
+}
+
+void AddBadRowsOption(CLI::App* app, io::BadRows* bad_rows) {
+  app->add_option_function<std::string>(
+         "--bad-rows",
+         [bad_rows](const std::string& v) {
+           if (!io::ParseBadRows(v, bad_rows)) throw CLI::ValidationError("--bad-rows", "must be error or skip");
+         },
+         "CSV rows the tool cannot use (wrong field count, a bad or missing number, time going backwards): "
+         "error = stop with exit code 3 (default); skip = drop each with a warning, count them in the report")
+      ->type_name("error|skip");
 }
 
 int Run(CLI::App& app, const std::string& tool, int argc, char** argv, const std::function<int()>& body) {
+  LastReport().reset();
+  const auto fail = [&](int code, const std::string& message) {
+    std::cerr << tool << ": error: " << message << "\n";
+    WriteFailureReport(app, tool, argc, argv, code, message);
+    return code;
+  };
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -27,20 +140,16 @@ int Run(CLI::App& app, const std::string& tool, int argc, char** argv, const std
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << tool << ": error: " << e.what() << " (see " << tool << " --help)\n";
-    return static_cast<int>(ExitCode::kUsage);
+    return fail(static_cast<int>(ExitCode::kUsage), std::string(e.what()) + " (see " + tool + " --help)");
   }
   try {
     return body();
   } catch (const Error& e) {
-    std::cerr << tool << ": error: " << e.what() << "\n";
-    return static_cast<int>(e.code());
+    return fail(static_cast<int>(e.code()), e.what());
   } catch (const std::bad_alloc&) {
-    std::cerr << tool << ": error: out of memory\n";
-    return static_cast<int>(ExitCode::kProcessing);
+    return fail(static_cast<int>(ExitCode::kProcessing), "out of memory");
   } catch (const std::exception& e) {
-    std::cerr << tool << ": error: internal: " << e.what() << "\n";
-    return static_cast<int>(ExitCode::kProcessing);
+    return fail(static_cast<int>(ExitCode::kProcessing), std::string("internal: ") + e.what());
   }
 }
 
@@ -58,10 +167,22 @@ void AddReportInput(io::Json* report, const std::string& role, const std::string
   io::Json in;
   in["path"] = path;
   std::error_code ec;
+  const std::optional<io::InputRead> read = io::FindInputRead(path);
   if (path != "-" && std::filesystem::is_regular_file(path, ec)) {
     in["bytes"] = std::filesystem::file_size(path, ec);
+  } else if (read && read->bytes) {
+    in["bytes"] = *read->bytes;
   }
+  if (read && read->csv) in["rows_skipped"] = read->rows_skipped;
   (*report)["inputs"][role] = in;
+}
+
+void WriteReport(const std::string& path, io::Json report) {
+  if (!report.contains("exit_code")) report["exit_code"] = 0;
+  const bool ok = report["exit_code"].is_number_integer() && report["exit_code"].get<int>() == 0;
+  report["status"] = ok ? "ok" : "failed";
+  LastReport() = report;
+  io::WriteJson(path, report);
 }
 
 bool ShowProgress(const CommonOptions& common) { return !common.quiet && ::isatty(STDERR_FILENO); }

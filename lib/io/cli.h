@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "io/csv.h"
 #include "io/error.h"
 #include "io/json_util.h"
 
@@ -18,17 +19,33 @@ struct CommonOptions {
   bool quiet = false;       // --quiet: no progress, no warnings
 };
 
-// Sets --version, --report, --quiet (accepted before or after a subcommand).
+// Sets --version, --report, --quiet (accepted before or after a subcommand), and sends library
+// warnings (io::EmitWarning) to Warn(tool, *common, ...). `common` must outlive the run.
 void AddCommonOptions(CLI::App& app, const std::string& tool, CommonOptions* common);
+
+// Adds --bad-rows error|skip (what to do with a CSV data row the tool cannot use, io::BadRows) to
+// `app` (a tool or a subcommand). Every tool that reads CSV calls this, and passes *bad_rows on to
+// io::CsvTable::Read with the rule of the file it reads.
+void AddBadRowsOption(CLI::App* app, io::BadRows* bad_rows);
 
 // Parses argv and runs `body`. Returns the process exit code: 0 for --help and
 // --version, 2 for usage errors, the code of any rk::Error, 1 for other failures.
+// When the run fails (parse errors included) and --report FILE was given, FILE is still
+// written (atomically): the last report the tool wrote with WriteReport, else the MakeReport
+// skeleton, with the inputs read so far (io::InputsRead) and "status": "failed",
+// "exit_code", "error" (the one-line message). It is never written over an input or over
+// another path on the command line, and failing to write it does not change the exit code.
 int Run(CLI::App& app, const std::string& tool, int argc, char** argv, const std::function<int()>& body);
 
 // Report skeleton {"tool", "version", "command_line", "inputs": {}} (SPEC.md §2).
 io::Json MakeReport(const std::string& tool, int argc, char** argv);
-// Records an input file: path and size in bytes.
+// Records an input file: path, size in bytes and, for a CSV read, "rows_skipped" (rows dropped
+// under --bad-rows skip).
 void AddReportInput(io::Json* report, const std::string& role, const std::string& path);
+// Writes a run report atomically ("-" = stdout) after adding "status" ("ok" when "exit_code"
+// is absent or 0, else "failed") and "exit_code" (0 when absent). Run keeps a copy: if the run
+// fails afterwards, the report is rewritten with the failure.
+void WriteReport(const std::string& path, io::Json report);
 
 // True when stderr is a terminal (progress display) and not quiet.
 bool ShowProgress(const CommonOptions& common);

@@ -1,11 +1,13 @@
 #include "io/csv.h"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 
 #include "io/error.h"
 #include "io/file_util.h"
+#include "io/run_record.h"
 
 namespace rk::io {
 namespace {
@@ -56,7 +58,7 @@ void SplitLine(std::string_view line, std::vector<std::string>* cells, std::vect
 
 }  // namespace
 
-CsvTable CsvTable::Parse(std::string_view text, const std::string& name) {
+CsvTable CsvTable::Parse(std::string_view text, const std::string& name, const CsvReadOptions& options) {
   CsvTable t;
   t.name_ = name;
   std::size_t pos = 0, line_no = 0;
@@ -91,19 +93,29 @@ CsvTable CsvTable::Parse(std::string_view text, const std::string& name) {
     }
     if (cells.size() != t.header_.size()) {
       std::size_t col = cells.size() > t.header_.size() ? cols[t.header_.size()] : line.size() + 1;
-      throw DataError(name, line_no, col,
-                      "row has " + std::to_string(cells.size()) + " fields, header has " +
-                          std::to_string(t.header_.size()));
+      const std::string what =
+          "row has " + std::to_string(cells.size()) + " fields, header has " + std::to_string(t.header_.size());
+      if (options.bad_rows == BadRows::kSkip) {
+        t.skipped_.push_back(SkippedRow{line_no, col, what});
+        continue;
+      }
+      throw DataError(name, line_no, col, what);
     }
     t.rows_.push_back(Row{line_no, cells, cols});
   }
   if (!have_header) throw DataError(name, line_no > 0 ? line_no : 1, 1, "no header row (file is empty)");
+  if (options.bad_rows == BadRows::kSkip) {
+    t.DropBadRows(options.rule);
+    t.WarnSkipped();
+  }
   return t;
 }
 
-CsvTable CsvTable::Read(const std::string& path) {
+CsvTable CsvTable::Read(const std::string& path, const CsvReadOptions& options) {
   std::string text = ReadFile(path);
-  return Parse(text, IsStdStream(path) ? std::string("<stdin>") : path);
+  CsvTable t = Parse(text, IsStdStream(path) ? std::string("<stdin>") : path, options);
+  RecordCsvRead(path, t.skipped_.size());
+  return t;
 }
 
 int CsvTable::Column(std::string_view column) const {
@@ -185,6 +197,122 @@ void CsvTable::RequireIncreasing(int col) const {
       throw DataError(name_, Line(r), CharColumn(r, col),
                       "column '" + header_[col] + "' repeats the value " + std::string(Cell(r, col)));
     }
+  }
+}
+
+// ---- Bad rows (BadRows::kSkip) ----
+
+bool ParseBadRows(std::string_view text, BadRows* out) {
+  if (text == "error") {
+    *out = BadRows::kError;
+  } else if (text == "skip") {
+    *out = BadRows::kSkip;
+  } else {
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+// "" when `s` is a finite number (stored in *v), else why it is not; the words of CsvTable::Double.
+std::string NumberProblem(std::string_view s, double* v) {
+  if (s.empty()) return "empty value";
+  const char* first = s.data();
+  if (*first == '+') ++first;
+  auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), *v);
+  if (ec != std::errc() || ptr != s.data() + s.size()) return "'" + std::string(s) + "' is not a number";
+  if (!std::isfinite(*v)) return "'" + std::string(s) + "' is not a finite number";
+  return "";
+}
+
+std::string IntegerProblem(std::string_view s) {
+  if (s.empty()) return "empty value";
+  std::int64_t v = 0;
+  auto [ptr, ec] = std::from_chars(s.data(), s.data() + s.size(), v);
+  if (ec != std::errc() || ptr != s.data() + s.size()) return "'" + std::string(s) + "' is not an integer";
+  return "";
+}
+
+}  // namespace
+
+std::string CsvTable::RowProblem(std::size_t row, const CsvRowRule& rule, std::optional<std::size_t> last_kept,
+                                 std::size_t* col) const {
+  std::string why;
+  const auto check = [&](const std::vector<std::string>& names, bool optional, bool integer) {
+    for (const std::string& name : names) {
+      const int c = Column(name);
+      if (c < 0 || !why.empty()) continue;
+      const std::string_view s = Cell(row, c);
+      if (optional && s.empty()) continue;
+      double v = 0.0;
+      const std::string p = integer ? IntegerProblem(s) : NumberProblem(s, &v);
+      if (!p.empty()) {
+        why = "column '" + name + "': " + p;
+        *col = CharColumn(row, c);
+      }
+    }
+  };
+  check(rule.numbers, false, false);
+  check(rule.optional_numbers, true, false);
+  check(rule.integers, false, true);
+  check(rule.optional_integers, true, true);
+  for (const std::string& name : rule.texts) {
+    const int c = Column(name);
+    if (c >= 0 && why.empty() && Cell(row, c).empty()) {
+      why = "column '" + name + "': empty value";
+      *col = CharColumn(row, c);
+    }
+  }
+  const int c_order = rule.non_decreasing.empty() ? -1 : Column(rule.non_decreasing);
+  if (why.empty() && c_order >= 0) {
+    double v = 0.0;
+    const std::string p = NumberProblem(Cell(row, c_order), &v);
+    *col = CharColumn(row, c_order);
+    if (!p.empty()) {
+      why = "column '" + rule.non_decreasing + "': " + p;
+    } else if (last_kept && (v < Double(*last_kept, c_order) || (rule.increasing && v == Double(*last_kept, c_order)))) {
+      why = "column '" + rule.non_decreasing + "' " + (v < Double(*last_kept, c_order) ? "goes backwards" : "repeats") +
+            " (" + std::string(Cell(row, c_order)) + " after " + std::string(Cell(*last_kept, c_order)) + " on line " +
+            std::to_string(Line(*last_kept)) + ")";
+    }
+  }
+  return why;
+}
+
+void CsvTable::DropBadRows(const CsvRowRule& rule) {
+  std::optional<std::size_t> last_kept;
+  std::vector<bool> keep(rows_.size(), false);
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    std::size_t col = 1;
+    const std::string why = RowProblem(r, rule, last_kept, &col);
+    if (!why.empty()) {
+      skipped_.push_back(SkippedRow{rows_[r].line, col, why});
+      continue;
+    }
+    keep[r] = true;
+    last_kept = r;
+  }
+  std::size_t n = 0;
+  for (std::size_t r = 0; r < rows_.size(); ++r) {
+    if (!keep[r]) continue;
+    if (n != r) rows_[n] = std::move(rows_[r]);
+    ++n;
+  }
+  rows_.resize(n);
+  std::stable_sort(skipped_.begin(), skipped_.end(),
+                   [](const SkippedRow& a, const SkippedRow& b) { return a.line < b.line; });
+}
+
+void CsvTable::WarnSkipped() const {
+  for (std::size_t i = 0; i < skipped_.size() && i < kMaxSkippedRowWarnings; ++i) {
+    const SkippedRow& s = skipped_[i];
+    EmitWarning(name_ + ":" + std::to_string(s.line) + ":" + std::to_string(s.column) + ": skipped bad row: " +
+                s.reason);
+  }
+  if (skipped_.size() > kMaxSkippedRowWarnings) {
+    EmitWarning(name_ + ": skipped " + std::to_string(skipped_.size()) + " bad rows in all (only the first " +
+                std::to_string(kMaxSkippedRowWarnings) + " are listed)");
   }
 }
 

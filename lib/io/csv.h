@@ -17,13 +17,53 @@
 
 namespace rk::io {
 
+// ---- Bad rows (--bad-rows): what a reader does with a data row it cannot use. ----
+
+// kError (default): the first bad row stops the run with exit 3 and file:line:col.
+// kSkip: bad rows are dropped, each with a warning naming file:line:col and the reason.
+enum class BadRows { kError, kSkip };
+// "error" / "skip"; false for anything else.
+bool ParseBadRows(std::string_view text, BadRows* out);
+
+// What a reader needs of every data row, by column name (columns absent from the header are
+// not checked here: a missing column is the reader's file-level error). A row breaks the rule
+// when a listed cell does not hold what is listed, or when `non_decreasing` goes backwards
+// relative to the last row kept. Rows with a wrong field count are always bad.
+struct CsvRowRule {
+  std::vector<std::string> numbers;            // a finite number (not empty, not NaN/inf)
+  std::vector<std::string> optional_numbers;   // empty, or a finite number
+  std::vector<std::string> integers;           // an integer (not empty)
+  std::vector<std::string> optional_integers;  // empty, or an integer
+  std::vector<std::string> texts;              // not empty
+  std::string non_decreasing;                  // a number column that never goes backwards ("t_s")
+  bool increasing = false;                     // ... nor repeats the last row kept's value
+};
+
+struct CsvReadOptions {
+  BadRows bad_rows = BadRows::kError;
+  CsvRowRule rule;  // used under kSkip; under kError the reader's own checks find the first bad row
+};
+
+// A data row dropped under BadRows::kSkip.
+struct SkippedRow {
+  std::size_t line = 0;    // 1-based line in the file
+  std::size_t column = 0;  // 1-based character column of the offending cell
+  std::string reason;
+};
+
+// At most this many skipped rows are warned about one by one per file; then one line counts them all.
+inline constexpr std::size_t kMaxSkippedRowWarnings = 20;
+
 class CsvTable {
  public:
   // Reads `path` ("-" = stdin). Throws IoError if unreadable, DataError if the
-  // header is missing or a row has a different number of fields than the header.
-  static CsvTable Read(const std::string& path);
+  // header is missing or (under BadRows::kError) a row has a different number of
+  // fields than the header. Under BadRows::kSkip, rows that break `options.rule`
+  // are dropped with a warning (io::EmitWarning) and counted in the run record
+  // (io::RecordCsvRead), so the reader sees only usable rows.
+  static CsvTable Read(const std::string& path, const CsvReadOptions& options = {});
   // Parses text already in memory; `name` is used in messages.
-  static CsvTable Parse(std::string_view text, const std::string& name);
+  static CsvTable Parse(std::string_view text, const std::string& name, const CsvReadOptions& options = {});
 
   const std::string& name() const { return name_; }
   const std::vector<std::string>& header() const { return header_; }
@@ -59,7 +99,19 @@ class CsvTable {
   // Builds a DataError for a cell.
   [[nodiscard]] Error CellError(std::size_t row, int col, const std::string& what) const;
 
+  // Rows dropped under BadRows::kSkip, in file order.
+  const std::vector<SkippedRow>& skipped() const { return skipped_; }
+
  private:
+  // Under kSkip: drops the rows that break `rule` (recording them in skipped_).
+  void DropBadRows(const CsvRowRule& rule);
+  // The reason `row` breaks `rule` (its character column in *col), or "" if it does not;
+  // `last_kept` is the last row kept before it (for the non-decreasing column).
+  std::string RowProblem(std::size_t row, const CsvRowRule& rule, std::optional<std::size_t> last_kept,
+                         std::size_t* col) const;
+  // Warns about the skipped rows (one line each up to kMaxSkippedRowWarnings, then a count).
+  void WarnSkipped() const;
+
   struct Row {
     std::size_t line = 0;
     std::vector<std::string> cells;
@@ -69,6 +121,7 @@ class CsvTable {
   std::size_t header_line_ = 0;
   std::vector<std::string> header_;
   std::vector<Row> rows_;
+  std::vector<SkippedRow> skipped_;
 };
 
 class CsvWriter {

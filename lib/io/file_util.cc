@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "io/error.h"
+#include "io/run_record.h"
 
 namespace rk::io {
 namespace fs = std::filesystem;
@@ -25,7 +26,9 @@ std::string ReadFile(const std::string& path) {
   if (IsStdStream(path)) {
     std::ostringstream ss;
     ss << std::cin.rdbuf();
-    return ss.str();
+    std::string data = ss.str();
+    RecordInputRead(path, data.size());
+    return data;
   }
   std::error_code ec;
   if (fs::is_directory(path, ec)) throw IoError(path, "is a folder, not a file");
@@ -33,6 +36,7 @@ std::string ReadFile(const std::string& path) {
   if (!in) throw IoError(path, std::string("cannot open for reading: ") + std::strerror(errno));
   std::string data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (in.bad()) throw IoError(path, "read error");
+  RecordInputRead(path, data.size());
   return data;
 }
 

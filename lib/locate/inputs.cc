@@ -87,4 +87,27 @@ RangeLog ReadRangeLog(const io::CsvTable& table) {
   return log;
 }
 
+io::CsvRowRule TrackRowRule() {
+  io::CsvRowRule rule;
+  rule.non_decreasing = "t_s";
+  rule.optional_numbers = {"x_px", "y_px"};
+  rule.optional_integers = {"frame"};
+  return rule;
+}
+
+io::CsvRowRule TurretLogRowRule() {
+  io::CsvRowRule rule;
+  rule.non_decreasing = "t_s";
+  rule.optional_numbers = {"az_deg", "el_deg"};
+  return rule;
+}
+
+io::CsvRowRule RangeLogRowRule() {
+  io::CsvRowRule rule;
+  rule.non_decreasing = "t_s";
+  rule.optional_numbers = {"range_m"};
+  rule.optional_integers = {"status"};
+  return rule;
+}
+
 }  // namespace rk::locate

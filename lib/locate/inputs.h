@@ -38,6 +38,8 @@ struct Track {
   std::vector<TrackRow> rows;
 };
 Track ReadTrack(const io::CsvTable& table);
+// The cells ReadTrack needs of every row (for io::CsvReadOptions::rule, --bad-rows skip).
+io::CsvRowRule TrackRowRule();
 
 // Turret log `t_s,az_deg,el_deg` (boresight). Empty angle = sample not
 // available (breaks the interpolation interval). el must be in [−90, 90];
@@ -49,6 +51,8 @@ struct TurretLog {
   std::size_t empty_samples = 0;
 };
 TurretLog ReadTurretLog(const io::CsvTable& table);
+// The cells ReadTurretLog needs of every row.
+io::CsvRowRule TurretLogRowRule();
 
 // Range log `t_s,range_m[,status]`: status 0 (or empty, or no column) = ok,
 // anything else = device error code; an empty range_m is a device error too.
@@ -60,5 +64,7 @@ struct RangeLog {
   std::size_t device_errors = 0;
 };
 RangeLog ReadRangeLog(const io::CsvTable& table);
+// The cells ReadRangeLog needs of every row.
+io::CsvRowRule RangeLogRowRule();
 
 }  // namespace rk::locate

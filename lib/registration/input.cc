@@ -263,4 +263,20 @@ RegistrationInput ReadRegistrationInput(const io::CsvTable& plots, const io::Csv
   return in;
 }
 
+io::CsvRowRule PlotsRowRule() {
+  io::CsvRowRule rule;
+  rule.non_decreasing = "t_s";
+  rule.texts = {"radar"};
+  rule.numbers = {"range_m", "az_deg", "el_deg"};
+  return rule;
+}
+
+io::CsvRowRule NavRowRule() {
+  io::CsvRowRule rule;
+  rule.non_decreasing = "t_s";
+  rule.texts = {"radar"};
+  rule.numbers = {"lat_deg", "lon_deg", "h_m", "yaw_deg", "pitch_deg", "roll_deg"};
+  return rule;
+}
+
 }  // namespace rk::registration

@@ -84,5 +84,8 @@ void RequirePairedSteps(const RegistrationInput& input, double pair_tol_s);
 // Throws DataError (exit 3) naming file:line:col for every problem listed in the header.
 RegistrationInput ReadRegistrationInput(const io::CsvTable& plots, const io::CsvTable& nav,
                                         const InputOptions& options);
+// The cells ReadRegistrationInput needs of every plots / nav row (io::CsvReadOptions::rule).
+io::CsvRowRule PlotsRowRule();
+io::CsvRowRule NavRowRule();
 
 }  // namespace rk::registration

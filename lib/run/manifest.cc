@@ -266,6 +266,12 @@ TrialManifest ParseManifest(const std::string& text, const std::string& manifest
   if (!m.steps.is_object()) c.Fail("/steps", "must be an object {step: options}");
   for (const auto& [key, value] : m.steps.items()) {
     const std::string p = "/steps/" + PointerToken(key);
+    if (key == kBadRowsSetting) {
+      if (!value.is_string() || (value.get<std::string>() != "error" && value.get<std::string>() != "skip")) {
+        c.Fail(p, "must be \"error\" or \"skip\" (--bad-rows of every step that reads CSV)");
+      }
+      continue;
+    }
     std::string unit, kind = key;
     const auto slash = key.find('/');
     if (slash != std::string::npos) {
@@ -305,6 +311,9 @@ TrialManifest LoadManifest(const std::string& path) {
 
 StepSettings TrialManifest::Settings(const std::string& unit, const std::string& kind) const {
   StepSettings s;
+  // The trial-wide --bad-rows goes to every step whose tool reads CSV (all but the plots); a
+  // step's own "bad-rows" (merged below) wins.
+  if (steps.contains(kBadRowsSetting) && kind != "plot") s.options.emplace_back("bad-rows", steps.at(kBadRowsSetting));
   for (const std::string& key : {kind, unit + "/" + kind}) {
     if (!steps.contains(key)) continue;
     const Json& v = steps.at(key);

@@ -4,7 +4,8 @@
 //   "steps": {"locate": {"range-interp": "linear"},      // options of every beacon camera's locate
 //             "az/extract-beacon": {"k-detect": 6},       // camera "az" only (merged over the above)
 //             "resample-range": false,                    // switch a step off
-//             "plot": false}
+//             "plot": false,
+//             "bad-rows": "skip"}                         // --bad-rows of every step that reads CSV
 // Option names are the tool's long options without "--"; a string or number value gives "--name
 // value", true gives the flag "--name", false leaves the flag out, an array gives "--name a,b,c".
 #pragma once
@@ -55,6 +56,9 @@ struct StepSettings {
   std::vector<std::pair<std::string, io::Json>> options;  // option name (no "--") → value, in order
   io::Json AsJson() const;
 };
+
+// The key of "steps" that is not a step: the --bad-rows (error|skip) of every step that reads CSV.
+inline constexpr const char* kBadRowsSetting = "bad-rows";
 
 struct TrialManifest {
   std::string manifest_path;  // absolute path of trial.json

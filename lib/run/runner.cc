@@ -893,6 +893,8 @@ Json TrialRun::BuildReport() const {
                   {"station", m_->station}};
   rep["tools"] = tools_->ToJson();
   rep["result"] = "done";
+  rep["status"] = "ok";  // out/report.json is only written by a run that succeeded (same keys as every report)
+  rep["exit_code"] = 0;
   rep["started_utc"] = started_utc_;
   rep["finished_utc"] = UtcNow();
   rep["wall_s"] = Round3(Seconds(t0_));
@@ -918,6 +920,7 @@ Json TrialRun::BuildSummaryJson() const {
   j["result"] = TrialResultName(s_.result);
   j["exit_code"] = static_cast<int>(s_.exit_code);
   j["error"] = s_.error.empty() ? Json(nullptr) : Json(s_.error);
+  j["status"] = s_.exit_code == ExitCode::kOk ? "ok" : "failed";  // the key every tool's report uses
   j["started_utc"] = started_utc_;
   j["finished_utc"] = UtcNow();
   j["wall_s"] = Round3(Seconds(t0_));

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "io/error.h"
+#include "io/run_record.h"
 
 namespace rk::video {
 namespace fs = std::filesystem;
@@ -165,6 +166,12 @@ bool FrameSource::OpenNext() {
   current_ = segments_[next_segment_++];
   segment_frames_ = 0;
   VideoInfo seg = ProbeVideo(current_);
+  {
+    std::error_code ec;
+    const bool regular = fs::is_regular_file(current_, ec);
+    const std::uintmax_t size = regular ? fs::file_size(current_, ec) : 0;
+    io::RecordInputRead(current_, regular && !ec ? std::optional<std::uintmax_t>(size) : std::nullopt);
+  }
   if (!have_info_) {
     info_ = seg;
     have_info_ = true;

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -193,6 +194,34 @@ const Step& Find(const std::vector<Step>& plan, const std::string& id) {
     if (s.id == id) return s;
   }
   throw std::runtime_error("no step " + id);
+}
+
+// "steps": {"bad-rows": ...} gives --bad-rows to every step that reads CSV (not the plots); a step's
+// own "bad-rows" wins; values other than error/skip are errors at their position in trial.json.
+TEST(Manifest, BadRowsSettingReachesEveryCsvStep) {
+  const TrialManifest m =
+      ParseManifest(WithSteps(R"({"bad-rows": "skip", "az/smooth": {"bad-rows": "error"}})"), "/t/trial.json");
+  for (const char* kind : {"extract-beacon", "locate", "resample-range"}) {
+    const StepSettings s = m.Settings("az", kind);
+    ASSERT_EQ(s.options.size(), 1u) << kind;
+    EXPECT_EQ(s.options[0].first, "bad-rows");
+    EXPECT_EQ(s.options[0].second, "skip");
+  }
+  const StepSettings smooth = m.Settings("az", "smooth");
+  ASSERT_EQ(smooth.options.size(), 1u);
+  EXPECT_EQ(smooth.options[0].second, "error");
+  EXPECT_TRUE(m.Settings("az", "plot").options.empty());
+  const std::vector<Step> plan = BuildPlan(m, PlanOptions{});
+  bool seen = false;
+  for (const Step& st : plan) {
+    if (st.kind != "locate") continue;
+    const std::vector<std::string> argv = Argv(st);
+    seen = std::find(argv.begin(), argv.end(), "--bad-rows") != argv.end();
+  }
+  EXPECT_TRUE(seen);
+  EXPECT_NE(ManifestError(WithSteps(R"({"bad-rows": "ignore"})")).find("must be \"error\" or \"skip\""),
+            std::string::npos);
+  EXPECT_NE(ManifestError(WithSteps(R"({"bad-rows": true})")).find("steps.bad-rows"), std::string::npos);
 }
 
 TEST(Plan, BeaconChainFollowsSpecCommandLines) {
