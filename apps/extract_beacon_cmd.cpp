@@ -24,6 +24,7 @@ struct BeaconArgs {
   std::optional<double> fps, t0;
   bool decode_only = false;
   io::BadRows bad_rows = io::BadRows::kError;  // --frames rows
+  std::string estimator = "auto";
 };
 
 }  // namespace
@@ -41,7 +42,7 @@ Command AddBeaconCommand(CLI::App& parent) {
   CLI::App* beacon = parent.add_subcommand(
       "beacon",
       "Track the cooperative IR lamp cluster: grey projection, region growing, sub-pixel grey-weighted "
-      "centroid, "
+      "centroid (per lamp when the lamps resolve), "
       "template (NCC) validation, Singer-model Kalman prediction and gating. Writes "
       "frame,t_s,x_px,y_px,peak,area_px,status,ncc,sigma_x_px,sigma_y_px (one row per frame).");
   beacon
@@ -89,7 +90,8 @@ Command AddBeaconCommand(CLI::App& parent) {
       ->capture_default_str();
   beacon
       ->add_option("--gate-chi2", opt.gate_chi2,
-                   "Mahalanobis gate (2 dof) for full-frame search in short losses")
+                   "Mahalanobis gate (2 dof): full-frame search while tracking; a re-acquisition beyond it "
+                   "restarts the filter")
       ->capture_default_str();
   beacon->add_option("--window-min", opt.min_window_px, "Smallest search window half size (px)")
       ->capture_default_str();
@@ -105,7 +107,9 @@ Command AddBeaconCommand(CLI::App& parent) {
       ->capture_default_str();
   beacon->add_option("--size-ratio", opt.size_ratio, "Candidate/template size ratio allowed, [1/r, r]")
       ->capture_default_str();
-  beacon->add_option("--long-loss", opt.long_loss_s, "Losses this long (s) switch to full-frame re-detection")
+  beacon->add_option("--flux-ratio", opt.flux_ratio, "Re-acquisition: candidate/template flux ratio allowed, [1/r, r]")
+      ->capture_default_str();
+  beacon->add_option("--long-loss", opt.long_loss_s, "Losses this long (s): no window search, the filter restarts")
       ->capture_default_str();
   beacon->add_option("--min-flux", opt.min_flux_dn, "Acquisition: minimum flux (DN*px), 0 = any")
       ->capture_default_str();
@@ -113,8 +117,15 @@ Command AddBeaconCommand(CLI::App& parent) {
       ->add_option("--fill-gaps", opt.fill_gaps_s,
                    "Fill the first S seconds of a gap with the prediction (status predicted); 0 = off")
       ->capture_default_str();
+  beacon
+      ->add_option("--estimator", a->estimator,
+                   "Position: auto (per-lamp centroids with averaged flux shares when the lamps resolve, "
+                   "else the cluster centroid) or cluster (always the cluster centroid)")
+      ->check(CLI::IsMember({"auto", "cluster"}))
+      ->capture_default_str();
 
   return {beacon, [a](const Context& ctx) -> int {
+            a->opt.per_lamp = a->estimator == "auto";
             const auto& opt = a->opt;
             const auto& d = opt.detect;
             const auto& videos = a->videos;
@@ -172,6 +183,9 @@ Command AddBeaconCommand(CLI::App& parent) {
               rep["acquisitions"] = s.acquisitions;
               rep["full_frame_searches"] = s.full_frame_searches;
               rep["mean_ncc"] = s.mean_ncc();
+              rep["restarts"] = s.restarts;
+              rep["centroid_estimator"] = {{"per_lamp", s.per_lamp},
+                                           {"cluster", s.ok + s.reacquired - s.per_lamp}};
               rep["time_s"] = {{"total", res.wall_s}, {"extraction", res.extract_s}};
               rep["time_per_frame_ms"] = {
                   {"total", res.frames ? 1e3 * res.wall_s / static_cast<double>(res.frames) : 0.0},
@@ -197,6 +211,8 @@ Command AddBeaconCommand(CLI::App& parent) {
                                 {"ncc_reacquire", opt.ncc_reacquire},
                                 {"ncc_update", opt.ncc_template_update},
                                 {"size_ratio", opt.size_ratio},
+                                {"flux_ratio", opt.flux_ratio},
+                                {"estimator", a->estimator},
                                 {"long_loss_s", opt.long_loss_s},
                                 {"min_flux_dn", opt.min_flux_dn},
                                 {"fill_gaps_s", opt.fill_gaps_s}};

@@ -32,7 +32,7 @@ struct BeaconCli {
   int bit_depth = 8, lamps = 5, distractors = 0;
   double peak_dn = 160, read_noise_dn = 2, background_dn = 10, gain = 40, psf_sigma_px = 1.2, span_m = 0.03,
          margin_px = 120;
-  std::vector<std::string> occlusions;
+  std::vector<std::string> occlusions, servo_holds;
   double range_noise_mm = 0.35, range_error_rate = 0.01, range_rate_hz = 5, range_offset_s = 0.071;
   double turret_rate_hz = 50, turret_offset_s = 0.0037, turret_res_deg = 0.003, turret_noise_std_deg = 0;
   double lag_s = 0.15, jitter_arcsec = 5, jitter_min_hz = 0.5, jitter_max_hz = 5;
@@ -107,6 +107,10 @@ Command AddBeaconCommand(CLI::App& parent) {
   beacon->add_option(
       "--occlusion", c.occlusions,
       "Hide the lamps: START_S:DURATION_S after frame 0 (DURATION_S may be short=0.5 or long=5); "
+      "repeatable");
+  beacon->add_option(
+      "--servo-hold", c.servo_holds,
+      "Stop the turret: START_S:DURATION_S after frame 0, then it catches up (image motion reverses); "
       "repeatable");
   beacon->add_option("--range-noise-mm", c.range_noise_mm, "Range noise std (mm)")->capture_default_str();
   beacon
@@ -185,6 +189,12 @@ Command AddBeaconCommand(CLI::App& parent) {
               std::string why;
               if (!rk::sim::ParseOcclusion(text, &occ, &why)) throw rk::UsageError("--occlusion: " + why);
               o.occlusions.push_back(occ);
+            }
+            for (const auto& text : c.servo_holds) {
+              rk::sim::OcclusionInterval hold;
+              std::string why;
+              if (!rk::sim::ParseOcclusion(text, &hold, &why)) throw rk::UsageError("--servo-hold: " + why);
+              o.servo_holds.push_back(hold);
             }
             o.servo.lag_s = c.lag_s;
             o.servo.jitter_rms_rad = c.jitter_arcsec / rk::geo::kArcsecPerRad;

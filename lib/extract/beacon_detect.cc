@@ -12,10 +12,7 @@
 namespace rk::extract {
 namespace {
 
-inline double At(const cv::Mat& f, int x, int y) {
-  return f.depth() == CV_8U ? static_cast<double>(f.ptr<std::uint8_t>(y)[x])
-                            : static_cast<double>(f.ptr<std::uint16_t>(y)[x]);
-}
+inline double At(const cv::Mat& f, int x, int y) { return PixelValue(f, x, y); }
 
 PixelBox Clip(PixelBox b, const cv::Mat& f) {
   b.x0 = std::max(b.x0, 0);
@@ -384,6 +381,7 @@ bool SpotDetector::MeasureCentroid(const cv::Mat& frame, const PixelBox& region,
   m->x_px = rx + ux;
   m->y_px = ry + uy;
   m->flux_dn = s;
+  m->noise_dn = noise_sigma;
   m->sigma_x_px = noise_sigma * std::sqrt(sxx_geom) / s;
   m->sigma_y_px = noise_sigma * std::sqrt(syy_geom) / s;
   m->size_px = std::sqrt(std::max(0.0, (mxx + myy) / s));

@@ -55,6 +55,12 @@ struct DetectOptions {
   bool Check(std::string* why) const;
 };
 
+// Value of pixel (x, y) of a CV_8UC1 or CV_16UC1 frame (no bounds check).
+inline double PixelValue(const cv::Mat& f, int x, int y) {
+  return f.depth() == CV_8U ? static_cast<double>(f.ptr<std::uint8_t>(y)[x])
+                            : static_cast<double>(f.ptr<std::uint16_t>(y)[x]);
+}
+
 // Background level and noise of a set of samples: median and 1.4826·MAD.
 struct NoiseStats {
   double level_dn = 0.0;
@@ -80,6 +86,7 @@ struct SpotMeasurement {
   double peak_dn = 0.0;                // highest pixel of the region (raw DN)
   int area_px = 0;                     // pixels of the grown region
   PixelBox region;                     // bounding box of the grown region
+  double noise_dn = 0.0;               // pixel noise σ used for the thresholds and sigma_x/y (DN)
   bool clipped = false;                // window or ring cut by the image border
 };
 

@@ -24,6 +24,7 @@ bool BeaconTrackOptions::Check(std::string* why) const {
       !(ncc_template_update >= -1 && ncc_template_update <= 1))
     return fail("NCC thresholds must be in [-1, 1]");
   if (!(size_ratio >= 1)) return fail("size ratio must be >= 1");
+  if (!(flux_ratio >= 1)) return fail("flux ratio must be >= 1");
   if (!(long_loss_s >= 0)) return fail("long-loss time must be >= 0 s");
   if (!(min_flux_dn >= 0)) return fail("minimum flux must be >= 0");
   if (!(fill_gaps_s >= 0)) return fail("fill-gaps time must be >= 0 s");
@@ -31,6 +32,10 @@ bool BeaconTrackOptions::Check(std::string* why) const {
 }
 
 namespace {
+// After a (re)start the filter needs this many measurements to know the image
+// velocity; until then a window without a match falls back to the full frame.
+constexpr int kSettleUpdates = 2;
+
 track::SingerAxisOptions Axis(const BeaconTrackOptions& o) {
   track::SingerAxisOptions a;
   a.maneuver_time_s = o.maneuver_time_s;
@@ -40,7 +45,7 @@ track::SingerAxisOptions Axis(const BeaconTrackOptions& o) {
 }  // namespace
 
 BeaconTracker::BeaconTracker(const BeaconTrackOptions& opt)
-    : opt_(opt), det_(opt.detect), kf_({Axis(opt), Axis(opt)}) {
+    : opt_(opt), det_(opt.detect), kf_({Axis(opt), Axis(opt)}), lamps_(opt.detect) {
   cand_.reserve(static_cast<std::size_t>(opt.detect.max_candidates) + 4);
 }
 
@@ -60,20 +65,32 @@ bool BeaconTracker::AcquireInitial(const cv::Mat& frame, SpotMeasurement* best) 
 
 void BeaconTracker::Accept(const cv::Mat& frame, const SpotMeasurement& m, double ncc, bool restart,
                            BeaconFrameResult* r) {
-  const Eigen::Vector2d z(m.x_px, m.y_px);
-  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * (opt_.meas_sigma_px * opt_.meas_sigma_px);
-  if (restart || !kf_.initialised()) {
-    kf_.Initialise(z, R, opt_.init_vel_sigma_px_s, opt_.accel_sigma_px_s2);
-  } else {
-    kf_.Update(z, R);
-  }
-  if (restart || !template_.valid() || ncc >= opt_.ncc_template_update) det_.MakeTemplate(frame, m, &template_);
-  mode_ = Mode::kTrack;
-  r->has_xy = true;
   r->x_px = m.x_px;
   r->y_px = m.y_px;
   r->sigma_x_px = m.sigma_x_px;
   r->sigma_y_px = m.sigma_y_px;
+  if (restart) lamps_.Reset();
+  LampEstimate lamp;
+  if (opt_.per_lamp && lamps_.Estimate(frame, m, &lamp)) {
+    r->x_px = lamp.x_px;
+    r->y_px = lamp.y_px;
+    r->sigma_x_px = lamp.sigma_x_px;
+    r->sigma_y_px = lamp.sigma_y_px;
+    r->per_lamp = true;
+    ++summary_.per_lamp;
+  }
+  const Eigen::Vector2d z(r->x_px, r->y_px);
+  const Eigen::Matrix2d R = Eigen::Matrix2d::Identity() * (opt_.meas_sigma_px * opt_.meas_sigma_px);
+  if (restart || !kf_.initialised()) {
+    kf_.Initialise(z, R, opt_.init_vel_sigma_px_s, opt_.accel_sigma_px_s2);
+    updates_since_restart_ = 0;
+  } else {
+    kf_.Update(z, R);
+    ++updates_since_restart_;
+  }
+  if (restart || !template_.valid() || ncc >= opt_.ncc_template_update) det_.MakeTemplate(frame, m, &template_);
+  mode_ = Mode::kTrack;
+  r->has_xy = true;
   r->has_spot = true;
   r->peak_dn = m.peak_dn;
   r->area_px = m.area_px;
@@ -96,6 +113,15 @@ void BeaconTracker::Miss(bool invalid, BeaconFrameResult* r) {
     r->sigma_x_px = std::sqrt(std::max(0.0, S(0, 0)));
     r->sigma_y_px = std::sqrt(std::max(0.0, S(1, 1)));
   }
+}
+
+bool BeaconTracker::Matches(const cv::Mat& frame, const SpotMeasurement& c, bool reacquire, double* ncc) {
+  *ncc = det_.Ncc(frame, c, template_);
+  const double size = template_.size_px > 0 && c.size_px > 0 ? c.size_px / template_.size_px : 0.0;
+  const bool size_ok = size >= 1.0 / opt_.size_ratio && size <= opt_.size_ratio;
+  const double flux = template_.flux_dn > 0 && c.flux_dn > 0 ? c.flux_dn / template_.flux_dn : 0.0;
+  const bool flux_ok = !reacquire || (flux >= 1.0 / opt_.flux_ratio && flux <= opt_.flux_ratio);
+  return *ncc >= (reacquire ? opt_.ncc_reacquire : opt_.ncc_track) && size_ok && flux_ok && !c.clipped;
 }
 
 BeaconFrameResult BeaconTracker::Process(const cv::Mat& frame, std::int64_t frame_index, double t_s) {
@@ -129,12 +155,43 @@ BeaconFrameResult BeaconTracker::Process(const cv::Mat& frame, std::int64_t fram
   const double gx = opt_.gate_sigma * std::sqrt(S(0, 0)), gy = opt_.gate_sigma * std::sqrt(S(1, 1));
   const bool tracking = mode_ == Mode::kTrack;
   const bool long_loss = mode_ == Mode::kLostLong;
+  const bool settling = tracking && updates_since_restart_ < kSettleUpdates;
   const bool window_too_big = gx > opt_.max_window_px || gy > opt_.max_window_px || !std::isfinite(gx + gy) ||
                               !std::isfinite(pred(0) + pred(1));
-  const double ncc_min = tracking ? opt_.ncc_track : opt_.ncc_reacquire;
+
+  // Among candidates passing the identity checks (and the Mahalanobis gate when
+  // `gated`), the smallest d² wins. Copied out: cand_ is refilled below.
+  SpotMeasurement best;
+  bool found = false, rejected = false;
+  double best_d2 = std::numeric_limits<double>::infinity(), best_ncc = 0.0;
+  auto pick = [&](bool gated, bool reacquire, bool report_rejects) {
+    for (const auto& c : cand_) {
+      if (c.area_px <= 0) continue;
+      const double d2 = kf_.Mahalanobis2(Eigen::Vector2d(c.x_px, c.y_px), R);
+      if (gated && d2 > opt_.gate_chi2) continue;  // outside the gate
+      double ncc = 0.0;
+      if (!Matches(frame, c, reacquire, &ncc)) {
+        if (report_rejects) {  // report what was seen and rejected
+          rejected = true;
+          r.has_spot = true;
+          r.peak_dn = c.peak_dn;
+          r.area_px = c.area_px;
+          r.has_ncc = true;
+          r.ncc = ncc;
+        }
+        continue;
+      }
+      if (d2 < best_d2) {
+        best = c;
+        found = true;
+        best_d2 = d2;
+        best_ncc = ncc;
+      }
+    }
+  };
 
   cand_.clear();
-  bool windowed = false;
+  bool full_frame = false;
   if (!long_loss && !window_too_big) {
     const int hw_x = std::clamp(static_cast<int>(std::ceil(gx)) + template_.half + opt_.detect.cluster_gap_px, opt_.min_window_px, opt_.max_window_px);
     const int hw_y = std::clamp(static_cast<int>(std::ceil(gy)) + template_.half + opt_.detect.cluster_gap_px, opt_.min_window_px, opt_.max_window_px);
@@ -142,50 +199,32 @@ BeaconFrameResult BeaconTracker::Process(const cv::Mat& frame, std::int64_t fram
     const PixelBox box{px - hw_x, py - hw_y, px + hw_x, py + hw_y};
     const NoiseStats noise = det_.BorderStats(frame, box);
     det_.FindInBox(frame, box, noise, &cand_);
-    windowed = true;
-  } else {
+    pick(false, !tracking, tracking);
+  } else if (tracking) {
     det_.FindInFrame(frame, &cand_);
     ++summary_.full_frame_searches;
+    full_frame = true;
+    pick(true, false, tracking);
+  }
+  // Lost, or the velocity not known yet: the whole frame at once, identity
+  // checked, ungated.
+  if (!found && (!tracking || settling)) {
+    if (!full_frame) {
+      det_.FindInFrame(frame, &cand_);
+      ++summary_.full_frame_searches;
+    }
+    pick(false, true, false);
   }
 
-  // Choose: among candidates passing identity checks (and, for a full-frame
-  // search during a short loss, the Mahalanobis gate), the smallest d².
-  const SpotMeasurement* best = nullptr;
-  double best_d2 = std::numeric_limits<double>::infinity(), best_ncc = 0.0;
-  bool rejected = false;
-  for (const auto& c : cand_) {
-    if (c.area_px <= 0) continue;
-    const double d2 = kf_.Mahalanobis2(Eigen::Vector2d(c.x_px, c.y_px), R);
-    if (!windowed && !long_loss && d2 > opt_.gate_chi2) continue;  // outside the gate
-    const double ncc = det_.Ncc(frame, c, template_);
-    const double ratio = template_.size_px > 0 && c.size_px > 0 ? c.size_px / template_.size_px : 0.0;
-    const bool shape_ok = ratio >= 1.0 / opt_.size_ratio && ratio <= opt_.size_ratio;
-    if (ncc < ncc_min || !shape_ok || c.clipped) {
-      rejected = true;
-      if (tracking) {  // report what was seen and rejected
-        r.has_spot = true;
-        r.peak_dn = c.peak_dn;
-        r.area_px = c.area_px;
-        r.has_ncc = true;
-        r.ncc = ncc;
-      }
-      continue;
-    }
-    if (d2 < best_d2) {
-      best = &c;
-      best_d2 = d2;
-      best_ncc = ncc;
-    }
-  }
-
-  if (best) {
-    const bool was_tracking = tracking;
-    Accept(frame, *best, best_ncc, long_loss, &r);
+  if (found) {
+    const bool restart = long_loss || (!tracking && best_d2 > opt_.gate_chi2);
+    if (restart && !long_loss) ++summary_.restarts;
+    Accept(frame, best, best_ncc, restart, &r);
     r.has_ncc = true;
     r.ncc = best_ncc;
     summary_.ncc_sum += best_ncc;
     ++summary_.ncc_count;
-    if (was_tracking) {
+    if (tracking) {
       r.status = BeaconStatus::kOk;
       ++summary_.ok;
     } else {

@@ -113,7 +113,7 @@ TrajectoryOptions DefaultTrajectoryOptions(TrajectoryKind kind) {
 bool ParseOcclusion(const std::string& text, OcclusionInterval* occ, std::string* why) {
   const auto colon = text.find(':');
   if (colon == std::string::npos) {
-    *why = "occlusion '" + text + "' must be START_S:DURATION_S (DURATION_S may be 'short' or 'long')";
+    *why = "'" + text + "' must be START_S:DURATION_S (DURATION_S may be 'short' or 'long')";
     return false;
   }
   const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
@@ -129,7 +129,7 @@ bool ParseOcclusion(const std::string& text, OcclusionInterval* occ, std::string
   };
   OcclusionInterval o;
   if (!number(a, &o.start_s) || o.start_s < 0) {
-    *why = "occlusion start '" + a + "' must be a number of seconds >= 0";
+    *why = "start '" + a + "' must be a number of seconds >= 0";
     return false;
   }
   if (b == "short") {
@@ -137,7 +137,7 @@ bool ParseOcclusion(const std::string& text, OcclusionInterval* occ, std::string
   } else if (b == "long") {
     o.duration_s = 5.0;
   } else if (!number(b, &o.duration_s) || !(o.duration_s > 0)) {
-    *why = "occlusion duration '" + b + "' must be a number of seconds > 0, 'short' or 'long'";
+    *why = "duration '" + b + "' must be a number of seconds > 0, 'short' or 'long'";
     return false;
   }
   *occ = o;
@@ -169,6 +169,11 @@ bool BeaconSimOptions::Check(std::string* why) const {
   for (const auto& o : occlusions) {
     if (!(o.start_s >= 0 && o.duration_s > 0 && std::isfinite(o.start_s + o.duration_s))) {
       return fail("occlusion intervals need start >= 0 and duration > 0");
+    }
+  }
+  for (const auto& o : servo_holds) {
+    if (!(o.start_s >= 0 && o.duration_s > 0 && o.start_s + o.duration_s <= duration_s + kServoMarginS)) {
+      return fail("servo holds need start >= 0, duration > 0 and must end within 1 s after the trial");
     }
   }
   if (!(turret_rate_hz > 0 && turret_rate_hz <= 10000)) return fail("turret rate must be in (0, 10000] Hz");
@@ -213,6 +218,9 @@ io::Json BeaconSimOptionsToJson(const BeaconSimOptions& o) {
   io::Json occ = io::Json::array();
   for (const auto& x : o.occlusions) occ.push_back({{"start_s", x.start_s}, {"duration_s", x.duration_s}});
   j["occlusions"] = occ;
+  io::Json holds = io::Json::array();
+  for (const auto& x : o.servo_holds) holds.push_back({{"start_s", x.start_s}, {"duration_s", x.duration_s}});
+  j["servo_holds"] = holds;
   j["turret_lag_s"] = o.servo.lag_s;
   j["jitter_arcsec"] = o.servo.jitter_rms_rad * geo::kArcsecPerRad;
   j["jitter_band_hz"] = {o.servo.jitter_min_hz, o.servo.jitter_max_hz};
@@ -231,7 +239,7 @@ io::Json BeaconSimOptionsToJson(const BeaconSimOptions& o) {
 BeaconSimulator::BeaconSimulator(BeaconSimOptions opt)
     : opt_(Prepared(std::move(opt))),
       trajectory_(opt_.trajectory),
-      servo_(opt_.servo, [this](double t) { return trajectory_.PositionEnu(t); }, opt_.t0_s - kServoMarginS,
+      servo_(opt_.servo, [this](double t) { return trajectory_.PositionEnu(CommandTime(t)); }, opt_.t0_s - kServoMarginS,
              LastFrameTime(opt_) + kServoMarginS, opt_.seed) {
   // Lamp layout (a_i, b_i) and relative intensities w_i.
   lamp_unit_.push_back({0.0, 0.0});
@@ -292,6 +300,14 @@ bool BeaconSimulator::Occluded(double t_s) const {
     if (rel >= o.start_s - 1e-9 && rel < o.start_s + o.duration_s - 1e-9) return true;
   }
   return false;
+}
+
+double BeaconSimulator::CommandTime(double t_s) const {
+  const double rel = t_s - opt_.t0_s;
+  for (const auto& h : opt_.servo_holds) {
+    if (rel >= h.start_s && rel < h.start_s + h.duration_s) return opt_.t0_s + h.start_s;
+  }
+  return t_s;
 }
 
 void BeaconSimulator::PlaceDistractors() {

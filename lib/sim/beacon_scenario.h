@@ -10,7 +10,10 @@
 // unit circle at angles 0.3 + 2π(i−1)/(N−1) rad; S = cluster span (m). Lamp i
 // has relative intensity w_i = 1 − 0.3·frac(0.618034·i) ∈ (0.7, 1] (lamp 0 = 1).
 // Images. A turret (sim/turret_servo.h) follows the direction of p with lag and
-// jitter; the true boresight (A, E) at frame time t_k = t0 + k / fps drives the
+// jitter; during a servo hold [t0 + START, t0 + START + DURATION) the turret's
+// command stays at the target direction of the hold's start (the turret stops)
+// and afterwards it catches up through its lag, so the image motion reverses
+// (docs/rk-sim.md "Servo hold"); the true boresight (A, E) at frame time t_k = t0 + k / fps drives the
 // exact camera projection (camera::CameraModel::ProjectEnu, with the model's
 // distortion and mount). Lamp i is a pixel-integrated Gaussian spot of std
 // σ_psf (px) and fixed amplitude peak_dn · w_i (DN above background, 8-bit
@@ -82,6 +85,7 @@ struct BeaconSimOptions {
   int distractors = 0;                 // number of glints, [0, 50]
   double distractor_margin_px = 120.0; // glints start at least this far from the cluster centre (px)
   std::vector<OcclusionInterval> occlusions;
+  std::vector<OcclusionInterval> servo_holds;  // turret stops, then catches up (same START:DURATION form)
 
   TurretServoOptions servo;
   double turret_rate_hz = 50.0;        // turret log rate (Hz), (0, 10000]
@@ -152,6 +156,9 @@ class BeaconSimulator {
   geo::AzEl TrueBoresight(double t_s) const { return servo_.Boresight(t_s); }
   Eigen::Vector3d TargetEnu(double t_s) const { return trajectory_.PositionEnu(t_s); }
   bool Occluded(double t_s) const;
+  // Time whose target direction the turret is commanded to at t_s: the start of
+  // the servo hold containing t_s, else t_s.
+  double CommandTime(double t_s) const;
 
   // Turret log over [t0 − 0.5, t_last + 0.5] s at turret_rate_hz, and range log likewise.
   std::vector<TurretSample> TurretLog() const;

@@ -86,3 +86,12 @@ f=$data/sim_file; echo x > "$f"
 "$expect" 4 - -- rk-sim beacon --out /proc/rk_sim_nowhere/trial --preset small --duration 0.5
 echo ok
 ]==])
+# --servo-hold (issue 15 item 2): malformed → 2 naming the option; a good one is recorded in the report.
+rk_cli_test(rk_sim_bad_servo_hold COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/sim_bad_hold "servo-hold" --
+  ${RK_SIM} beacon --out ${RK_CLI_DATA}/sim_bad_hold --preset small --duration 0.5 --servo-hold 0.2)
+rk_sim_script(rk_sim_servo_hold_report [==[
+d=$data/sim_hold; rm -rf "$d" "$d.json"
+rk-sim beacon --out "$d" --preset small --duration 1 --servo-hold 0.3:0.2 --report "$d.json" --quiet
+python3 -c "import json,sys; h=json.load(open(sys.argv[1]))['options']['servo_holds']; sys.exit(h != [{'start_s': 0.3, 'duration_s': 0.2}])" "$d.json"
+echo ok
+]==])

@@ -12,8 +12,10 @@
 
 namespace rk::extract::testing {
 
-// Issue 2 target: moving-scene centroid RMS error ≤ 0.05 px.
+// Issue 2 targets: moving-scene centroid RMS error ≤ 0.05 px; static std ≤ 0.03 px, |bias| ≤ 0.03 px.
 inline constexpr double kMovingRmsPx = 0.05;
+inline constexpr double kStaticStdPx = 0.03;
+inline constexpr double kStaticBiasPx = 0.03;
 
 // Lamp offsets (px) of the cluster: a centre lamp and four around it, a few
 // pixels apart (separate local maxima, merged by region growing).

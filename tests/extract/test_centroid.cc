@@ -15,9 +15,8 @@ using testing::Cluster;
 using testing::Render;
 using testing::kMovingRmsPx;
 
-// Targets of the issue (static std ≤ 0.03 px, |bias| ≤ 0.03 px; moving RMS: kMovingRmsPx, test_beacon_common.h).
-constexpr double kStaticStdPx = 0.03;
-constexpr double kStaticBiasPx = 0.03;
+using testing::kStaticBiasPx;
+using testing::kStaticStdPx;
 // A single-Gaussian fit / brightest-lamp locator lands on a lamp ≥ 2.6 px from
 // the cluster centre; anything within 1 px of truth is the cluster, not a lamp.
 constexpr double kNotOneLampPx = 1.0;

@@ -221,6 +221,117 @@ TEST(BeaconTrackOptions, CheckRejectsBadValues) {
   o.detect.k_grow = 10;
   o.detect.k_detect = 5;
   EXPECT_FALSE(o.Check(&why));
+  o = {};
+  o.flux_ratio = 0.9;
+  EXPECT_FALSE(o.Check(&why));
+}
+
+// Issue 15 item 2: the image motion turns while the beacon is hidden (a turret
+// servo catching up), so the Singer prediction carries the search window the
+// wrong way. The beacon moves at (80, 40) px/s until t_turn, then returns
+// towards where it came from with a decaying velocity (servo time constant
+// kCatchUpS): by the end of a 0.5 s occlusion the prediction is ≈ 70 px off.
+constexpr double kCatchUpS = 0.3;
+struct Reversal {
+  double t_turn = 2.2;
+  bool turn_y = true;  // false: only x turns, y keeps its velocity
+  cv::Point2d operator()(double t) const {
+    const double tt = std::min(t, t_turn);
+    double x = 60 + 80 * tt, y = 80 + 40 * tt;
+    if (t > t_turn) {
+      const double back = 1.0 - std::exp(-(t - t_turn) / kCatchUpS);
+      x += -250.0 * kCatchUpS * back;
+      y += turn_y ? -170.0 * kCatchUpS * back : 40.0 * (t - t_turn);
+    }
+    return {x, y};
+  }
+};
+
+// Frames after the return (first visible frame `back_at`) are measured no later than
+// kShortReacqFrames after it, and stay measured to the end.
+void ExpectReacquiredFast(const Outcome& o, int back_at) {
+  const int back = FirstMeasured(o, back_at);
+  ASSERT_GE(back, back_at);
+  EXPECT_LT(back - back_at, kShortReacqFrames) << "re-acquired " << back - back_at << " frames after the return";
+  for (int k = back + 1; k < static_cast<int>(o.rows.size()); ++k)
+    EXPECT_TRUE(IsMeasured(o.rows[k])) << "frame " << k << " " << BeaconStatusName(o.rows[k].status);
+}
+
+TEST(BeaconTracker, MotionReversesDuringShortOcclusion) {
+  for (const bool turn_y : {true, false}) {  // both axes reverse, or x only
+    TrackerScene sc;
+    Reversal rev;
+    rev.turn_y = turn_y;
+    sc.beacon = rev;
+    sc.visible = [](double t) { return !(t >= 2.0 && t < 2.5); };  // frames 40..49
+    const Outcome o = RunScene(sc, 80, 11);
+    // The prediction went the wrong way: the return is far outside the old gate.
+    const cv::Point2d back = rev(2.5), gone = rev(1.95);
+    EXPECT_GT(std::hypot(back.x - (gone.x + 0.55 * 80), back.y - (gone.y + 0.55 * 40)), 50.0);
+    ExpectReacquiredFast(o, 50);
+    EXPECT_EQ(o.rows[50].status, BeaconStatus::kReacquired);
+    CheckOnBeacon(o);
+  }
+}
+
+TEST(BeaconTracker, MotionReversesOcclusionLengths) {
+  // 0.25, 0.5, 1, 2 s occlusions from 2.0 s; the turn at 2.1 s lies inside each.
+  for (const int frames_hidden : {5, 10, 20, 40}) {
+    TrackerScene sc;
+    Reversal rev;
+    rev.t_turn = 2.1;
+    sc.beacon = rev;
+    const double t1 = 2.0 + frames_hidden / kFps;
+    sc.visible = [t1](double t) { return !(t >= 2.0 - 1e-9 && t < t1 - 1e-9); };
+    const Outcome o = RunScene(sc, 50 + frames_hidden + 20, 12 + static_cast<std::uint64_t>(frames_hidden));
+    ExpectReacquiredFast(o, 40 + frames_hidden);
+    CheckOnBeacon(o);
+  }
+}
+
+TEST(BeaconTracker, OcclusionFromTheFirstFrame) {
+  TrackerScene sc;
+  sc.beacon = Wander;
+  sc.visible = [](double t) { return t >= 0.5 - 1e-9; };  // frames 0..9 hidden
+  const Outcome o = RunScene(sc, 40, 13);
+  ExpectReacquiredFast(o, 10);
+  CheckOnBeacon(o);
+}
+
+// Glints where the wrong prediction points and along the way back, visible
+// while the beacon is hidden: none is ever taken for the beacon.
+TEST(BeaconTracker, NoFalseLockOnDistractorsDuringReversalOcclusion) {
+  TrackerScene sc;
+  Reversal rev;
+  sc.beacon = rev;
+  sc.visible = [](double t) { return !(t >= 2.0 && t < 2.5); };
+  sc.distractors = [rev](double t) {
+    const cv::Point2d ahead = rev(2.0) + cv::Point2d(0.5 * 80, 0.5 * 40);  // the stale prediction at 2.5 s
+    std::vector<sim::Spot> d{Glint(ahead.x, ahead.y, 600), Glint(ahead.x - 30, ahead.y + 25, 250),
+                             Glint(290, 30, 900)};
+    if (t >= 2.0 && t < 2.5) d.push_back(Glint(rev(2.5).x - 20, rev(2.5).y - 20, 400));  // only while hidden
+    return d;
+  };
+  const Outcome o = RunScene(sc, 80, 14);
+  for (int k = 40; k < 50; ++k) EXPECT_FALSE(IsMeasured(o.rows[k])) << k;
+  ExpectReacquiredFast(o, 50);
+  CheckOnBeacon(o);
+}
+
+// With only glints in view (the beacon hidden for 2 s after a lock), re-acquisition
+// keeps looking and never accepts one: they fail the template's shape, size and flux.
+TEST(BeaconTracker, NoFalseLockWhileBeaconHiddenLong) {
+  TrackerScene sc;
+  sc.beacon = Wander;
+  sc.visible = [](double t) { return t < 0.5 || t >= 2.5; };
+  sc.distractors = [](double t) {
+    return std::vector<sim::Spot>{Glint(Wander(0.5).x + 25, Wander(0.5).y, 800), Glint(60 + 20 * t, 200, 300),
+                                  Glint(250, 60, 150)};
+  };
+  const Outcome o = RunScene(sc, 70, 15);
+  for (int k = 10; k < 50; ++k) EXPECT_FALSE(IsMeasured(o.rows[k])) << k;
+  ExpectReacquiredFast(o, 50);
+  CheckOnBeacon(o);
 }
 
 }  // namespace

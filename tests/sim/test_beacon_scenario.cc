@@ -302,6 +302,33 @@ TEST(BeaconScenario, OcclusionHidesTheLampsOnlyInItsInterval) {
   EXPECT_LT(maxv, 40.0);
 }
 
+// Servo hold (issue 15 item 2): the turret stops, the beacon's image runs off
+// with the target's angular rate, and when the hold ends the servo catches up,
+// so the image velocity reverses; outside the hold nothing changes.
+TEST(BeaconScenario, ServoHoldReversesTheImageMotion) {
+  BeaconSimOptions o = Small(TrajectoryKind::kDefault, 4.0);
+  o.servo.jitter_rms_rad = 0.0;
+  const BeaconSimulator plain(o);
+  o.servo_holds.push_back({1.5, 0.3});  // frames 30..35 held
+  const BeaconSimulator held(o);
+  auto vx = [](const BeaconSimulator& s, int k) { return (s.frame(k + 1).centre_px - s.frame(k - 1).centre_px) * 10.0; };
+  // Before the hold: identical.
+  EXPECT_LT((held.frame(25).centre_px - plain.frame(25).centre_px).norm(), 1e-9);
+  // During the hold the image moves with the target (≈ 490 px/s at 80 m) instead of sitting at the lag offset.
+  const Eigen::Vector2d during = vx(held, 34), after = vx(held, 38), steady = vx(plain, 34);
+  EXPECT_GT(during.norm(), 300.0);
+  EXPECT_GT(during.norm(), 10.0 * steady.norm());
+  // Catching up: the image velocity points back against the hold's motion.
+  EXPECT_LT(during.dot(after), -0.5 * during.norm() * after.norm());
+  // Long after the hold the servo is back in its steady state.
+  EXPECT_LT((held.frame(70).centre_px - plain.frame(70).centre_px).norm(), 0.5);
+  std::string why;
+  o.servo_holds = {{1.0, 0.0}};
+  EXPECT_FALSE(o.Check(&why));
+  o.servo_holds = {{4.5, 1.0}};  // ends 1.5 s after the trial
+  EXPECT_FALSE(o.Check(&why));
+}
+
 TEST(BeaconScenario, FrameBrightnessMatchesPeakAndBackground) {
   BeaconSimOptions o = Small(TrajectoryKind::kStatic, 0.5);
   const BeaconSimulator sim(o);

@@ -1,0 +1,167 @@
+// Per-lamp estimator of a sparse (resolved) lamp cluster (beacon_lamps.h)
+// against the simulator's truth, the flux-weighted mean of the lamp positions.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "extract/beacon_lamps.h"
+#include "extract/beacon_tracker.h"
+#include "test_beacon_common.h"
+
+namespace rk::extract {
+namespace {
+
+// Targets (test_beacon_common.h): static std and |bias| ≤ 0.03 px, moving RMS ≤ 0.05 px.
+using testing::Cluster;
+using testing::kMovingRmsPx;
+using testing::kStaticBiasPx;
+using testing::kStaticStdPx;
+using testing::Render;
+// Lamp spacing ×4 of the compact test cluster: lamps 7–16 px apart (separate spots).
+constexpr double kSparseScale = 4.0;
+// Reported 1σ against the scatter: σ covers the background/read noise, not the
+// lamps' photon noise (≈ 1 % of σ here), and a 200-frame std is good to ±5 %.
+constexpr double kSigmaRatioLo = 0.8, kSigmaRatioHi = 1.25;
+// The per-lamp estimate must beat the one-window centroid on a sparse cluster
+// by a clear margin (the point of the estimator), here at least this factor in std.
+constexpr double kGainOverCluster = 1.3;
+
+// One measured cluster of the frame (the largest candidate).
+bool MeasureCluster(SpotDetector& det, const cv::Mat& f, SpotMeasurement* m) {
+  const NoiseStats noise = det.FrameStats(f, 3);
+  std::vector<SpotMeasurement> c;
+  det.FindInBox(f, PixelBox{0, 0, f.cols - 1, f.rows - 1}, noise, &c);
+  bool found = false;
+  for (const auto& x : c)
+    if (x.area_px > 0 && (!found || x.flux_dn > m->flux_dn)) {
+      *m = x;
+      found = true;
+    }
+  return found;
+}
+
+struct AxisStats {
+  double sum = 0, sum2 = 0, sigma_sum = 0;
+  int n = 0;
+  void Add(double e, double sigma) {
+    sum += e;
+    sum2 += e * e;
+    sigma_sum += sigma;
+    ++n;
+  }
+  double mean() const { return sum / n; }
+  double std() const { return std::sqrt(std::max(0.0, sum2 / n - mean() * mean())); }
+  double mean_sigma() const { return sigma_sum / n; }
+};
+
+TEST(LampEstimator, CompactClusterDoesNotResolve) {
+  std::mt19937_64 rng(1);
+  SpotDetector det;
+  LampEstimator lamps;
+  const cv::Mat f = Render(80, 80, Cluster(40.3, 39.6), rng);
+  SpotMeasurement m;
+  ASSERT_TRUE(MeasureCluster(det, f, &m));
+  std::vector<LampMeasurement> l;
+  EXPECT_FALSE(lamps.Measure(f, m, &l));
+}
+
+TEST(LampEstimator, SparseClusterResolvesFiveLamps) {
+  std::mt19937_64 rng(2);
+  SpotDetector det;
+  LampEstimator lamps;
+  const auto spots = Cluster(50.4, 48.7, 200.0, kSparseScale);
+  const cv::Mat f = Render(100, 100, spots, rng);
+  SpotMeasurement m;
+  ASSERT_TRUE(MeasureCluster(det, f, &m));
+  std::vector<LampMeasurement> l;
+  ASSERT_TRUE(lamps.Measure(f, m, &l));
+  ASSERT_EQ(l.size(), spots.size());
+  // Each measured lamp sits on one true lamp (within a few σ of its own noise).
+  for (const auto& s : spots) {
+    double best = 1e9;
+    for (const auto& x : l) best = std::min(best, std::hypot(x.x_px - s.x_px, x.y_px - s.y_px));
+    EXPECT_LT(best, 0.15) << "lamp at " << s.x_px << ", " << s.y_px;
+  }
+}
+
+// Static sparse cluster, several sub-pixel positions, 200 frames each: bias,
+// std, and the reported σ against the scatter; and the gain over the cluster centroid.
+TEST(LampEstimator, StaticSparseBiasStdAndSigma) {
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  SpotDetector det;
+  double worst_std = 0, worst_bias = 0, worst_cluster_std = 0;
+  for (int p = 0; p < 4; ++p) {
+    LampEstimator lamps;
+    const auto spots = Cluster(50 + u(rng), 49 + u(rng), 200.0, kSparseScale);
+    const cv::Point2d truth = sim::FluxWeightedCentre(spots);
+    AxisStats ex, ey, cx, cy;
+    for (int k = 0; k < 200; ++k) {
+      const cv::Mat f = Render(100, 100, spots, rng);
+      SpotMeasurement m;
+      ASSERT_TRUE(MeasureCluster(det, f, &m));
+      LampEstimate e;
+      ASSERT_TRUE(lamps.Estimate(f, m, &e));
+      EXPECT_EQ(e.lamps, 5);
+      if (k < 20) continue;  // let the share averages settle
+      ex.Add(e.x_px - truth.x, e.sigma_x_px);
+      ey.Add(e.y_px - truth.y, e.sigma_y_px);
+      cx.Add(m.x_px - truth.x, m.sigma_x_px);
+      cy.Add(m.y_px - truth.y, m.sigma_y_px);
+    }
+    std::printf("position %d: per-lamp bias %.4f %.4f std %.4f %.4f (sigma %.4f %.4f); cluster std %.4f %.4f\n", p,
+                ex.mean(), ey.mean(), ex.std(), ey.std(), ex.mean_sigma(), ey.mean_sigma(), cx.std(), cy.std());
+    worst_std = std::max({worst_std, ex.std(), ey.std()});
+    worst_bias = std::max({worst_bias, std::fabs(ex.mean()), std::fabs(ey.mean())});
+    worst_cluster_std = std::max({worst_cluster_std, cx.std(), cy.std()});
+    for (const AxisStats* a : {&ex, &ey}) {
+      const double ratio = a->std() / a->mean_sigma();
+      EXPECT_GT(ratio, kSigmaRatioLo) << "reported sigma too large";
+      EXPECT_LT(ratio, kSigmaRatioHi) << "reported sigma too small";
+    }
+  }
+  EXPECT_LE(worst_std, kStaticStdPx);
+  EXPECT_LE(worst_bias, kStaticBiasPx);
+  EXPECT_GT(worst_cluster_std / worst_std, kGainOverCluster);
+}
+
+// Moving sparse cluster through the tracker: the per-lamp estimator is chosen
+// automatically, reported per frame, and meets the moving RMS target.
+TEST(LampEstimator, TrackerPicksPerLampForSparseCluster) {
+  std::mt19937_64 rng(4);
+  BeaconTracker tracker{BeaconTrackOptions{}};
+  double s2 = 0;
+  int n = 0;
+  for (int k = 0; k < 120; ++k) {
+    const double t = k / 20.0;
+    const auto spots = Cluster(120 + 40 * std::sin(0.7 * t) + 5 * t, 100 + 25 * std::sin(0.9 * t), 200.0, kSparseScale);
+    const cv::Point2d truth = sim::FluxWeightedCentre(spots);
+    const cv::Mat f = Render(240, 200, spots, rng);
+    const BeaconFrameResult r = tracker.Process(f, k, t);
+    ASSERT_EQ(r.status, BeaconStatus::kOk) << k;
+    EXPECT_TRUE(r.per_lamp) << k;
+    if (k >= 20) {
+      s2 += (r.x_px - truth.x) * (r.x_px - truth.x) + (r.y_px - truth.y) * (r.y_px - truth.y);
+      ++n;
+    }
+  }
+  EXPECT_EQ(tracker.summary().per_lamp, 120);
+  const double rms = std::sqrt(s2 / (2.0 * n));
+  std::printf("sparse moving: rms %.4f px\n", rms);
+  EXPECT_LE(rms, kMovingRmsPx);
+}
+
+TEST(LampEstimator, TrackerKeepsClusterCentroidForCompactCluster) {
+  std::mt19937_64 rng(5);
+  BeaconTracker tracker{BeaconTrackOptions{}};
+  for (int k = 0; k < 10; ++k) {
+    const BeaconFrameResult r = tracker.Process(Render(120, 100, Cluster(60 + k, 50), rng), k, k / 20.0);
+    ASSERT_EQ(r.status, BeaconStatus::kOk);
+    EXPECT_FALSE(r.per_lamp);
+  }
+  EXPECT_EQ(tracker.summary().per_lamp, 0);
+}
+
+}  // namespace
+}  // namespace rk::extract
