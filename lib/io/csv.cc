@@ -83,7 +83,8 @@ CsvTable CsvTable::Parse(std::string_view text, const std::string& name, const C
       for (std::size_t c = 0; c < cells.size(); ++c) {
         if (cells[c].empty()) throw DataError(name, line_no, cols[c], "empty column name in header");
         for (std::size_t k = 0; k < c; ++k) {
-          if (cells[k] == cells[c]) throw DataError(name, line_no, cols[c], "duplicate column '" + cells[c] + "'");
+          if (cells[k] == cells[c])
+            throw DataError(name, line_no, cols[c], "duplicate column '" + cells[c] + "'");
         }
       }
       t.header_ = cells;
@@ -93,8 +94,8 @@ CsvTable CsvTable::Parse(std::string_view text, const std::string& name, const C
     }
     if (cells.size() != t.header_.size()) {
       std::size_t col = cells.size() > t.header_.size() ? cols[t.header_.size()] : line.size() + 1;
-      const std::string what =
-          "row has " + std::to_string(cells.size()) + " fields, header has " + std::to_string(t.header_.size());
+      const std::string what = "row has " + std::to_string(cells.size()) + " fields, header has " +
+                               std::to_string(t.header_.size());
       if (options.bad_rows == BadRows::kSkip) {
         t.skipped_.push_back(SkippedRow{line_no, col, what});
         continue;
@@ -144,21 +145,29 @@ Error CsvTable::CellError(std::size_t row, int col, const std::string& what) con
                    "column '" + header_[static_cast<std::size_t>(col)] + "': " + what);
 }
 
-double CsvTable::Double(std::size_t row, int col) const {
-  std::string_view s = Cell(row, col);
-  if (s.empty()) throw CellError(row, col, "empty value");
-  double v = 0.0;
+namespace {
+// "" when `s` is a finite number (stored in *v), else why it is not. One leading '+' is allowed
+// (from_chars takes none); a sign after it ("+-5") is not a number.
+std::string NumberProblem(std::string_view s, double* v) {
+  if (s.empty()) return "empty value";
   const char* first = s.data();
-  if (*first == '+') ++first;
-  auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), v);
-  if (ec != std::errc() || ptr != s.data() + s.size()) {
-    throw DataError(name_, Line(row), CharColumn(row, col),
-                    "column '" + header_[col] + "': '" + std::string(s) + "' is not a number");
+  if (*first == '+') {
+    ++first;
+    if (first == s.data() + s.size() || *first == '+' || *first == '-')
+      return "'" + std::string(s) + "' is not a number";
   }
-  if (!std::isfinite(v)) {
-    throw DataError(name_, Line(row), CharColumn(row, col),
-                    "column '" + header_[col] + "': '" + std::string(s) + "' is not a finite number");
-  }
+  auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), *v);
+  if (ec != std::errc() || ptr != s.data() + s.size()) return "'" + std::string(s) + "' is not a number";
+  if (!std::isfinite(*v)) return "'" + std::string(s) + "' is not a finite number";
+  return "";
+}
+
+}  // namespace
+
+double CsvTable::Double(std::size_t row, int col) const {
+  double v = 0.0;
+  const std::string problem = NumberProblem(Cell(row, col), &v);
+  if (!problem.empty()) throw CellError(row, col, problem);
   return v;
 }
 
@@ -183,8 +192,8 @@ void CsvTable::RequireNonDecreasing(int col) const {
     double prev = Double(r - 1, col), cur = Double(r, col);
     if (cur < prev) {
       throw DataError(name_, Line(r), CharColumn(r, col),
-                      "column '" + header_[col] + "' goes backwards (" + std::string(Cell(r, col)) + " after " +
-                          std::string(Cell(r - 1, col)) + ")");
+                      "column '" + header_[col] + "' goes backwards (" + std::string(Cell(r, col)) +
+                          " after " + std::string(Cell(r - 1, col)) + ")");
     }
   }
   if (rows() == 1) (void)Double(0, col);
@@ -215,17 +224,6 @@ bool ParseBadRows(std::string_view text, BadRows* out) {
 
 namespace {
 
-// "" when `s` is a finite number (stored in *v), else why it is not; the words of CsvTable::Double.
-std::string NumberProblem(std::string_view s, double* v) {
-  if (s.empty()) return "empty value";
-  const char* first = s.data();
-  if (*first == '+') ++first;
-  auto [ptr, ec] = std::from_chars(first, s.data() + s.size(), *v);
-  if (ec != std::errc() || ptr != s.data() + s.size()) return "'" + std::string(s) + "' is not a number";
-  if (!std::isfinite(*v)) return "'" + std::string(s) + "' is not a finite number";
-  return "";
-}
-
 std::string IntegerProblem(std::string_view s) {
   if (s.empty()) return "empty value";
   std::int64_t v = 0;
@@ -236,8 +234,8 @@ std::string IntegerProblem(std::string_view s) {
 
 }  // namespace
 
-std::string CsvTable::RowProblem(std::size_t row, const CsvRowRule& rule, std::optional<std::size_t> last_kept,
-                                 std::size_t* col) const {
+std::string CsvTable::RowProblem(std::size_t row, const CsvRowRule& rule,
+                                 std::optional<std::size_t> last_kept, std::size_t* col) const {
   std::string why;
   const auto check = [&](const std::vector<std::string>& names, bool optional, bool integer) {
     for (const std::string& name : names) {
@@ -271,10 +269,12 @@ std::string CsvTable::RowProblem(std::size_t row, const CsvRowRule& rule, std::o
     *col = CharColumn(row, c_order);
     if (!p.empty()) {
       why = "column '" + rule.non_decreasing + "': " + p;
-    } else if (last_kept && (v < Double(*last_kept, c_order) || (rule.increasing && v == Double(*last_kept, c_order)))) {
-      why = "column '" + rule.non_decreasing + "' " + (v < Double(*last_kept, c_order) ? "goes backwards" : "repeats") +
-            " (" + std::string(Cell(row, c_order)) + " after " + std::string(Cell(*last_kept, c_order)) + " on line " +
-            std::to_string(Line(*last_kept)) + ")";
+    } else if (last_kept &&
+               (v < Double(*last_kept, c_order) || (rule.increasing && v == Double(*last_kept, c_order)))) {
+      why = "column '" + rule.non_decreasing + "' " +
+            (v < Double(*last_kept, c_order) ? "goes backwards" : "repeats") + " (" +
+            std::string(Cell(row, c_order)) + " after " + std::string(Cell(*last_kept, c_order)) +
+            " on line " + std::to_string(Line(*last_kept)) + ")";
     }
   }
   return why;
@@ -307,8 +307,8 @@ void CsvTable::DropBadRows(const CsvRowRule& rule) {
 void CsvTable::WarnSkipped() const {
   for (std::size_t i = 0; i < skipped_.size() && i < kMaxSkippedRowWarnings; ++i) {
     const SkippedRow& s = skipped_[i];
-    EmitWarning(name_ + ":" + std::to_string(s.line) + ":" + std::to_string(s.column) + ": skipped bad row: " +
-                s.reason);
+    EmitWarning(name_ + ":" + std::to_string(s.line) + ":" + std::to_string(s.column) +
+                ": skipped bad row: " + s.reason);
   }
   if (skipped_.size() > kMaxSkippedRowWarnings) {
     EmitWarning(name_ + ": skipped " + std::to_string(skipped_.size()) + " bad rows in all (only the first " +
@@ -385,8 +385,8 @@ CsvWriter& CsvWriter::AddEmpty() {
 }
 
 void CsvWriter::EndRow() {
-  RK_CHECK(fields_in_row_ == columns_.size(),
-           "row has " + std::to_string(fields_in_row_) + " fields, header " + std::to_string(columns_.size()));
+  RK_CHECK(fields_in_row_ == columns_.size(), "row has " + std::to_string(fields_in_row_) +
+                                                  " fields, header " + std::to_string(columns_.size()));
   text_.push_back('\n');
   fields_in_row_ = 0;
   ++rows_;

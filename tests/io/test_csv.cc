@@ -115,3 +115,27 @@ TEST(SplitList, TrimsAndDropsEmpties) {
 
 }  // namespace
 }  // namespace rk::io
+
+namespace rk::io {
+namespace {
+
+// Found by fuzz_csv's review: from_chars after a skipped '+' read "+-5" as -5.
+TEST(CsvTable, OneLeadingPlusIsAllowedButNoSecondSign) {
+  auto t = CsvTable::Parse("v\n+5\n+-5\n++5\n+\n-5\n", "s.csv");
+  const int c = t.RequireColumn("v");
+  EXPECT_DOUBLE_EQ(t.Double(0, c), 5.0);
+  for (std::size_t r : {1u, 2u, 3u}) {
+    try {
+      t.Double(r, c);
+      FAIL() << "row " << r << " accepted";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.code(), ExitCode::kInvalidData);
+      EXPECT_NE(std::string(e.what()).find("s.csv:" + std::to_string(r + 2) + ":1"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("is not a number"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_DOUBLE_EQ(t.Double(4, c), -5.0);
+}
+
+}  // namespace
+}  // namespace rk::io
