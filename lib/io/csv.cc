@@ -234,8 +234,7 @@ std::string IntegerProblem(std::string_view s) {
 
 }  // namespace
 
-std::string CsvTable::RowProblem(std::size_t row, const CsvRowRule& rule,
-                                 std::optional<std::size_t> last_kept, std::size_t* col) const {
+std::string CsvTable::RowProblem(std::size_t row, const CsvRowRule& rule, std::size_t* col) const {
   std::string why;
   const auto check = [&](const std::vector<std::string>& names, bool optional, bool integer) {
     for (const std::string& name : names) {
@@ -266,32 +265,78 @@ std::string CsvTable::RowProblem(std::size_t row, const CsvRowRule& rule,
   if (why.empty() && c_order >= 0) {
     double v = 0.0;
     const std::string p = NumberProblem(Cell(row, c_order), &v);
-    *col = CharColumn(row, c_order);
     if (!p.empty()) {
       why = "column '" + rule.non_decreasing + "': " + p;
-    } else if (last_kept &&
-               (v < Double(*last_kept, c_order) || (rule.increasing && v == Double(*last_kept, c_order)))) {
-      why = "column '" + rule.non_decreasing + "' " +
-            (v < Double(*last_kept, c_order) ? "goes backwards" : "repeats") + " (" +
-            std::string(Cell(row, c_order)) + " after " + std::string(Cell(*last_kept, c_order)) +
-            " on line " + std::to_string(Line(*last_kept)) + ")";
+      *col = CharColumn(row, c_order);
     }
   }
   return why;
 }
 
 void CsvTable::DropBadRows(const CsvRowRule& rule) {
-  std::optional<std::size_t> last_kept;
-  std::vector<bool> keep(rows_.size(), false);
+  // 1. Rows whose cells the reader cannot use.
+  std::vector<std::size_t> usable;
   for (std::size_t r = 0; r < rows_.size(); ++r) {
     std::size_t col = 1;
-    const std::string why = RowProblem(r, rule, last_kept, &col);
-    if (!why.empty()) {
+    const std::string why = RowProblem(r, rule, &col);
+    if (why.empty()) {
+      usable.push_back(r);
+    } else {
       skipped_.push_back(SkippedRow{rows_[r].line, col, why});
-      continue;
     }
-    keep[r] = true;
-    last_kept = r;
+  }
+  // 2. Time order: keep the longest run of usable rows in order (non-decreasing, or increasing), so
+  // that one wild time far ahead costs that one row, not every row after it, and a row that jumped
+  // back costs only itself. Patience sorting, O(n log n).
+  std::vector<bool> keep(rows_.size(), false);
+  const int c_order = rule.non_decreasing.empty() ? -1 : Column(rule.non_decreasing);
+  if (c_order < 0) {
+    for (std::size_t r : usable) keep[r] = true;
+  } else {
+    std::vector<double> t(usable.size());
+    for (std::size_t i = 0; i < usable.size(); ++i) t[i] = Double(usable[i], c_order);
+    std::vector<std::size_t> tails;                          // tails[k]: index (in usable) ending a run of k+1
+    std::vector<std::ptrdiff_t> before(usable.size(), -1);  // the previous element of i's run
+    for (std::size_t i = 0; i < usable.size(); ++i) {
+      const auto less = [&](double v, std::size_t j) { return rule.increasing ? v <= t[j] : v < t[j]; };
+      const auto at = std::upper_bound(tails.begin(), tails.end(), t[i], less);
+      const std::size_t k = static_cast<std::size_t>(at - tails.begin());
+      if (k > 0) before[i] = static_cast<std::ptrdiff_t>(tails[k - 1]);
+      if (at == tails.end()) {
+        tails.push_back(i);
+      } else {
+        *at = i;
+      }
+    }
+    std::vector<bool> in_run(usable.size(), false);
+    for (std::ptrdiff_t i = tails.empty() ? -1 : static_cast<std::ptrdiff_t>(tails.back()); i >= 0; i = before[i]) {
+      in_run[static_cast<std::size_t>(i)] = true;
+    }
+    std::ptrdiff_t prev_kept = -1;  // in usable
+    for (std::size_t i = 0; i < usable.size(); ++i) {
+      if (in_run[i]) {
+        keep[usable[i]] = true;
+        prev_kept = static_cast<std::ptrdiff_t>(i);
+        continue;
+      }
+      std::string why = "column '" + rule.non_decreasing + "' ";
+      const std::size_t r = usable[i];
+      if (prev_kept >= 0 && t[i] <= t[static_cast<std::size_t>(prev_kept)]) {
+        const std::size_t p = usable[static_cast<std::size_t>(prev_kept)];
+        why += std::string(t[i] < t[static_cast<std::size_t>(prev_kept)] ? "goes backwards" : "repeats") + " (" +
+               std::string(Cell(r, c_order)) + " after " + std::string(Cell(p, c_order)) + " on line " +
+               std::to_string(Line(p)) + ")";
+      } else {
+        std::size_t next = i + 1;
+        while (next < usable.size() && !in_run[next]) ++next;
+        why += "jumps ahead of the rows after it (" + std::string(Cell(r, c_order)) +
+               (next < usable.size() ? " before " + std::string(Cell(usable[next], c_order)) + " on line " +
+                                           std::to_string(Line(usable[next]))
+                                     : std::string()) +
+               ")";
+      }
+      skipped_.push_back(SkippedRow{rows_[r].line, CharColumn(r, c_order), why});
+    }
   }
   std::size_t n = 0;
   for (std::size_t r = 0; r < rows_.size(); ++r) {

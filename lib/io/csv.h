@@ -27,8 +27,9 @@ bool ParseBadRows(std::string_view text, BadRows* out);
 
 // What a reader needs of every data row, by column name (columns absent from the header are
 // not checked here: a missing column is the reader's file-level error). A row breaks the rule
-// when a listed cell does not hold what is listed, or when `non_decreasing` goes backwards
-// relative to the last row kept. Rows with a wrong field count are always bad.
+// when a listed cell does not hold what is listed, or when it is not in the longest in-order run
+// of the `non_decreasing` column (a row that jumped back, or one wild time far ahead: only that
+// row goes). Rows with a wrong field count are always bad.
 struct CsvRowRule {
   std::vector<std::string> numbers;            // a finite number (not empty, not NaN/inf)
   std::vector<std::string> optional_numbers;   // empty, or a finite number
@@ -36,7 +37,7 @@ struct CsvRowRule {
   std::vector<std::string> optional_integers;  // empty, or an integer
   std::vector<std::string> texts;              // not empty
   std::string non_decreasing;                  // a number column that never goes backwards ("t_s")
-  bool increasing = false;                     // ... nor repeats the last row kept's value
+  bool increasing = false;                     // ... nor repeats a value
 };
 
 struct CsvReadOptions {
@@ -103,12 +104,12 @@ class CsvTable {
   const std::vector<SkippedRow>& skipped() const { return skipped_; }
 
  private:
-  // Under kSkip: drops the rows that break `rule` (recording them in skipped_).
+  // Under kSkip: drops the rows that break `rule` (recording them in skipped_): rows with a cell the
+  // reader cannot use, then, for the order column, every row outside the longest in-order run of the
+  // rest (one wild time costs one row).
   void DropBadRows(const CsvRowRule& rule);
-  // The reason `row` breaks `rule` (its character column in *col), or "" if it does not;
-  // `last_kept` is the last row kept before it (for the non-decreasing column).
-  std::string RowProblem(std::size_t row, const CsvRowRule& rule, std::optional<std::size_t> last_kept,
-                         std::size_t* col) const;
+  // The reason `row`'s cells break `rule` (its character column in *col), or "" if they do not.
+  std::string RowProblem(std::size_t row, const CsvRowRule& rule, std::size_t* col) const;
   // Warns about the skipped rows (one line each up to kMaxSkippedRowWarnings, then a count).
   void WarnSkipped() const;
 

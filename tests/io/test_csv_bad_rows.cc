@@ -107,6 +107,26 @@ TEST(CsvBadRows, IncreasingRuleSkipsRepeatedTimes) {
   EXPECT_NE(t.skipped()[0].reason.find("repeats"), std::string::npos);
 }
 
+// One wild time far ahead (a garbled serial line that still parses) costs that row only, not every
+// row after it; a row that jumped back costs only itself.
+TEST(CsvBadRows, OneWildTimeAheadCostsOneRow) {
+  WarningCapture warnings;
+  const CsvTable t =
+      CsvTable::Parse("t_s,az_deg\n0.0,1\n0.1,2\n9999.5,3\n0.2,4\n0.3,5\n0.25,6\n0.4,7\n", "s.csv", SkipTurret());
+  ASSERT_EQ(t.rows(), 5u);
+  const int c = t.RequireColumn("az_deg");
+  const std::vector<double> kept = {1, 2, 4, 5, 7};
+  for (std::size_t r = 0; r < kept.size(); ++r) EXPECT_EQ(t.Double(r, c), kept[r]) << "row " << r;
+  ASSERT_EQ(t.skipped().size(), 2u);
+  EXPECT_EQ(t.skipped()[0].line, 4u);
+  EXPECT_NE(t.skipped()[0].reason.find("jumps ahead of the rows after it (9999.5 before 0.2 on line 5)"),
+            std::string::npos)
+      << t.skipped()[0].reason;
+  EXPECT_EQ(t.skipped()[1].line, 7u);
+  EXPECT_NE(t.skipped()[1].reason.find("goes backwards (0.25 after 0.3 on line 6)"), std::string::npos)
+      << t.skipped()[1].reason;
+}
+
 TEST(CsvBadRows, RequiredNumbersIntegersAndTexts) {
   WarningCapture warnings;
   CsvReadOptions o;
