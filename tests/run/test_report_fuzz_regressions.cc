@@ -65,7 +65,9 @@ TEST_F(StandInTrial, DamagedPreviousReportIsNotTrusted) {
     EXPECT_EQ(s.error, "") << report;
     EXPECT_TRUE(Said("out/report.json is damaged")) << report;
     for (const StepLine& l : s.steps) {
-      if (l.status == "would run") EXPECT_EQ(l.reason.find("up to date"), std::string::npos) << l.id;
+      if (l.status == "would run") {
+        EXPECT_EQ(l.reason.find("up to date"), std::string::npos) << l.id;
+      }
     }
   }
   // Not a report of rk-run at all: ignored as before, without a warning.
