@@ -18,8 +18,9 @@ using testing::kMovingRmsPx;
 using testing::kStaticBiasPx;
 using testing::kStaticStdPx;
 using testing::Render;
-// Lamp spacing ×4 of the compact test cluster: lamps 7–16 px apart (separate spots).
-constexpr double kSparseScale = 4.0;
+// Lamp spacing ×5 of the compact test cluster: lamps 9–20 px apart (separate spots, as rk-sim's 0.1 m
+// cluster at 80 m).
+constexpr double kSparseScale = 5.0;
 // Reported 1σ against the scatter: σ covers the background/read noise, not the
 // lamps' photon noise (≈ 1 % of σ here), and a 200-frame std is good to ±5 %.
 constexpr double kSigmaRatioLo = 0.8, kSigmaRatioHi = 1.25;
