@@ -295,13 +295,17 @@ void CsvTable::DropBadRows(const CsvRowRule& rule) {
   } else {
     std::vector<double> t(usable.size());
     for (std::size_t i = 0; i < usable.size(); ++i) t[i] = Double(usable[i], c_order);
-    std::vector<std::size_t> tails;                          // tails[k]: index (in usable) ending a run of k+1
-    std::vector<std::ptrdiff_t> before(usable.size(), -1);  // the previous element of i's run
-    for (std::size_t i = 0; i < usable.size(); ++i) {
-      const auto less = [&](double v, std::size_t j) { return rule.increasing ? v <= t[j] : v < t[j]; };
-      const auto at = std::upper_bound(tails.begin(), tails.end(), t[i], less);
+    // Built from the last row back (times negated), so that among equally long runs the one of the
+    // earliest rows wins: a repeated or stepped-back time costs the later row.
+    std::vector<std::size_t> tails;  // tails[k]: index (in usable) starting a run of k+1
+    std::vector<std::ptrdiff_t> after(usable.size(), -1);  // the next element of i's run
+    for (std::size_t i = usable.size(); i-- > 0;) {
+      const auto less = [&](std::size_t a, std::size_t b) {
+        return rule.increasing ? -t[a] <= -t[b] : -t[a] < -t[b];
+      };
+      const auto at = std::upper_bound(tails.begin(), tails.end(), i, less);
       const std::size_t k = static_cast<std::size_t>(at - tails.begin());
-      if (k > 0) before[i] = static_cast<std::ptrdiff_t>(tails[k - 1]);
+      if (k > 0) after[i] = static_cast<std::ptrdiff_t>(tails[k - 1]);
       if (at == tails.end()) {
         tails.push_back(i);
       } else {
@@ -309,7 +313,8 @@ void CsvTable::DropBadRows(const CsvRowRule& rule) {
       }
     }
     std::vector<bool> in_run(usable.size(), false);
-    for (std::ptrdiff_t i = tails.empty() ? -1 : static_cast<std::ptrdiff_t>(tails.back()); i >= 0; i = before[i]) {
+    for (std::ptrdiff_t i = tails.empty() ? -1 : static_cast<std::ptrdiff_t>(tails.back()); i >= 0;
+         i = after[i]) {
       in_run[static_cast<std::size_t>(i)] = true;
     }
     std::ptrdiff_t prev_kept = -1;  // in usable
@@ -323,9 +328,9 @@ void CsvTable::DropBadRows(const CsvRowRule& rule) {
       const std::size_t r = usable[i];
       if (prev_kept >= 0 && t[i] <= t[static_cast<std::size_t>(prev_kept)]) {
         const std::size_t p = usable[static_cast<std::size_t>(prev_kept)];
-        why += std::string(t[i] < t[static_cast<std::size_t>(prev_kept)] ? "goes backwards" : "repeats") + " (" +
-               std::string(Cell(r, c_order)) + " after " + std::string(Cell(p, c_order)) + " on line " +
-               std::to_string(Line(p)) + ")";
+        why += std::string(t[i] < t[static_cast<std::size_t>(prev_kept)] ? "goes backwards" : "repeats") +
+               " (" + std::string(Cell(r, c_order)) + " after " + std::string(Cell(p, c_order)) +
+               " on line " + std::to_string(Line(p)) + ")";
       } else {
         std::size_t next = i + 1;
         while (next < usable.size() && !in_run[next]) ++next;
