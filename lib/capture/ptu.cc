@@ -12,6 +12,9 @@
 namespace rk::capture {
 namespace {
 
+// The set-up queries (ED, FT, PR, TR) wait at least this long; see PtuDriver::Setup.
+constexpr double kSetupTimeoutS = 2.0;
+
 std::string Trim(std::string_view s) {
   std::size_t a = 0, b = s.size();
   while (a < b && s[a] == ' ') ++a;
@@ -213,8 +216,12 @@ bool PtuDriver::Setup(std::string* why) {
   }
   Stamp at;
   bool hup = false;
+  // The set-up queries are answered once per connection, not per poll: they wait at least
+  // kSetupTimeoutS, so a unit (or a loaded host) slow to answer its first commands after the port
+  // opens costs a second, not a failed connection and a reconnect period.
+  const double setup_timeout_s = std::max(o_.timeout_s, kSetupTimeoutS);
   for (const char* cmd : {"ED", "FT"}) {
-    const auto r = Query(cmd, o_.timeout_s, &at, &hup, why);
+    const auto r = Query(cmd, setup_timeout_s, &at, &hup, why);
     if (!r) return false;
     if (r->kind != PtuReplyKind::kOk && reporter_.event)
       reporter_.event(EventLevel::kWarning, std::string(cmd) + " answered '!" + r->text + "'");
@@ -222,7 +229,7 @@ bool PtuDriver::Setup(std::string* why) {
   double res[2] = {0, 0};
   const char* names[2] = {"PR", "TR"};
   for (int k = 0; k < 2; ++k) {
-    const auto r = Query(names[k], o_.timeout_s, &at, &hup, why);
+    const auto r = Query(names[k], setup_timeout_s, &at, &hup, why);
     if (!r) return false;
     if (r->kind != PtuReplyKind::kOk || !r->value || !(*r->value > 0)) {
       if (why) *why = std::string(names[k]) + " did not return a resolution (reply '" + r->text + "')";
