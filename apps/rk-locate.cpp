@@ -29,7 +29,6 @@ int main(int argc, char** argv) {
   rk::cli::AddCommonOptions(app, kTool, &common);
   std::string track_path, camera_path, turret_path, range_path, out_path;
   rk::locate::LocateOptions opt;
-  std::string turret_interp = "cubic", range_interp = "local-cubic";
   app.add_option("--track", track_path, "Beacon track CSV: frame,t_s,x_px,y_px[,status] ('-' = stdin)")
       ->required();
   app.add_option("--camera", camera_path, "Camera model JSON (SPEC.md section 3)")->required();
@@ -37,32 +36,11 @@ int main(int argc, char** argv) {
   app.add_option("--range", range_path,
                  "Range log CSV: t_s,range_m[,status]; without it no range/ENU is given");
   app.add_option("-o,--output", out_path, "Located target CSV ('-' = stdout)")->required();
-  app.add_option("--turret-interp", turret_interp,
-                 "Turret angle interpolation to frame times: linear or cubic")
-      ->check(CLI::IsMember({"linear", "cubic"}))
-      ->capture_default_str();
-  app.add_option("--turret-max-gap", opt.turret_max_gap_s,
-                 "Longest turret-log interval (s) interpolated across; frames in longer gaps are invalid")
-      ->default_val(opt.turret_max_gap_s);
-  app.add_option("--range-interp", range_interp,
-                 "Range interpolation to frame times: linear, cubic, local-quadratic or local-cubic")
-      ->check(CLI::IsMember({"linear", "cubic", "local-quadratic", "local-cubic"}))
-      ->capture_default_str();
-  app.add_option("--range-max-gap", opt.range_max_gap_s,
-                 "Longest interval (s) between usable range samples interpolated across; device-error rows "
-                 "always break the interval")
-      ->default_val(opt.range_max_gap_s);
-  app.add_option("--range-window", opt.range_window,
-                 "local-quadratic/local-cubic: range samples used on each side of the frame interval, 2..50")
-      ->default_val(opt.range_window);
+  rk::cli::AddOptions(&app, &opt, rk::locate::LocateOptions::Table());
   rk::io::BadRows bad_rows = rk::io::BadRows::kError;
   rk::cli::AddBadRowsOption(&app, &bad_rows);
 
   return rk::cli::Run(app, kTool, argc, argv, [&]() -> int {
-    if (!rk::track::ParseInterpMethod(turret_interp, &opt.turret_method) ||
-        !rk::track::ParseInterpMethod(range_interp, &opt.range_method)) {
-      throw rk::UsageError("unknown interpolation method");
-    }
     std::string why;
     if (!opt.Check(&why)) throw rk::UsageError(why);
     std::vector<std::string> inputs = {track_path, camera_path, turret_path};
@@ -106,11 +84,7 @@ int main(int argc, char** argv) {
       rk::cli::AddReportInput(&report, "turret", turret_path);
       if (range) rk::cli::AddReportInput(&report, "range", range_path);
       report["output"] = out_path;
-      report["options"] = {{"turret_interp", rk::track::InterpMethodName(opt.turret_method)},
-                           {"turret_max_gap_s", opt.turret_max_gap_s},
-                           {"range_interp", rk::track::InterpMethodName(opt.range_method)},
-                           {"range_max_gap_s", opt.range_max_gap_s},
-                           {"range_window", opt.range_window}};
+      report["options"] = opt.ToJson();
       rk::io::Json status = rk::io::Json::object();
       for (int s = 0; s < 5; ++s) {
         status[rk::locate::TrackStatusName(static_cast<rk::locate::TrackStatus>(s))] =

@@ -11,6 +11,7 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/json_util.h"
+#include "io/options.h"
 
 namespace rk::cli {
 
@@ -27,6 +28,38 @@ void AddCommonOptions(CLI::App& app, const std::string& tool, CommonOptions* com
 // `app` (a tool or a subcommand). Every tool that reads CSV calls this, and passes *bad_rows on to
 // io::CsvTable::Read with the rule of the file it reads.
 void AddBadRowsOption(CLI::App* app, io::BadRows* bad_rows);
+
+// Registers every option of `table` on `app` (a tool or a subcommand), bound to the members of
+// *options, in the table's order: numbers with their current value as the shown default, choices
+// checked against their names (TEXT:{a,b}=current). Bounds are checked after parsing, by the
+// Options' Check() (io::OptionTable::Check), so that the library and the CLI share one message.
+template <class O>
+void AddOptions(CLI::App* app, O* options, const io::OptionTable<O>& table) {
+  for (const auto& s : table.specs()) {
+    using Kind = typename io::OptionSpec<O>::Kind;
+    switch (s.kind) {
+      case Kind::kReal:
+        app->add_option(s.flag, options->*s.real, s.help)->default_val(options->*s.real);
+        break;
+      case Kind::kInteger:
+        app->add_option(s.flag, options->*s.integer, s.help)->default_val(options->*s.integer);
+        break;
+      case Kind::kChoice: {
+        auto set = s.set_choice;
+        const std::string flag = s.flag;
+        app->add_option_function<std::string>(
+               s.flag,
+               [options, set, flag](const std::string& v) {
+                 if (!set(options, v)) throw CLI::ValidationError(flag, "unknown value '" + v + "'");
+               },
+               s.help)
+            ->check(CLI::IsMember(s.choices))
+            ->default_str(s.get_choice(*options));
+        break;
+      }
+    }
+  }
+}
 
 // Parses argv and runs `body`. Returns the process exit code: 0 for --help and
 // --version, 2 for usage errors, the code of any rk::Error, 1 for other failures.

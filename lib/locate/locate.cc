@@ -10,20 +10,26 @@
 
 namespace rk::locate {
 
-bool LocateOptions::Check(std::string* why) const {
-  if (!(turret_max_gap_s > 0.0)) {
-    *why = "--turret-max-gap must be > 0 s";
-    return false;
-  }
-  if (!(range_max_gap_s > 0.0)) {
-    *why = "--range-max-gap must be > 0 s";
-    return false;
-  }
-  if (range_window < 2 || range_window > 50) {
-    *why = "--range-window must be in [2, 50] samples per side";
-    return false;
-  }
-  return true;
+const io::OptionTable<LocateOptions>& LocateOptions::Table() {
+  using track::InterpMethod;
+  static const io::OptionTable<LocateOptions> table =
+      io::OptionTable<LocateOptions>()
+          .Choice("--turret-interp", &LocateOptions::turret_method,
+                  {InterpMethod::kLinear, InterpMethod::kCubic}, track::InterpMethodName,
+                  "Turret angle interpolation to frame times: linear or cubic")
+          .Real("--turret-max-gap", &LocateOptions::turret_max_gap_s, "s", io::Bounds::Positive(),
+                "Longest turret-log interval (s) interpolated across; frames in longer gaps are invalid")
+          .Choice("--range-interp", &LocateOptions::range_method,
+                  {InterpMethod::kLinear, InterpMethod::kCubic, InterpMethod::kLocalQuadratic,
+                   InterpMethod::kLocalCubic},
+                  track::InterpMethodName,
+                  "Range interpolation to frame times: linear, cubic, local-quadratic or local-cubic")
+          .Real("--range-max-gap", &LocateOptions::range_max_gap_s, "s", io::Bounds::Positive(),
+                "Longest interval (s) between usable range samples interpolated across; device-error rows "
+                "always break the interval")
+          .Integer("--range-window", &LocateOptions::range_window, "samples per side", io::Bounds::Closed(2, 50),
+                   "local-quadratic/local-cubic: range samples used on each side of the frame interval, 2..50");
+  return table;
 }
 
 std::string RangeStatusName(RangeStatus status) {

@@ -29,6 +29,7 @@
 #include <vector>
 
 #include "camera/camera_model.h"
+#include "io/options.h"
 #include "locate/inputs.h"
 #include "track/interp.h"
 
@@ -43,7 +44,11 @@ struct LocateOptions {
   double range_max_gap_s = 0.5;  // longest range-log interval interpolated across (s), > 0
   int range_window = 3;          // local-quadratic / local-cubic: range samples per side, [2, 50]
 
-  bool Check(std::string* why) const;
+  // Flags, units, valid ranges and help of every member above (io/options.h): rk-locate's options,
+  // Check() and the report's "options" block all come from it.
+  static const io::OptionTable<LocateOptions>& Table();
+  bool Check(std::string* why) const { return Table().Check(*this, why); }
+  io::Json ToJson() const { return Table().ToJson(*this); }
 };
 
 // Why a row with a line of sight has, or has not, a range.

@@ -1,0 +1,111 @@
+// io/options.h: one description per option → Check, report keys, CLI11 registration.
+#include "io/options.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "io/cli.h"
+
+namespace rk::io {
+namespace {
+
+enum class Mode { kFast, kExact };
+std::string ModeName(Mode m) { return m == Mode::kFast ? "fast" : "exact"; }
+
+struct Demo {
+  double gap_s = 0.5;
+  double ratio = 0.25;
+  int window = 3;
+  Mode mode = Mode::kExact;
+
+  static const OptionTable<Demo>& Table() {
+    static const OptionTable<Demo> table =
+        OptionTable<Demo>()
+            .Real("--max-gap", &Demo::gap_s, "s", Bounds::Positive(), "Longest gap (s)")
+            .Real("--ratio", &Demo::ratio, "", Bounds::LeftOpen(0, 0.5), "A ratio")
+            .Integer("--window", &Demo::window, "samples per side", Bounds::Closed(2, 50), "Window")
+            .Choice("--mode", &Demo::mode, {Mode::kFast, Mode::kExact}, ModeName, "How");
+    return table;
+  }
+};
+
+TEST(Bounds, ContainsAndDescribe) {
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::nan("");
+  EXPECT_TRUE(Bounds::Positive().Contains(1e-300));
+  EXPECT_FALSE(Bounds::Positive().Contains(0.0));
+  EXPECT_FALSE(Bounds::Positive().Contains(nan));
+  EXPECT_TRUE(Bounds::Positive().Contains(inf));  // unbounded above: as the hand-written checks were
+  EXPECT_FALSE(Bounds::Closed(2, 50).Contains(inf));
+  EXPECT_TRUE(Bounds::Closed(2, 50).Contains(50));
+  EXPECT_FALSE(Bounds::RightOpen(0, 1).Contains(1));
+  EXPECT_TRUE(Bounds::RightOpen(0, 1).Contains(0));
+  EXPECT_FALSE(Bounds::AtLeast(1).Contains(-inf));
+  EXPECT_EQ(Bounds::Positive().Describe(), "> 0");
+  EXPECT_EQ(Bounds::AtLeast(1).Describe(), ">= 1");
+  EXPECT_EQ(Bounds::Closed(2, 50).Describe(), "in [2, 50]");
+  EXPECT_EQ(Bounds::LeftOpen(0, 0.5).Describe(), "in (0, 0.5]");
+  EXPECT_EQ(Bounds::Open(-1, 1).Describe(), "in (-1, 1)");
+}
+
+TEST(ReportKey, FromFlagAndUnit) {
+  EXPECT_EQ(ReportKey("--turret-max-gap", "s"), "turret_max_gap_s");
+  EXPECT_EQ(ReportKey("--range-window", "samples per side"), "range_window");
+  EXPECT_EQ(ReportKey("--search-px", "px"), "search_px");  // the unit is not repeated
+  EXPECT_EQ(ReportKey("--turret-interp", ""), "turret_interp");
+  EXPECT_EQ(ReportKey("--angle-sigma", "arcsec"), "angle_sigma_arcsec");
+}
+
+TEST(OptionTable, CheckNamesTheFlagAndUnit) {
+  Demo d;
+  std::string why;
+  EXPECT_TRUE(d.Table().Check(d, &why));
+  d.gap_s = 0;
+  EXPECT_FALSE(d.Table().Check(d, &why));
+  EXPECT_EQ(why, "--max-gap must be > 0 s");
+  d.gap_s = 1;
+  d.window = 51;
+  EXPECT_FALSE(d.Table().Check(d, &why));
+  EXPECT_EQ(why, "--window must be in [2, 50] samples per side");
+  d.window = 2;
+  d.ratio = std::nan("");
+  EXPECT_FALSE(d.Table().Check(d, &why));
+  EXPECT_EQ(why, "--ratio must be in (0, 0.5]");
+}
+
+TEST(OptionTable, ReportBlockHasEveryOptionUnderItsKey) {
+  Demo d;
+  d.mode = Mode::kFast;
+  const Json j = d.Table().ToJson(d);
+  EXPECT_EQ(j.size(), 4u);
+  EXPECT_EQ(j.at("max_gap_s").get<double>(), 0.5);
+  EXPECT_EQ(j.at("ratio").get<double>(), 0.25);
+  EXPECT_EQ(j.at("window").get<int>(), 3);
+  EXPECT_EQ(j.at("mode").get<std::string>(), "fast");
+}
+
+TEST(OptionTable, CliRegistrationParsesIntoTheMembers) {
+  Demo d;
+  CLI::App app{"demo", "demo"};
+  cli::AddOptions(&app, &d, Demo::Table());
+  std::vector<std::string> args = {"exact", "--mode", "7", "--window", "0.1", "--max-gap"};  // reversed
+  app.parse(args);
+  EXPECT_EQ(d.gap_s, 0.1);
+  EXPECT_EQ(d.window, 7);
+  EXPECT_EQ(d.mode, Mode::kExact);
+  // Defaults shown in --help are the struct's defaults; choices list their names.
+  Demo fresh;
+  CLI::App app2{"demo", "demo"};
+  cli::AddOptions(&app2, &fresh, Demo::Table());
+  const std::string help = app2.help();
+  EXPECT_NE(help.find("--max-gap FLOAT=0.5"), std::string::npos) << help;
+  EXPECT_NE(help.find("--mode TEXT:{fast,exact}=exact"), std::string::npos) << help;
+  std::vector<std::string> bad = {"slow", "--mode"};
+  EXPECT_THROW(app2.parse(bad), CLI::ValidationError);
+}
+
+}  // namespace
+}  // namespace rk::io
