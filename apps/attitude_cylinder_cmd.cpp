@@ -105,7 +105,7 @@ Command AddCylinderCommand(CLI::App& parent) {
               throw UsageError("--report and -o name the same file " + a->out_path);
 
             const camera::CameraModel cam = camera::LoadCameraModel(a->camera_path);
-            const attitude::CylinderTarget target = attitude::LoadCylinderTarget(a->target_path);
+            const target::CylinderShape target = target::LoadCylinderShape(a->target_path);
             const attitude::CylinderPointsFile points = attitude::ReadCylinderPoints(
                 io::CsvTable::Read(a->points_path, {a->bad_rows, attitude::CylinderPointsRowRule()}));
             const locate::TurretLog theo = locate::ReadTurretLog(io::CsvTable::Read(a->theodolite_path, {a->bad_rows, locate::TurretLogRowRule()}));

@@ -8,15 +8,14 @@
 #include <vector>
 
 #include "camera/camera_model.h"
-#include "extract/features_model.h"
-#include "extract/features_points.h"
 #include "geo/angles.h"
 #include "io/cli.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "locate/inputs.h"
 #include "locate/boresight.h"
+#include "locate/inputs.h"
+#include "pose/image_points.h"
 #include "pose/station_pose.h"
 #include "subcommand.h"
 
@@ -90,9 +89,9 @@ int RunOi(const OiArgs& a, const Context& ctx) {
   std::optional<geo::AzEl> fixed;
   if (!a.boresight.empty()) fixed = ParseBoresight(a.boresight);
 
-  const extract::TargetModel model = extract::LoadTargetModel(a.target);
+  const target::FeatureModel model = target::LoadFeatureModel(a.target);
   const camera::CameraModel camera = camera::LoadCameraModel(a.camera);
-  const extract::ImagePoints points = extract::ReadImagePoints(io::CsvTable::Read(a.points, {a.bad_rows, extract::ImagePointsRowRule()}), model);
+  const pose::ImagePoints points = pose::ReadImagePoints(io::CsvTable::Read(a.points, {a.bad_rows, pose::ImagePointsRowRule()}), model);
   if (points.frames.empty()) throw DataError(points.source, 0, 0, "no image points (header only)");
   std::optional<locate::TurretLog> turret_log;
   if (!a.turret.empty()) turret_log = locate::ReadTurretLog(io::CsvTable::Read(a.turret, {a.bad_rows, locate::TurretLogRowRule()}));

@@ -8,13 +8,13 @@
 #include <string>
 #include <vector>
 
-#include "extract/features_model.h"
 #include "extract/features_run.h"
 #include "io/cli.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
 #include "subcommand.h"
+#include "target/feature_model.h"
 
 namespace rk::app {
 namespace {
@@ -46,7 +46,7 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
       throw UsageError("--report and -o cannot both be stdout");
     }
   }
-  const extract::TargetModel model = extract::LoadTargetModel(a.target_path);
+  const target::FeatureModel model = target::LoadFeatureModel(a.target_path);
   const extract::FrameClock clock = a.frames_path.empty() ? extract::FrameClock::FromRate(*a.fps, a.t0.value_or(0.0))
                                                           : extract::FrameClock::FromCsv(a.frames_path, a.bad_rows);
   const bool progress = cli::ShowProgress(ctx.common);

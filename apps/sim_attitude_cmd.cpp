@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "camera/camera_model.h"
-#include "extract/features_model.h"
 #include "geo/angles.h"
 #include "io/cli.h"
 #include "io/error.h"
@@ -17,6 +16,7 @@
 #include "sim/attitude_scenario.h"
 #include "sim/attitude_trial.h"
 #include "subcommand.h"
+#include "target/feature_model.h"
 
 namespace rk::app {
 namespace {
@@ -38,7 +38,7 @@ int RunAttitude(AttitudeCli& c, const Context& ctx) {
   sim::AttitudeSimOptions& o = c.o;
   if (!c.camera_path.empty()) o.camera = camera::LoadCameraModel(c.camera_path);
   if (!c.target_path.empty()) {
-    const extract::TargetModel m = extract::LoadTargetModel(c.target_path);
+    const target::FeatureModel m = target::LoadFeatureModel(c.target_path);
     o.marker_ids = m.ids;
     o.markers_body = m.p_body;
   } else {

@@ -16,6 +16,7 @@
 #include "geo/angles.h"
 #include "sim/theodolite_render.h"
 #include "sim/theodolite_scene.h"
+#include "target/cylinder.h"
 
 namespace {
 
@@ -23,7 +24,7 @@ using namespace rk;
 
 struct Geometry {
   attitude::CylinderRays exact, noisy;
-  attitude::CylinderTarget target{2.5, 0.25};
+  target::CylinderShape shape{2.5, 0.25};
   attitude::CylinderInputs x;
   Eigen::Vector3d R;
 };
@@ -31,10 +32,10 @@ struct Geometry {
 const Geometry& Paper() {
   static const Geometry g = [] {
     Geometry g;
-    sim::CylinderShape shape;
+    target::CylinderShape shape;
     const double A = geo::DegToRad(326.2), E = geo::DegToRad(16.274);
-    const sim::CylinderPose pose = sim::PoseAt(1132.0, A, E, geo::DegToRad(76.211), geo::DegToRad(31.257), shape);
-    const sim::SilhouettePoints3d p = sim::SilhouettePointsOf(pose, shape);
+    const target::CylinderPose pose = target::PoseAt(1132.0, A, E, geo::DegToRad(76.211), geo::DegToRad(31.257), shape);
+    const target::SilhouettePoints3d p = target::SilhouettePointsOf(pose, shape);
     const camera::CameraModel cam = sim::Seed004Camera();
     g.exact = {p.nose.normalized(), p.tail1.normalized(), p.tail2.normalized()};
     std::mt19937_64 rng(1);
@@ -51,7 +52,7 @@ const Geometry& Paper() {
     }
     g.x(8) = 2.5;
     g.x(9) = 0.25;
-    g.R = attitude::SolveCylinder(g.exact, g.target, attitude::CylinderSolveOptions{}).solutions.front().range_m;
+    g.R = attitude::SolveCylinder(g.exact, g.shape, attitude::CylinderSolveOptions{}).solutions.front().range_m;
     return g;
   }();
   return g;
@@ -63,7 +64,7 @@ void Solve(benchmark::State& state, attitude::CylinderMethod m, bool noisy) {
   o.method = m;
   long evals = 0;
   for (auto _ : state) {
-    const auto r = attitude::SolveCylinder(noisy ? g.noisy : g.exact, g.target, o);
+    const auto r = attitude::SolveCylinder(noisy ? g.noisy : g.exact, g.shape, o);
     evals = r.function_evaluations;
     benchmark::DoNotOptimize(r.solutions.data());
   }
@@ -109,7 +110,7 @@ void BM_ImageFit(benchmark::State& state) {
   const double A = f.boresight_az_rad, E = f.boresight_el_rad;
   const attitude::CylinderRays rays{o.camera.RayEnu(ex.px[0], A, E), o.camera.RayEnu(ex.px[1], A, E),
                                     o.camera.RayEnu(ex.px[2], A, E)};
-  const attitude::CylinderTarget target{o.shape.length_m, o.shape.diameter_m};
+  const target::CylinderShape& target = o.shape;
   attitude::CylinderSolveOptions so;
   so.max_miss_rad = 1.0 / o.camera.fx();
   const auto sols = attitude::SolveCylinder(rays, target, so).solutions;

@@ -26,6 +26,7 @@
 #include "geo/line_of_sight.h"
 #include "sim/theodolite_render.h"
 #include "sim/theodolite_scene.h"
+#include "target/silhouette_image.h"
 
 using namespace rk;
 using geo::DegToRad;
@@ -40,13 +41,13 @@ constexpr int kParams = 11;
 struct Scene {
   sim::TheodoliteFrameTruth truth;
   sim::SilhouetteRenderOptions render;
-  sim::CylinderShape shape;
+  target::CylinderShape shape;
 };
 
 double ImageLength(double R, double E_deg, const camera::CameraModel& cam) {
-  const sim::CylinderShape s;
-  const sim::CylinderPose pose = sim::PoseAt(R, DegToRad(kAz), DegToRad(E_deg), DegToRad(kYaw), DegToRad(kPitch), s);
-  const sim::SilhouettePoints3d p = sim::SilhouettePointsOf(pose, s);
+  const target::CylinderShape s;
+  const target::CylinderPose pose = target::PoseAt(R, DegToRad(kAz), DegToRad(E_deg), DegToRad(kYaw), DegToRad(kPitch), s);
+  const target::SilhouettePoints3d p = target::SilhouettePointsOf(pose, s);
   const double A = DegToRad(kAz), E = DegToRad(E_deg);
   return (*cam.ProjectEnu(p.nose, A, E) - 0.5 * (*cam.ProjectEnu(p.tail1, A, E) + *cam.ProjectEnu(p.tail2, A, E))).norm();
 }
@@ -72,7 +73,7 @@ Scene Apply(const Scene& base, const double* d, const camera::CameraModel& cam) 
   s.shape.nose_length_m += d[8];
   s.render.psf_sigma_px += d[9];
   s.render.shading_dn += d[10];
-  s.truth.points = sim::SilhouettePointsOf(s.truth.pose, s.shape);
+  s.truth.points = target::SilhouettePointsOf(s.truth.pose, s.shape);
   const double A = s.truth.boresight_az_rad, E = s.truth.boresight_el_rad;
   s.truth.nose_px = *cam.ProjectEnu(s.truth.points.nose, A, E);
   s.truth.tail1_px = *cam.ProjectEnu(s.truth.points.tail1, A, E);
@@ -80,13 +81,14 @@ Scene Apply(const Scene& base, const double* d, const camera::CameraModel& cam) 
   return s;
 }
 
-// Noise-free signal in DN: rk-sim theodolite's renderer without the sensor (sim::SilhouetteSignal in double,
+// Noise-free signal in DN: rk-sim theodolite's renderer without the sensor (target::SilhouetteSignal in double,
 // 8-bit DN scale; in float the bound moves by up to 1 % at 100 px). (Digitising, even at 16 bits, puts rounding steps into the central differences that read as
 // spurious information: the bound then moves with the step size.)
 cv::Mat Signal(const Scene& s, const camera::CameraModel& cam) {
   sim::SilhouetteRenderOptions o = s.render;
   o.sensor.bit_depth = 8;
-  return sim::SilhouetteSignal(cam, s.truth, s.shape, o, CV_64F);
+  return target::SilhouetteSignal(cam, s.truth.pose, s.shape, s.truth.boresight_az_rad, s.truth.boresight_el_rad, o,
+                                  1.0, CV_64F);
 }
 
 // σ(yaw), σ(pitch) in degrees for one scene: nose shape known; nose-cone length unknown; also the PSF σ and
@@ -174,8 +176,8 @@ int main(int argc, char** argv) {
     for (int k = 0; k < phases; ++k) {
       Scene s;
       s.render = ro;
-      const sim::CylinderShape shape;
-      s.truth.pose = sim::PoseAt(r.R, DegToRad(kAz), DegToRad(r.E), DegToRad(kYaw), DegToRad(kPitch), shape);
+      const target::CylinderShape shape;
+      s.truth.pose = target::PoseAt(r.R, DegToRad(kAz), DegToRad(r.E), DegToRad(kYaw), DegToRad(kPitch), shape);
       const Eigen::Vector3d mid = s.truth.pose.tail_centre_enu + 0.5 * shape.length_m * s.truth.pose.Axis();
       const geo::AzEl ae = geo::AzElFromEnu(mid);
       s.truth.boresight_az_rad = ae.az_rad + U(rng) * 20 / cam.fx() / std::cos(ae.el_rad);

@@ -32,6 +32,7 @@
 #include "geo/line_of_sight.h"
 #include "sim/theodolite_render.h"
 #include "sim/theodolite_scene.h"
+#include "target/cylinder.h"
 
 using namespace rk;
 using geo::DegToRad;
@@ -62,13 +63,13 @@ struct Stat {
   static double Median(const std::vector<double>& v) { return Pct(v, 0.5); }
 };
 
-sim::CylinderShape Shape() { return sim::CylinderShape{}; }
+target::CylinderShape Shape() { return target::CylinderShape{}; }
 
 // Image length (px) of the target at range R, elevation E.
 double ImageLength(double R, double E_deg) {
-  const sim::CylinderShape s = Shape();
-  const sim::CylinderPose pose = sim::PoseAt(R, DegToRad(kAz), DegToRad(E_deg), DegToRad(kYaw), DegToRad(kPitch), s);
-  const sim::SilhouettePoints3d p = sim::SilhouettePointsOf(pose, s);
+  const target::CylinderShape s = Shape();
+  const target::CylinderPose pose = target::PoseAt(R, DegToRad(kAz), DegToRad(E_deg), DegToRad(kYaw), DegToRad(kPitch), s);
+  const target::SilhouettePoints3d p = target::SilhouettePointsOf(pose, s);
   const camera::CameraModel cam = sim::Seed004Camera();
   const double A = DegToRad(kAz), E = DegToRad(E_deg);
   const Eigen::Vector2d n = *cam.ProjectEnu(p.nose, A, E), t1 = *cam.ProjectEnu(p.tail1, A, E),
@@ -96,9 +97,9 @@ Frame MakeFrame(double R, double E_deg, double dx, double dy, const camera::Came
   (void)len_err_m;
   Frame f;
   f.cam = cam;
-  const sim::CylinderShape s = Shape();
-  f.truth.pose = sim::PoseAt(R, DegToRad(kAz), DegToRad(E_deg), DegToRad(kYaw), DegToRad(kPitch), s);
-  f.truth.points = sim::SilhouettePointsOf(f.truth.pose, s);
+  const target::CylinderShape s = Shape();
+  f.truth.pose = target::PoseAt(R, DegToRad(kAz), DegToRad(E_deg), DegToRad(kYaw), DegToRad(kPitch), s);
+  f.truth.points = target::SilhouettePointsOf(f.truth.pose, s);
   const Eigen::Vector3d mid = f.truth.pose.tail_centre_enu + 0.5 * s.length_m * f.truth.pose.Axis();
   const geo::AzEl ae = geo::AzElFromEnu(mid);
   f.truth.boresight_az_rad = ae.az_rad + dx / cam.fx() / std::cos(ae.el_rad);
@@ -118,7 +119,7 @@ std::vector<attitude::CylinderSolution> SolvePixels(const Frame& f, const Eigen:
   r.tail2 = f.cam.RayEnu(px[2], f.truth.boresight_az_rad, f.truth.boresight_el_rad);
   attitude::CylinderSolveOptions o;
   o.max_miss_rad = 1.0 / f.cam.fx();
-  return attitude::SolveCylinder(r, attitude::CylinderTarget{length_m, diameter_m}, o).solutions;
+  return attitude::SolveCylinder(r, target::CylinderShape{length_m, diameter_m}, o).solutions;
 }
 
 void AddErrors(const Frame& f, const std::vector<attitude::CylinderSolution>& sols, Stat* track, Stat* single) {
@@ -192,7 +193,7 @@ Stat Rendered(double R, double E, int frames, const sim::SilhouetteRenderOptions
       for (const auto& c : starts) {
         const attitude::CylinderImageFitResult g = attitude::FitCylinderImage(
             img, cam, f.truth.boresight_az_rad, f.truth.boresight_el_rad,
-            attitude::CylinderTarget{Shape().length_m, Shape().diameter_m}, c.tail_centre_enu, c.yaw_rad, c.pitch_rad,
+            Shape(), c.tail_centre_enu, c.yaw_rad, c.pitch_rad,
             attitude::CylinderImageFitOptions{});
         if (g.status == attitude::CylinderImageFitStatus::kFailed) continue;
         attitude::CylinderSolution s2 = c;
@@ -237,16 +238,16 @@ int main(int argc, char** argv) {
     for (int t = 0; t < 300; ++t) {
       const double E = 2 + 70 * U(rng), R = 500 + 4000 * U(rng);
       const Frame f = MakeFrame(R, E, 0, 0, cam);
-      const double view = RadToDeg(sim::ViewAngle(f.truth.pose));
+      const double view = RadToDeg(target::ViewAngle(f.truth.pose));
       if (std::abs(view - 90) < 2) continue;
       const Eigen::Vector2d px[3] = {f.truth.nose_px, f.truth.tail1_px, f.truth.tail2_px};
       attitude::CylinderRays r{f.cam.RayEnu(px[0], f.truth.boresight_az_rad, f.truth.boresight_el_rad),
                                f.cam.RayEnu(px[1], f.truth.boresight_az_rad, f.truth.boresight_el_rad),
                                f.cam.RayEnu(px[2], f.truth.boresight_az_rad, f.truth.boresight_el_rad)};
       attitude::CylinderSolveOptions o;
-      const auto p = attitude::SolveCylinder(r, attitude::CylinderTarget{2.5, 0.25}, o);
+      const auto p = attitude::SolveCylinder(r, target::CylinderShape{2.5, 0.25}, o);
       o.method = attitude::CylinderMethod::kSearch;
-      const auto s = attitude::SolveCylinder(r, attitude::CylinderTarget{2.5, 0.25}, o);
+      const auto s = attitude::SolveCylinder(r, target::CylinderShape{2.5, 0.25}, o);
       auto best = [&](const attitude::CylinderSolveResult& res) {
         double b = 1e9;
         for (const auto& x : res.solutions) b = std::min(b, attitude::AxisAngle(x.axis_enu, f.truth.pose.Axis()));
@@ -338,7 +339,7 @@ int main(int argc, char** argv) {
     Quantised(r276, t5_E[i], trials, rng, &single_j, 0.04);
     const Frame f = MakeFrame(r276, t5_E[i], 0, 0, cam);
     std::printf("%8.3f %7.2f | %6.3f %6.3f | %9.3f %9.3f   | %9.3f %9.3f   | %9.3f %9.3f\n", t5_E[i],
-                RadToDeg(sim::ViewAngle(f.truth.pose)), t5_p[i][0], t5_p[i][1], Stat::Rms(s.dyaw), Stat::Rms(s.dpitch),
+                RadToDeg(target::ViewAngle(f.truth.pose)), t5_p[i][0], t5_p[i][1], Stat::Rms(s.dyaw), Stat::Rms(s.dpitch),
                 Stat::Rms(single.dyaw), Stat::Rms(single.dpitch), Stat::Rms(single_j.dyaw), Stat::Rms(single_j.dpitch));
   }
   std::printf("\n");

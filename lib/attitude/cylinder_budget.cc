@@ -13,7 +13,7 @@
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
 #include "io/error.h"
-#include "sim/theodolite_scene.h"
+#include "target/cylinder.h"
 
 namespace rk::attitude {
 namespace {
@@ -96,7 +96,7 @@ std::optional<CylinderSolution> SolveNearest(const camera::CameraModel& cam, con
                                              const CylinderSolveOptions& options, const Eigen::Vector3d& ref_axis) {
   if (!(x(8) > 0.0) || !(x(9) > 0.0)) return std::nullopt;
   const CylinderRays rays = RaysFromInputs(cam, x);
-  const CylinderTarget target{x(8), x(9)};
+  const target::CylinderShape target{x(8), x(9)};
   const CylinderSolveResult res = SolveCylinder(rays, target, options);
   std::optional<CylinderSolution> best;
   double best_angle = std::numeric_limits<double>::infinity();
@@ -123,7 +123,7 @@ Nominal ParseNominal(const io::Json& nominal, const camera::CameraModel& cam, co
   if (!nominal.is_object()) throw DataError(where, 0, 0, "\"nominal\" must be an object");
   const std::string w = where + ": nominal";
   if (!nominal.contains("target")) throw DataError(where, 0, 0, "nominal: missing \"target\": {\"length_m\", \"diameter_m\"}");
-  CylinderTarget target;
+  target::CylinderShape target;
   target.length_m = io::RequireNumber(nominal.at("target"), "length_m", w + ".target");
   target.diameter_m = io::RequireNumber(nominal.at("target"), "diameter_m", w + ".target");
   std::string why;
@@ -142,11 +142,8 @@ Nominal ParseNominal(const io::Json& nominal, const camera::CameraModel& cam, co
     const double yaw = geo::DegToRad(io::RequireNumber(s, "yaw_deg", ws));
     const double pitch = geo::DegToRad(io::RequireNumber(s, "pitch_deg", ws));
     if (!(range > 0.0)) throw DataError(where, 0, 0, "nominal.scenario.range_m must be > 0");
-    sim::CylinderShape shape;
-    shape.length_m = target.length_m;
-    shape.diameter_m = target.diameter_m;
-    const sim::CylinderPose pose = sim::PoseAt(range, az, el, yaw, pitch, shape);
-    const sim::SilhouettePoints3d p = sim::SilhouettePointsOf(pose, shape);
+    const target::CylinderPose pose = target::PoseAt(range, az, el, yaw, pitch, target);
+    const target::SilhouettePoints3d p = target::SilhouettePointsOf(pose, target);
     n.x0(0) = az;
     n.x0(1) = el;
     const Eigen::Vector3d* pts[3] = {&p.nose, &p.tail1, &p.tail2};
@@ -157,7 +154,7 @@ Nominal ParseNominal(const io::Json& nominal, const camera::CameraModel& cam, co
       n.x0(3 + 2 * i) = px->y();
     }
     ref_axis = pose.Axis();
-    n.json["view_angle_deg"] = geo::RadToDeg(sim::ViewAngle(pose));
+    n.json["view_angle_deg"] = geo::RadToDeg(target::ViewAngle(pose));
   } else {
     n.x0(0) = geo::DegToRad(io::RequireNumber(nominal, "boresight_az_deg", w));
     n.x0(1) = geo::DegToRad(io::RequireNumber(nominal, "boresight_el_deg", w));

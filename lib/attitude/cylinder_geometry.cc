@@ -9,38 +9,8 @@
 
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
-#include "io/error.h"
-#include "io/json_util.h"
 
 namespace rk::attitude {
-
-double CylinderTarget::SlantM() const {
-  return std::sqrt(0.25 * diameter_m * diameter_m + length_m * length_m);
-}
-
-bool CylinderTarget::Check(std::string* why) const {
-  if (!(std::isfinite(length_m) && length_m > 0.0)) {
-    *why = "target length_m must be a finite number > 0";
-    return false;
-  }
-  if (!(std::isfinite(diameter_m) && diameter_m > 0.0)) {
-    *why = "target diameter_m must be a finite number > 0";
-    return false;
-  }
-  return true;
-}
-
-CylinderTarget LoadCylinderTarget(const std::string& path) {
-  const io::Json j = io::LoadJson(path);
-  if (!j.is_object()) throw DataError(path, 0, 0, "target model must be a JSON object {\"length_m\", \"diameter_m\"}");
-  CylinderTarget t;
-  t.length_m = io::RequireNumber(j, "length_m", path);
-  t.diameter_m = io::RequireNumber(j, "diameter_m", path);
-  std::string why;
-  if (!t.Check(&why)) throw DataError(path, 0, 0, why);
-  return t;
-}
-
 namespace {
 
 // 1 − u·v for unit vectors, without cancellation.
@@ -62,7 +32,7 @@ RayAngles AnglesOf(const CylinderRays& r) {
   return a;
 }
 
-Eigen::Vector3d DistanceResiduals(const RayAngles& a, const CylinderTarget& t, const Eigen::Vector3d& R) {
+Eigen::Vector3d DistanceResiduals(const RayAngles& a, const target::CylinderShape& t, const Eigen::Vector3d& R) {
   const double L2 = t.SlantM() * t.SlantM();
   const double d2 = t.diameter_m * t.diameter_m;
   auto side2 = [](double x, double y, double k) { return (x - y) * (x - y) + 2.0 * x * y * k; };
@@ -73,7 +43,7 @@ double AxisAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
-CylinderSolution SolutionFromRanges(const CylinderRays& rays, const RayAngles& a, const CylinderTarget& t,
+CylinderSolution SolutionFromRanges(const CylinderRays& rays, const RayAngles& a, const target::CylinderShape& t,
                                     const Eigen::Vector3d& R) {
   CylinderSolution s;
   s.range_m = R;
@@ -99,7 +69,7 @@ CylinderSolution SolutionFromRanges(const CylinderRays& rays, const RayAngles& a
   return s;
 }
 
-BranchPoint EvaluateBranch(const RayAngles& a, const CylinderTarget& t, int s2, int s3, double R1) {
+BranchPoint EvaluateBranch(const RayAngles& a, const target::CylinderShape& t, int s2, int s3, double R1) {
   BranchPoint p;
   p.R1 = R1;
   const double L = t.SlantM();
@@ -118,12 +88,12 @@ BranchPoint EvaluateBranch(const RayAngles& a, const CylinderTarget& t, int s2, 
   return p;
 }
 
-double MaxNoseRange(const RayAngles& a, const CylinderTarget& t) {
+double MaxNoseRange(const RayAngles& a, const target::CylinderShape& t) {
   const double s = std::max(a.s12, a.s13);
   return s > 0.0 ? t.SlantM() / s : std::numeric_limits<double>::infinity();
 }
 
-Eigen::Vector3d PolishRanges(const RayAngles& a, const CylinderTarget& t, const Eigen::Vector3d& R0, int iterations) {
+Eigen::Vector3d PolishRanges(const RayAngles& a, const target::CylinderShape& t, const Eigen::Vector3d& R0, int iterations) {
   Eigen::Vector3d R = R0;
   Eigen::Vector3d F = DistanceResiduals(a, t, R);
   double norm = F.norm();

@@ -10,8 +10,8 @@
 
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
-#include "sim/theodolite_render.h"
-#include "sim/theodolite_scene.h"
+#include "target/cylinder.h"
+#include "target/silhouette_image.h"
 
 namespace rk::attitude {
 namespace {
@@ -27,7 +27,7 @@ constexpr double kMaxAxisStepRad = 0.0175;
 class Problem {
  public:
   Problem(const cv::Mat& window, cv::Rect roi, const camera::CameraModel& cam, double az, double el,
-          const CylinderTarget& target, int rim_samples, int kernel_size, const Eigen::Vector3d& origin,
+          const target::CylinderShape& target, int rim_samples, int kernel_size, const Eigen::Vector3d& origin,
           const Eigen::Matrix3d& basis)
       : roi_(roi),
         cam_(cam),
@@ -60,25 +60,23 @@ class Problem {
   // cannot be projected.
   bool Residual(const Params& p, Eigen::VectorXd* r, Eigen::Matrix<double, kLinear, 1>* lin = nullptr) {
     ++evaluations_;
-    sim::CylinderPose pose;
+    target::CylinderPose pose;
     pose.tail_centre_enu = TailCentre(p);
     pose.yaw_rad = p(3);
     pose.pitch_rad = p(4);
-    sim::CylinderShape shape;
-    shape.length_m = target_.length_m;
-    shape.diameter_m = target_.diameter_m;
+    target::CylinderShape shape = target_;
     shape.nose_length_m = std::clamp(p(5), 0.02 * target_.length_m, 0.98 * target_.length_m);
     const std::vector<Eigen::Vector2d> poly =
-        sim::SilhouettePolygon(cam_, pose, shape, az_, el_, rim_samples_);
+        target::SilhouettePolygon(cam_, pose, shape, az_, el_, rim_samples_);
     if (poly.size() < 3) return false;
-    cv::Mat cov = sim::RasterizeConvexPolygon(poly, roi_), alpha;
+    cv::Mat cov = target::RasterizeConvexPolygon(poly, roi_), alpha;
     cov.convertTo(alpha, CV_64F);
     const double sigma = std::clamp(p(6), kMinSigmaPx, kMaxSigmaPx);
     const cv::Mat g = cv::getGaussianKernel(kernel_size_, sigma, CV_64F);
     cv::sepFilter2D(alpha, alpha, CV_64F, g, g, cv::Point(-1, -1), 0.0, cv::BORDER_CONSTANT);
 
     // Image axis and tail half-width for the body shading term.
-    const sim::SilhouettePoints3d pts = sim::SilhouettePointsOf(pose, shape);
+    const target::SilhouettePoints3d pts = target::SilhouettePointsOf(pose, shape);
     const auto tail1 = cam_.ProjectEnu(pts.tail1, az_, el_), tail2 = cam_.ProjectEnu(pts.tail2, az_, el_),
                nose = cam_.ProjectEnu(pts.nose, az_, el_);
     if (!tail1 || !tail2 || !nose) return false;
@@ -123,7 +121,7 @@ class Problem {
   cv::Rect roi_;
   const camera::CameraModel& cam_;
   double az_, el_;
-  CylinderTarget target_;
+  target::CylinderShape target_;
   int rim_samples_, kernel_size_;
   Eigen::Vector3d origin_;
   Eigen::Matrix3d basis_;
@@ -159,7 +157,7 @@ const char* CylinderImageFitStatusName(CylinderImageFitStatus s) {
 }
 
 CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::CameraModel& cam, double az_rad,
-                                        double el_rad, const CylinderTarget& target,
+                                        double el_rad, const target::CylinderShape& target,
                                         const Eigen::Vector3d& tail_centre_enu, double yaw_rad,
                                         double pitch_rad, const CylinderImageFitOptions& opt) {
   CylinderImageFitResult out;
@@ -167,22 +165,20 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
     return out;
 
   // Window: the initial outline (nose cone at 1/4 of the length) + 4σ_max + margin, inside the frame.
-  sim::CylinderPose pose0;
+  target::CylinderPose pose0;
   pose0.tail_centre_enu = tail_centre_enu;
   pose0.yaw_rad = yaw_rad;
   pose0.pitch_rad = pitch_rad;
-  sim::CylinderShape shape0;
-  shape0.length_m = target.length_m;
-  shape0.diameter_m = target.diameter_m;
+  target::CylinderShape shape0 = target;
   shape0.nose_length_m = 0.25 * target.length_m;
-  const std::vector<Eigen::Vector2d> poly0 = sim::SilhouettePolygon(cam, pose0, shape0, az_rad, el_rad, 64);
+  const std::vector<Eigen::Vector2d> poly0 = target::SilhouettePolygon(cam, pose0, shape0, az_rad, el_rad, 64);
   if (poly0.size() < 3) return out;
-  const cv::Rect outline = sim::PolygonWindow(poly0, 0);
+  const cv::Rect outline = target::PolygonWindow(poly0, 0);
   if (outline.x < 0 || outline.y < 0 || outline.br().x > frame.cols || outline.br().y > frame.rows)
     return out;
   const double sigma_cap = std::max(2.0 * opt.initial_psf_sigma_px, 1.5);
   const int margin = static_cast<int>(std::ceil(4.0 * sigma_cap + opt.margin_px));
-  cv::Rect roi = sim::PolygonWindow(poly0, margin);
+  cv::Rect roi = target::PolygonWindow(poly0, margin);
   roi &= cv::Rect(0, 0, frame.cols, frame.rows);
   cv::Mat window;
   frame(roi).convertTo(window, CV_64F);

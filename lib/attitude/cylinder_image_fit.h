@@ -13,7 +13,7 @@
 //   body = b0 + b1 v (v: signed distance from the image axis over the tail half-width, clamped to [−1, 1]: a
 //   target lit from one side),
 //   α = G_σ ∗ coverage: the exact area of each pixel covered by the projected solid (the convex hull of the
-//   tail rim, the nose-cone base rim and the tip; sim::SilhouettePolygon / sim::RasterizeConvexPolygon, the
+//   tail rim, the nose-cone base rim and the tip; target::SilhouettePolygon / target::RasterizeConvexPolygon, the
 //   same geometry as rk-sim theodolite's renderer) blurred by a Gaussian PSF of σ px.
 // Unknowns: the tail-rim centre (3: two offsets across the line of sight and one along it, which the image
 // sees only through its scale), yaw, pitch, the nose-cone length (the target file gives only length and
@@ -73,7 +73,7 @@ struct CylinderImageFitResult {
 // Refines the pose (tail_centre_enu, yaw, pitch) of `target` seen in `frame` (CV_8UC1 or CV_16UC1; 16-bit
 // values are fitted as they are) with the camera boresight at (az, el).
 CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::CameraModel& camera,
-                                        double az_rad, double el_rad, const CylinderTarget& target,
+                                        double az_rad, double el_rad, const target::CylinderShape& target,
                                         const Eigen::Vector3d& tail_centre_enu, double yaw_rad,
                                         double pitch_rad, const CylinderImageFitOptions& options);
 

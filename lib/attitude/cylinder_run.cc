@@ -173,7 +173,7 @@ io::Json CylinderRunResult::SummaryJson() const {
 }
 
 CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::TurretLog& theodolite,
-                              const camera::CameraModel& cam, const CylinderTarget& target,
+                              const camera::CameraModel& cam, const target::CylinderShape& target,
                               const CylinderRunOptions& options, const CylinderFrameReader* frames) {
   std::string why;
   if (!options.Check(&why)) throw UsageError(why);

@@ -152,7 +152,7 @@ using CylinderFrameReader = std::function<const cv::Mat&(std::int64_t frame)>;
 // the three points, UsageError if the options fail Check() or frames are given for a points file without
 // the `frame` column.
 CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::TurretLog& theodolite,
-                              const camera::CameraModel& camera, const CylinderTarget& target,
+                              const camera::CameraModel& camera, const target::CylinderShape& target,
                               const CylinderRunOptions& options, const CylinderFrameReader* frames = nullptr);
 
 // Axis attitude CSV (SPEC.md §2.1 + extras):

@@ -54,7 +54,7 @@ constexpr std::array<std::array<int, 2>, 4> kBranches = {{{+1, +1}, {+1, -1}, {-
 struct Context {
   const CylinderRays& rays;
   const RayAngles& a;
-  const CylinderTarget& t;
+  const target::CylinderShape& t;
   const CylinderSolveOptions& opt;
   CylinderSolveResult* out;
   std::vector<CylinderSolution> exact, near;
@@ -167,7 +167,7 @@ void Finish(Context& c) {
 
 }  // namespace
 
-CylinderSolveResult SolveCylinderSearch(const CylinderRays& rays, const CylinderTarget& target,
+CylinderSolveResult SolveCylinderSearch(const CylinderRays& rays, const target::CylinderShape& target,
                                         const CylinderSolveOptions& opt) {
   CylinderSolveResult result;
   const RayAngles a = AnglesOf(rays);
@@ -251,7 +251,7 @@ double Horner(const Poly& p, double x) {
 
 }  // namespace
 
-CylinderSolveResult SolveCylinderP3P(const CylinderRays& rays, const CylinderTarget& target,
+CylinderSolveResult SolveCylinderP3P(const CylinderRays& rays, const target::CylinderShape& target,
                                      const CylinderSolveOptions& opt) {
   CylinderSolveResult result;
   const RayAngles a = AnglesOf(rays);
@@ -336,7 +336,7 @@ CylinderSolveResult SolveCylinderP3P(const CylinderRays& rays, const CylinderTar
   return result;
 }
 
-CylinderSolveResult SolveCylinder(const CylinderRays& rays, const CylinderTarget& target,
+CylinderSolveResult SolveCylinder(const CylinderRays& rays, const target::CylinderShape& target,
                                   const CylinderSolveOptions& options) {
   return options.method == CylinderMethod::kSearch ? SolveCylinderSearch(rays, target, options)
                                                    : SolveCylinderP3P(rays, target, options);

@@ -66,11 +66,11 @@ struct CylinderSolveResult {
   long function_evaluations = 0;            // kSearch: branch evaluations (cost figure)
 };
 
-CylinderSolveResult SolveCylinder(const CylinderRays& rays, const CylinderTarget& target,
+CylinderSolveResult SolveCylinder(const CylinderRays& rays, const target::CylinderShape& target,
                                   const CylinderSolveOptions& options);
-CylinderSolveResult SolveCylinderSearch(const CylinderRays& rays, const CylinderTarget& target,
+CylinderSolveResult SolveCylinderSearch(const CylinderRays& rays, const target::CylinderShape& target,
                                         const CylinderSolveOptions& options);
-CylinderSolveResult SolveCylinderP3P(const CylinderRays& rays, const CylinderTarget& target,
+CylinderSolveResult SolveCylinderP3P(const CylinderRays& rays, const target::CylinderShape& target,
                                      const CylinderSolveOptions& options);
 
 }  // namespace rk::attitude

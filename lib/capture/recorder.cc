@@ -19,10 +19,11 @@
 #include "capture/clock.h"
 #include "capture/durable_file.h"
 #include "capture/segment_writer.h"
-#include "capture/trial_layout.h"
 #include "io/error.h"
 #include "io/file_util.h"
 #include "io/version.h"
+#include "trial/layout.h"
+#include "trial/manifest.h"
 
 namespace rk::capture {
 namespace fs = std::filesystem;
@@ -224,7 +225,7 @@ void Recorder::PrepareFolder() {
     created_dir_ = true;
   }
   dir_ = out;
-  const std::string lock = (fs::path(dir_) / kLockFile).string();
+  const std::string lock = (fs::path(dir_) / trial::kCaptureLockFile).string();
   lock_fd_ = ::open(lock.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
   if (lock_fd_ < 0 || ::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) throw IoError(lock, "cannot lock the trial folder");
 }
@@ -348,9 +349,9 @@ void Recorder::CreateLogs() {
   if (range_) {
     const auto& o = *cfg_.rangefinder;
     range_log_ = std::make_unique<AppendLog>(
-        (fs::path(dir_) / kRangeFile).string(),
+        (fs::path(dir_) / trial::kRangeFile).string(),
         version + "Dimetix DLS on " + o.serial.port + ", device " + std::to_string(o.device_id) + ", " +
-            (o.mode == DimetixMode::kTracking ? "tracking" : "single") + " mode; " + epoch_note + "\n" + kRangeColumns +
+            (o.mode == DimetixMode::kTracking ? "tracking" : "single") + " mode; " + epoch_note + "\n" + trial::kRangeColumns +
             "\n",
         syncer_.get());
     range_log_ptr_ = range_log_.get();
@@ -359,13 +360,13 @@ void Recorder::CreateLogs() {
     const auto& o = *cfg_.turret;
     const auto st = turret_->stats();
     turret_log_ = std::make_unique<AppendLog>(
-        (fs::path(dir_) / kTurretFile).string(),
+        (fs::path(dir_) / trial::kTurretFile).string(),
         version + "FLIR PTU on " + o.serial.port + "; az = wrap360(" + FormatFixed(o.map.pan_zero_deg, 6) + " + " +
             FormatFixed(o.map.pan_sign, 0) + " * pan_pos * pan_res_arcsec / 3600), el = " +
             FormatFixed(o.map.tilt_zero_deg, 6) + " + " + FormatFixed(o.map.tilt_sign, 0) +
             " * tilt_pos * tilt_res_arcsec / 3600; resolution read from the unit: pan " +
             FormatFixed(st.pan_res_arcsec, 6) + ", tilt " + FormatFixed(st.tilt_res_arcsec, 6) +
-            " arcsec per position; " + epoch_note + "\n" + kTurretColumns + "\n",
+            " arcsec per position; " + epoch_note + "\n" + trial::kTurretColumns + "\n",
         syncer_.get());
     turret_log_ptr_ = turret_log_.get();
   }
@@ -386,13 +387,13 @@ void Recorder::CreateLogs() {
       }
     };
   };
-  if (range_log_) range_log_->set_on_result(on_result(range_write_gap_.get(), &range_failed_, kRangeFile));
-  if (turret_log_) turret_log_->set_on_result(on_result(turret_write_gap_.get(), &turret_failed_, kTurretFile));
+  if (range_log_) range_log_->set_on_result(on_result(range_write_gap_.get(), &range_failed_, trial::kRangeFile));
+  if (turret_log_) turret_log_->set_on_result(on_result(turret_write_gap_.get(), &turret_failed_, trial::kTurretFile));
   for (auto& cam : cameras_) {
     cam->frames_log = std::make_unique<AppendLog>(
-        (fs::path(cam->folder) / kFramesFile).string(),
+        (fs::path(cam->folder) / trial::kFramesFile).string(),
         version + "camera " + cam->cfg.name + ", source '" + cam->cfg.source_text + "'; " + epoch_note +
-            "; seq = source frame counter (a jump = frames dropped)\n" + kFramesColumns + "\n",
+            "; seq = source frame counter (a jump = frames dropped)\n" + trial::kFramesColumns + "\n",
         syncer_.get());
     AppendLog* log = cam->frames_log.get();
     CameraStream* c = cam.get();
@@ -594,28 +595,25 @@ void Recorder::WriteLoop(CameraStream* cam) {
 }
 
 io::Json Recorder::ManifestJson(const std::string& state) {
-  io::Json m;
+  trial::Manifest m;
   const std::string name = !cfg_.name.empty() ? cfg_.name : fs::path(dir_).lexically_normal().filename().string();
-  m["name"] = name.empty() || name == "." ? "trial" : name;
-  m["epoch_utc"] = epoch_.utc();
-  m["station"] = cfg_.station;
-  io::Json cams = io::Json::object();
+  m.name = name.empty() || name == "." ? "trial" : name;
+  m.epoch_utc = epoch_.utc();
+  m.station = cfg_.station;
   std::lock_guard<std::mutex> lock(manifest_mutex_);
   for (const auto& cam : cameras_) {
-    io::Json c;
-    c["video"] = video_lists_[cam->cfg.name];
-    c["frames"] = cam->cfg.name + "/" + kFramesFile;
-    c["model"] = cam->cfg.model_path.empty() ? io::Json(nullptr) : io::Json(cam->cfg.name + "/" + kCameraModelFile);
-    c["role"] = cam->cfg.role;
-    if (!cam->cfg.target_path.empty()) c["target"] = cam->cfg.name + "/" + kTargetModelFile;
-    cams[cam->cfg.name] = c;
+    trial::CameraEntry c;
+    c.name = cam->cfg.name;
+    c.video = video_lists_[cam->cfg.name];
+    c.frames = trial::CameraFile(cam->cfg.name, trial::kFramesFile);
+    if (!cam->cfg.model_path.empty()) c.model = trial::CameraFile(cam->cfg.name, trial::kCameraModelFile);
+    trial::ParseCameraRole(cam->cfg.role, &c.role);  // checked by the station configuration's reader
+    if (!cam->cfg.target_path.empty()) c.target = trial::CameraFile(cam->cfg.name, trial::kTargetModelFile);
+    m.cameras.push_back(c);
   }
-  m["cameras"] = cams;
-  m["turret"] = turret_ ? io::Json(kTurretFile) : io::Json(nullptr);
-  m["range"] = range_ ? io::Json(kRangeFile) : io::Json(nullptr);
-  m["theodolite"] = nullptr;
-  m["radar"] = nullptr;
-  m["steps"] = cfg_.steps;
+  if (turret_) m.turret = trial::kTurretFile;
+  if (range_) m.range = trial::kRangeFile;
+  m.steps = cfg_.steps;
 
   io::Json cap;
   cap["tool"] = "rk-capture";
@@ -636,7 +634,7 @@ io::Json Recorder::ManifestJson(const std::string& state) {
   cap["stamping_threads"] = {{"realtime_priority", cfg_.realtime_priority},
                              {"realtime", realtime_threads_.load()},
                              {"normal", normal_threads_.load()}};
-  cap["events"] = kEventsFile;
+  cap["events"] = trial::kEventsFile;
   cap["config_path"] = cfg_.path;
   cap["config"] = cfg_.json;
   io::Json streams;
@@ -687,8 +685,8 @@ io::Json Recorder::ManifestJson(const std::string& state) {
   cap["gaps"] = gaps;
   cap["gaps_total"] = gaps_total_;
   cap["events_not_written"] = events_lost_.load();
-  m["capture"] = cap;
-  return m;
+  m.extra["capture"] = cap;
+  return trial::ManifestToJson(m);
 }
 
 void Recorder::RealTime(const std::string& stream) {
@@ -708,7 +706,7 @@ void Recorder::RealTime(const std::string& stream) {
 
 void Recorder::WriteManifest(const std::string& state) {
   try {
-    io::WriteJson((fs::path(dir_) / kManifestFile).string(), ManifestJson(state));
+    io::WriteJson((fs::path(dir_) / trial::kManifestFile).string(), ManifestJson(state));
     if (syncer_) syncer_->DirectoryChanged(dir_);
   } catch (const std::exception& e) {
     if (manifest_failures_++ == 0) Event(EventLevel::kError, "manifest", std::string("not updated: ") + e.what());
@@ -800,7 +798,7 @@ CaptureSummary Recorder::Run() {
   syncer_ = std::make_unique<Syncer>(dir_, cfg_.sync_s);
   if (opt_.free_space_probe) syncer_->set_free_space_probe(opt_.free_space_probe);
   syncer_->set_on_error([this](const std::string& w) { Event(EventLevel::kError, "disk", w); });
-  events_ = std::make_unique<AppendLog>((fs::path(dir_) / kEventsFile).string(), "", syncer_.get());
+  events_ = std::make_unique<AppendLog>((fs::path(dir_) / trial::kEventsFile).string(), "", syncer_.get());
   events_->set_on_result([this](const std::string&, bool ok, const std::string&) {
     if (!ok) ++events_lost_;
   });
@@ -815,8 +813,8 @@ CaptureSummary Recorder::Run() {
     std::error_code ec;
     fs::create_directory(folder, ec);
     if (ec) throw IoError(folder.string(), "cannot create folder: " + ec.message());
-    if (!cc.model_path.empty()) io::WriteFileAtomic((folder / kCameraModelFile).string(), io::ReadFile(cc.model_path));
-    if (!cc.target_path.empty()) io::WriteFileAtomic((folder / kTargetModelFile).string(), io::ReadFile(cc.target_path));
+    if (!cc.model_path.empty()) io::WriteFileAtomic((folder / trial::kCameraModelFile).string(), io::ReadFile(cc.model_path));
+    if (!cc.target_path.empty()) io::WriteFileAtomic((folder / trial::kTargetModelFile).string(), io::ReadFile(cc.target_path));
   }
   Connect();
   CreateLogs();

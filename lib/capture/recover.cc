@@ -14,11 +14,11 @@
 
 #include "capture/clock.h"
 #include "capture/segment_writer.h"
-#include "capture/trial_layout.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
 #include "io/version.h"
+#include "trial/layout.h"
 #include "video/frame_source.h"
 
 namespace rk::capture {
@@ -315,7 +315,7 @@ std::vector<std::string> Recovery::RecoverCamera(const std::string& name, const 
   // 2. frames.csv against the frames on disk, segment by segment.
   const std::string frames_rel = cam.contains("frames") && cam["frames"].is_string()
                                      ? cam["frames"].get<std::string>()
-                                     : name + "/" + kFramesFile;
+                                     : name + "/" + trial::kFramesFile;
   const auto text = ReadLog(frames_rel);
   std::vector<std::string> video;
   if (!text) return video;
@@ -405,14 +405,14 @@ std::vector<std::string> Recovery::RecoverCamera(const std::string& name, const 
 RecoverSummary Recovery::Run() {
   std::error_code ec;
   if (!fs::is_directory(dir_, ec)) throw IoError(dir_, "not a folder");
-  const std::string manifest_path = Path(kManifestFile);
+  const std::string manifest_path = Path(trial::kManifestFile);
   if (!fs::is_regular_file(manifest_path, ec)) throw IoError(manifest_path, "no manifest: not a trial directory");
   // Never touch a recording in progress.
-  const int lock = ::open(Path(kLockFile).c_str(), O_RDONLY | O_CLOEXEC);
+  const int lock = ::open(Path(trial::kCaptureLockFile).c_str(), O_RDONLY | O_CLOEXEC);
   if (lock >= 0) {
     const bool busy = ::flock(lock, LOCK_EX | LOCK_NB) != 0 && errno == EWOULDBLOCK;
     ::close(lock);
-    if (busy) throw UsageError(dir_ + ": rk-capture is still recording into it (" + kLockFile + " is held); stop it first");
+    if (busy) throw UsageError(dir_ + ": rk-capture is still recording into it (" + trial::kCaptureLockFile + " is held); stop it first");
   }
   io::Json m = io::LoadJson(manifest_path);
   if (!m.is_object() || !m.contains("cameras") || !m["cameras"].is_object()) {
@@ -432,7 +432,7 @@ RecoverSummary Recovery::Run() {
     const std::vector<std::string> video = RecoverCamera(it.key(), it.value(), stream);
     if (!it.value().contains("video") || it.value()["video"] != io::Json(video)) {
       if (s_.problems.size() == problems_before) {
-        Repair(std::string(kManifestFile) + ": cameras." + it.key() + ".video set to the " +
+        Repair(std::string(trial::kManifestFile) + ": cameras." + it.key() + ".video set to the " +
                std::to_string(video.size()) + " segment(s) on disk");
         it.value()["video"] = video;
       }
@@ -448,14 +448,14 @@ RecoverSummary Recovery::Run() {
       }
     }
   }
-  if (by_capture && fs::is_regular_file(Path(kEventsFile), ec)) {
-    ReadLog(kEventsFile);  // a torn last line is cut; the content is free text
+  if (by_capture && fs::is_regular_file(Path(trial::kEventsFile), ec)) {
+    ReadLog(trial::kEventsFile);  // a torn last line is cut; the content is free text
   }
   if (by_capture) {
     io::Json& cap = m["capture"];
     if (s_.state_before == "recording") {
       cap["state"] = "recovered";
-      Repair(std::string(kManifestFile) + ": state 'recording' (the recording did not stop cleanly) set to 'recovered'");
+      Repair(std::string(trial::kManifestFile) + ": state 'recording' (the recording did not stop cleanly) set to 'recovered'");
     }
     s_.state_after = cap.value("state", "unknown");
     io::Json rec;

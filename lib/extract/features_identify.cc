@@ -40,7 +40,7 @@ bool IdentifyOptions::Check(std::string* why) const {
   return true;
 }
 
-AffineCameraModel::AffineCameraModel(const TargetModel& model, double planar_ratio) {
+AffineCameraModel::AffineCameraModel(const target::FeatureModel& model, double planar_ratio) {
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (const auto& p : model.p_body) c += p;
   c /= static_cast<double>(std::max<std::size_t>(1, model.size()));
@@ -92,7 +92,7 @@ bool AffineCameraModel::Fit(const std::vector<int>& idx, const std::vector<Eigen
   return A->allFinite();
 }
 
-Identification Identify(const std::vector<Eigen::Vector2d>& all_detections, const TargetModel& model,
+Identification Identify(const std::vector<Eigen::Vector2d>& all_detections, const target::FeatureModel& model,
                         const AffineCameraModel& affine, const IdentifyOptions& o) {
   Identification out;
   const std::size_t n = model.size();

@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "extract/features_model.h"
+#include "target/feature_model.h"
 
 namespace rk::extract {
 
@@ -49,7 +49,7 @@ struct IdentifyOptions {
 // coordinate ignored). Built for one model.
 class AffineCameraModel {
  public:
-  explicit AffineCameraModel(const TargetModel& model, double planar_ratio = 0.05);
+  explicit AffineCameraModel(const target::FeatureModel& model, double planar_ratio = 0.05);
   bool planar() const { return planar_; }
   std::size_t size() const { return q_.size(); }
   const Eigen::Vector3d& q(std::size_t i) const { return q_[i]; }
@@ -75,7 +75,7 @@ struct Identification {
   long hypotheses = 0;                   // tried (for reports)
 };
 
-Identification Identify(const std::vector<Eigen::Vector2d>& detections, const TargetModel& model,
+Identification Identify(const std::vector<Eigen::Vector2d>& detections, const target::FeatureModel& model,
                         const AffineCameraModel& affine, const IdentifyOptions& options);
 
 }  // namespace rk::extract

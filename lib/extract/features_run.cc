@@ -5,7 +5,7 @@
 
 namespace rk::extract {
 
-FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const FrameClock& clock, const TargetModel& model,
+FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const FrameClock& clock, const target::FeatureModel& model,
                              const FeatureTrackOptions& options, const std::function<void(std::int64_t)>& progress) {
   std::string why;
   if (!options.Check(&why)) throw UsageError(why);
@@ -28,7 +28,7 @@ FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const Frame
   return res;
 }
 
-io::CsvWriter FeaturePointsCsv(const std::vector<FeatureFrameResult>& rows, const TargetModel& model) {
+io::CsvWriter FeaturePointsCsv(const std::vector<FeatureFrameResult>& rows, const target::FeatureModel& model) {
   io::CsvWriter w({"frame", "t_s", "id", "x_px", "y_px", "status", "sigma_px", "ncc", "radius_px"});
   for (const FeatureFrameResult& r : rows) {
     for (std::size_t i = 0; i < model.size(); ++i) {

@@ -12,11 +12,11 @@
 #include <string>
 #include <vector>
 
-#include "extract/features_model.h"
 #include "extract/features_tracker.h"
 #include "extract/frame_loop.h"
 #include "extract/frame_times.h"
 #include "io/csv.h"
+#include "target/feature_model.h"
 
 namespace rk::extract {
 
@@ -28,10 +28,10 @@ struct FeatureRunResult : VideoRunStats {  // frames, size, bit depth, wall and 
 // Throws DataError for a frames file that lists fewer frames than the video has (and for a
 // truncated video), ProcessingError if the target was never identified, UsageError for bad
 // options. progress(frames) is called every 20 frames when set.
-FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const FrameClock& clock, const TargetModel& model,
+FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const FrameClock& clock, const target::FeatureModel& model,
                              const FeatureTrackOptions& options,
                              const std::function<void(std::int64_t)>& progress = {});
 
-io::CsvWriter FeaturePointsCsv(const std::vector<FeatureFrameResult>& rows, const TargetModel& model);
+io::CsvWriter FeaturePointsCsv(const std::vector<FeatureFrameResult>& rows, const target::FeatureModel& model);
 
 }  // namespace rk::extract

@@ -21,7 +21,7 @@ bool FeatureTrackOptions::Check(std::string* why) const {
   return true;
 }
 
-FeatureTracker::FeatureTracker(const TargetModel& model, const FeatureTrackOptions& options)
+FeatureTracker::FeatureTracker(const target::FeatureModel& model, const FeatureTrackOptions& options)
     : model_(model),
       opt_(options),
       detector_(options.detect),

@@ -29,8 +29,8 @@
 
 #include "extract/features_detect.h"
 #include "extract/features_identify.h"
-#include "extract/features_model.h"
 #include "io/row_status.h"
+#include "target/feature_model.h"
 
 namespace rk::extract {
 
@@ -60,7 +60,7 @@ struct FeaturePoint {
 struct FeatureFrameResult {
   std::int64_t frame = 0;
   double t_s = 0.0;
-  std::vector<FeaturePoint> points;   // per model id (TargetModel order)
+  std::vector<FeaturePoint> points;   // per model id (target::FeatureModel order)
   bool acquisition = false;           // full-frame identification ran in this frame
   bool ambiguous = false;             // ... and was refused as ambiguous
 };
@@ -80,7 +80,7 @@ struct FeatureTrackSummary {
 
 class FeatureTracker {
  public:
-  FeatureTracker(const TargetModel& model, const FeatureTrackOptions& options);
+  FeatureTracker(const target::FeatureModel& model, const FeatureTrackOptions& options);
   FeatureFrameResult Process(const cv::Mat& frame, std::int64_t index, double t_s);
   const FeatureTrackSummary& summary() const { return summary_; }
 
@@ -99,7 +99,7 @@ class FeatureTracker {
   void Accept(std::size_t id, const MarkerMeasurement& m, double t_s, FeatureFrameResult* out);
   bool FitConstellation(const FeatureFrameResult& r, Eigen::Matrix<double, 2, 4>* A, double* gate) const;
 
-  const TargetModel& model_;
+  const target::FeatureModel& model_;
   FeatureTrackOptions opt_;
   MarkerDetector detector_;
   AffineCameraModel affine_;

@@ -89,7 +89,7 @@ void StationPose(const camera::CameraModel& camera, const geo::AzEl& boresight, 
   *R_enu_body = R_enu_cam * R_cam_body;
 }
 
-AttitudeOiResult RunAttitudeOi(const extract::ImagePoints& points, const extract::TargetModel& model,
+AttitudeOiResult RunAttitudeOi(const ImagePoints& points, const target::FeatureModel& model,
                                const camera::CameraModel& camera, const locate::BoresightSource& boresight,
                                const AttitudeOiOptions& options) {
   std::string why;
@@ -120,7 +120,7 @@ AttitudeOiResult RunAttitudeOi(const extract::ImagePoints& points, const extract
   std::vector<Eigen::Vector2d> px;
   std::optional<std::size_t> prev_pose;  // index of the last row with a pose
   res.rows.reserve(points.frames.size());
-  for (const extract::PointFrame& f : points.frames) {
+  for (const PointFrame& f : points.frames) {
     PoseRow row;
     row.frame = f.frame;
     row.t_s = f.t_s;

@@ -39,13 +39,12 @@
 #include <vector>
 
 #include "camera/camera_model.h"
-#include "extract/features_model.h"
-#include "extract/features_points.h"
 #include "geo/body_attitude.h"
 #include "geo/line_of_sight.h"
 #include "io/csv.h"
 #include "io/row_status.h"
 #include "locate/boresight.h"
+#include "pose/image_points.h"
 #include "pose/pnp.h"
 
 namespace rk::pose {
@@ -102,7 +101,7 @@ struct AttitudeOiResult {
 // Throws DataError naming file:line:col for a pixel outside the camera's image, and naming the
 // turret log if it covers no frame time; ProcessingError if no frame gets a pose; UsageError
 // for bad options.
-AttitudeOiResult RunAttitudeOi(const extract::ImagePoints& points, const extract::TargetModel& model,
+AttitudeOiResult RunAttitudeOi(const ImagePoints& points, const target::FeatureModel& model,
                                const camera::CameraModel& camera, const locate::BoresightSource& boresight,
                                const AttitudeOiOptions& options);
 

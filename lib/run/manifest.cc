@@ -6,22 +6,14 @@
 #include <map>
 #include <regex>
 #include <set>
+#include <utility>
 
 #include "io/error.h"
-#include "io/file_util.h"
+#include "trial/layout.h"
 
 namespace rk::run {
 namespace fs = std::filesystem;
 using io::Json;
-
-const char* CameraRoleName(CameraRole role) {
-  switch (role) {
-    case CameraRole::kBeacon: return "beacon";
-    case CameraRole::kFeatures: return "features";
-    case CameraRole::kSilhouette: return "silhouette";
-  }
-  return "?";
-}
 
 const std::vector<StepKindInfo>& StepKinds() {
   static const std::vector<StepKindInfo> kinds = {
@@ -75,49 +67,17 @@ Json StepSettings::AsJson() const {
 
 namespace {
 
-// Errors that point into trial.json.
+// Errors that point into trial.json (trial::FailAt).
 class Checker {
  public:
-  Checker(const std::string& file, const JsonPositions& pos) : file_(file), pos_(pos) {}
-
+  Checker(const std::string& file, const trial::JsonPositions& pos) : file_(file), pos_(pos) {}
   [[noreturn]] void Fail(const std::string& pointer, const std::string& what, bool at_key = false) const {
-    const TextPosition p = at_key ? pos_.KeyAt(pointer) : pos_.At(pointer);
-    throw DataError(file_, p.line, p.column, Dotted(pointer) + (pointer.empty() ? "" : ": ") + what);
-  }
-  static std::string Dotted(const std::string& pointer) {
-    std::string out;
-    for (std::size_t i = 0; i < pointer.size(); ++i) {
-      if (pointer[i] == '/') {
-        if (i > 0) out.push_back('.');
-      } else if (pointer[i] == '~' && i + 1 < pointer.size()) {
-        out.push_back(pointer[i + 1] == '1' ? '/' : '~');
-        ++i;
-      } else {
-        out.push_back(pointer[i]);
-      }
-    }
-    return out;
-  }
-  // A relative (or absolute) path string; empty = absent (null or missing).
-  std::string OptionalPath(const Json& obj, const std::string& key, const std::string& pointer) const {
-    if (!obj.contains(key) || obj.at(key).is_null()) return "";
-    return Path(obj.at(key), pointer + "/" + PointerToken(key));
-  }
-  std::string Path(const Json& v, const std::string& pointer) const {
-    if (!v.is_string()) Fail(pointer, "must be a path (string, relative to the trial folder)");
-    const std::string s = v.get<std::string>();
-    if (s.empty()) Fail(pointer, "is an empty path");
-    if (s == "-") Fail(pointer, "'-' (stdin) is not a trial file");
-    return s;
-  }
-  std::string RequirePath(const Json& obj, const std::string& key, const std::string& pointer) const {
-    if (!obj.contains(key) || obj.at(key).is_null()) Fail(pointer, "missing field '" + key + "'");
-    return Path(obj.at(key), pointer + "/" + PointerToken(key));
+    trial::FailAt(file_, pos_, pointer, what, at_key);
   }
 
  private:
   std::string file_;
-  const JsonPositions& pos_;
+  const trial::JsonPositions& pos_;
 };
 
 bool ValidOptionName(const std::string& name) {
@@ -130,7 +90,7 @@ void CheckStepValue(const Checker& c, const Json& v, const std::string& pointer,
   if (!v.is_object())
     c.Fail(pointer, "must be an object of options, true or false (switch the step off)");
   for (const auto& [name, value] : v.items()) {
-    const std::string p = pointer + "/" + PointerToken(name);
+    const std::string p = pointer + "/" + trial::PointerToken(name);
     std::string opt = name;
     while (!opt.empty() && opt[0] == '-') opt.erase(0, 1);
     if (!ValidOptionName(opt)) c.Fail(p, "'" + name + "' is not an option name", true);
@@ -154,118 +114,16 @@ void CheckStepValue(const Checker& c, const Json& v, const std::string& pointer,
 
 }  // namespace
 
-TrialManifest ParseManifest(const std::string& text, const std::string& manifest_path) {
+namespace {
+
+// rk-run's checks of a manifest lib/trial has read: every key of "steps" a step kind (or "<unit>/<kind>"
+// of a unit it applies to) with valid options, or the trial-wide "bad-rows".
+TrialManifest CheckSteps(trial::Manifest read, const std::string& manifest_path) {
   TrialManifest m;
-  std::error_code ec;
-  fs::path abs = fs::absolute(fs::path(manifest_path), ec).lexically_normal();
-  m.manifest_path = abs.string();
-  m.dir = abs.parent_path().string();
-  m.text = text;
-  m.json = io::ParseJson(text, manifest_path);
-  m.positions = JsonPositions(text);
+  static_cast<trial::Manifest&>(m) = std::move(read);
   const Checker c(manifest_path, m.positions);
-  const Json& j = m.json;
-  if (!j.is_object()) c.Fail("", "the manifest must be a JSON object");
-
-  if (j.contains("name") && !j.at("name").is_null()) {
-    if (!j.at("name").is_string() || j.at("name").get<std::string>().empty()) c.Fail("/name", "must be a non-empty string");
-    m.name = j.at("name").get<std::string>();
-  } else {
-    m.name = abs.parent_path().filename().string();
-  }
-  if (j.contains("epoch_utc") && !j.at("epoch_utc").is_null()) {
-    if (!j.at("epoch_utc").is_string()) c.Fail("/epoch_utc", "must be an ISO-8601 UTC time string");
-    static const std::regex iso(R"(^\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}(\.\d+)?(Z|[+-]\d{2}:?\d{2})$)");
-    m.epoch_utc = j.at("epoch_utc").get<std::string>();
-    if (!std::regex_match(m.epoch_utc, iso)) c.Fail("/epoch_utc", "'" + m.epoch_utc + "' is not ISO-8601 (2026-11-21T08:00:00Z)");
-  }
-  m.station = j.contains("station") ? j.at("station") : Json(nullptr);
-  if (!m.station.is_null()) {
-    if (!m.station.is_object()) c.Fail("/station", "must be an object {lat_deg, lon_deg, h_m}");
-    for (const char* k : {"lat_deg", "lon_deg", "h_m"}) {
-      if (!m.station.contains(k)) c.Fail("/station", std::string("missing field '") + k + "'");
-      if (!m.station.at(k).is_number()) c.Fail(std::string("/station/") + k, "must be a number");
-    }
-    const double lat = m.station.at("lat_deg").get<double>(), lon = m.station.at("lon_deg").get<double>();
-    if (!(lat >= -90 && lat <= 90)) c.Fail("/station/lat_deg", "latitude must be in [-90, 90] degrees");
-    if (!(lon >= -180 && lon <= 360)) c.Fail("/station/lon_deg", "longitude must be in [-180, 360] degrees");
-  }
-
-  if (!j.contains("cameras") || j.at("cameras").is_null()) {
-    m.cameras.clear();
-  } else {
-    const Json& cams = j.at("cameras");
-    if (!cams.is_object()) c.Fail("/cameras", "must be an object {name: camera}");
-    for (const auto& [name, cam] : cams.items()) {
-      const std::string p = "/cameras/" + PointerToken(name);
-      static const std::regex name_re("^[A-Za-z0-9][A-Za-z0-9_.-]*$");
-      if (!std::regex_match(name, name_re) || name == "radar" || name == "plots" || name == "steps") {
-        c.Fail(p, "camera name '" + name + "' must be letters, digits, '_', '-', '.' (not radar/plots/steps)", true);
-      }
-      if (!cam.is_object()) c.Fail(p, "must be an object");
-      CameraEntry e;
-      e.name = name;
-      if (!cam.contains("video")) c.Fail(p, "missing field 'video'");
-      const Json& v = cam.at("video");
-      if (v.is_string()) {
-        e.video.push_back(c.Path(v, p + "/video"));
-      } else if (v.is_array() && !v.empty()) {
-        for (std::size_t i = 0; i < v.size(); ++i) e.video.push_back(c.Path(v[i], p + "/video/" + std::to_string(i)));
-      } else {
-        c.Fail(p + "/video", "must be a path or a non-empty list of paths");
-      }
-      e.frames = c.OptionalPath(cam, "frames", p);
-      if (cam.contains("fps") && !cam.at("fps").is_null()) {
-        if (!cam.at("fps").is_number() || !(cam.at("fps").get<double>() > 0)) c.Fail(p + "/fps", "must be a frame rate > 0 Hz");
-        e.fps = cam.at("fps").get<double>();
-      }
-      if (cam.contains("t0_s") && !cam.at("t0_s").is_null()) {
-        if (!cam.at("t0_s").is_number()) c.Fail(p + "/t0_s", "must be a number (s)");
-        e.t0_s = cam.at("t0_s").get<double>();
-      }
-      if (e.frames.empty() && !e.fps) c.Fail(p, "give 'frames' (frame-times CSV) or 'fps'");
-      if (!e.frames.empty() && e.fps) c.Fail(p + "/fps", "give either 'frames' or 'fps', not both");
-      e.model = c.RequirePath(cam, "model", p);
-      if (!cam.contains("role") || !cam.at("role").is_string()) c.Fail(p, "missing field 'role' (beacon, features or silhouette)");
-      const std::string role = cam.at("role").get<std::string>();
-      if (role == "beacon") {
-        e.role = CameraRole::kBeacon;
-      } else if (role == "features") {
-        e.role = CameraRole::kFeatures;
-      } else if (role == "silhouette") {
-        e.role = CameraRole::kSilhouette;
-      } else {
-        c.Fail(p + "/role", "'" + role + "' is not one of beacon, features, silhouette");
-      }
-      e.target = c.OptionalPath(cam, "target", p);
-      if (e.target.empty() && j.contains("target") && !j.at("target").is_null()) e.target = c.OptionalPath(j, "target", "");
-      if (e.role != CameraRole::kBeacon && e.target.empty()) {
-        c.Fail(p, std::string("a ") + role + " camera needs 'target' (target model JSON)");
-      }
-      if (cam.contains("boresight_deg") && !cam.at("boresight_deg").is_null()) {
-        const Json& b = cam.at("boresight_deg");
-        if (!b.is_array() || b.size() != 2 || !b[0].is_number() || !b[1].is_number()) {
-          c.Fail(p + "/boresight_deg", "must be [azimuth_deg, elevation_deg]");
-        }
-        e.boresight_deg = std::make_pair(b[0].get<double>(), b[1].get<double>());
-      }
-      m.cameras.push_back(e);
-    }
-    std::sort(m.cameras.begin(), m.cameras.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
-  }
-  m.turret = c.OptionalPath(j, "turret", "");
-  m.range = c.OptionalPath(j, "range", "");
-  m.theodolite = c.OptionalPath(j, "theodolite", "");
-  if (j.contains("radar") && !j.at("radar").is_null()) {
-    const Json& r = j.at("radar");
-    if (!r.is_object()) c.Fail("/radar", "must be null or {\"plots\": ..., \"nav\": ...}");
-    m.radar = RadarEntry{c.RequirePath(r, "plots", "/radar"), c.RequirePath(r, "nav", "/radar")};
-  }
-
-  m.steps = j.contains("steps") && !j.at("steps").is_null() ? j.at("steps") : Json::object();
-  if (!m.steps.is_object()) c.Fail("/steps", "must be an object {step: options}");
   for (const auto& [key, value] : m.steps.items()) {
-    const std::string p = "/steps/" + PointerToken(key);
+    const std::string p = "/steps/" + trial::PointerToken(key);
     if (key == kBadRowsSetting) {
       if (!value.is_string() || (value.get<std::string>() != "error" && value.get<std::string>() != "skip")) {
         c.Fail(p, "must be \"error\" or \"skip\" (--bad-rows of every step that reads CSV)");
@@ -302,11 +160,17 @@ TrialManifest ParseManifest(const std::string& text, const std::string& manifest
   return m;
 }
 
+}  // namespace
+
+TrialManifest ParseManifest(const std::string& text, const std::string& manifest_path) {
+  return CheckSteps(trial::ParseManifest(text, manifest_path), manifest_path);
+}
+
 TrialManifest LoadManifest(const std::string& path) {
   std::error_code ec;
   std::string file = path;
-  if (fs::is_directory(path, ec)) file = (fs::path(path) / "trial.json").string();
-  return ParseManifest(io::ReadFile(file), file);
+  if (fs::is_directory(path, ec)) file = (fs::path(path) / trial::kManifestFile).string();
+  return CheckSteps(trial::LoadManifest(file), file);
 }
 
 StepSettings TrialManifest::Settings(const std::string& unit, const std::string& kind) const {
@@ -333,24 +197,6 @@ StepSettings TrialManifest::Settings(const std::string& unit, const std::string&
     }
   }
   return s;
-}
-
-std::vector<std::string> TrialManifest::AllPaths() const {
-  std::vector<std::string> out;
-  for (const auto& cam : cameras) {
-    for (const auto& v : cam.video) out.push_back(v);
-    if (!cam.frames.empty()) out.push_back(cam.frames);
-    out.push_back(cam.model);
-    if (!cam.target.empty()) out.push_back(cam.target);
-  }
-  for (const std::string* p : {&turret, &range, &theodolite}) {
-    if (!p->empty()) out.push_back(*p);
-  }
-  if (radar) {
-    out.push_back(radar->plots);
-    out.push_back(radar->nav);
-  }
-  return out;
 }
 
 }  // namespace rk::run

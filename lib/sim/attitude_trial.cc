@@ -12,6 +12,8 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "sim/trial_folder.h"
+#include "trial/layout.h"
+#include "trial/manifest.h"
 #include "video/frame_sink.h"
 
 namespace rk::sim {
@@ -21,6 +23,7 @@ constexpr int kTimeDecimals = 9;
 constexpr int kAngleDecimals = 9;
 constexpr int kMetreDecimals = 6;
 constexpr int kPixelDecimals = 4;
+constexpr const char* kCamera = "att";  // the camera's name in the manifest and its folder
 
 double Deg(double rad) { return geo::RadToDeg(rad); }
 
@@ -62,17 +65,17 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
   if (!opt.Check(&why)) throw UsageError(why);
   const AttitudeSimOptions& so = sim.options();
   TrialFolder dir(opt.out_dir, opt.force);
-  io::MakeDirectories(dir.Path("att"));
+  io::MakeDirectories(dir.Path(kCamera));
   io::MakeDirectories(dir.Path("truth"));
 
   AttitudeTrialSummary sum;
-  io::WriteJson(dir.Path("att/camera.json"), camera::CameraModelToJson(so.camera));
+  io::WriteJson(dir.Path(trial::CameraFile(kCamera, trial::kCameraModelFile)), camera::CameraModelToJson(so.camera));
   {
     io::Json pts = io::Json::object();
     for (std::size_t i = 0; i < so.marker_ids.size(); ++i) {
       pts[so.marker_ids[i]] = {so.markers_body[i].x(), so.markers_body[i].y(), so.markers_body[i].z()};
     }
-    io::WriteJson(dir.Path("target.json"), io::Json{{"points", pts}, {"marker_radius_m", so.marker_radius_m}});
+    io::WriteJson(dir.Path(trial::kTargetModelFile), io::Json{{"points", pts}, {"marker_radius_m", so.marker_radius_m}});
   }
 
   io::CsvWriter frames_csv({"frame", "t_s"});
@@ -128,7 +131,7 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
   sum.yaw_span_deg = Deg(yaw_hi - yaw_lo);
   sum.pitch_span_deg = Deg(pit_hi - pit_lo);
   sum.roll_span_deg = Deg(rol_hi - rol_lo);
-  frames_csv.Write(dir.Path("att/frames.csv"));
+  frames_csv.Write(dir.Path(trial::CameraFile(kCamera, trial::kFramesFile)));
   pose_csv.Write(dir.Path("truth/pose.csv"));
   points_csv.Write(dir.Path("truth/points.csv"));
 
@@ -141,10 +144,10 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
         .EndRow();
     ++sum.turret_rows;
   }
-  turret_csv.Write(dir.Path("turret.csv"));
+  turret_csv.Write(dir.Path(trial::kTurretFile));
   turret_truth.Write(dir.Path("truth/turret.csv"));
 
-  const std::string video_rel = opt.format == "mkv" ? "att/video.mkv" : "att/%06d.png";
+  const std::string video_rel = trial::CameraFile(kCamera, opt.format == "mkv" ? "video.mkv" : "%06d.png");
   if (opt.video) {
     video::FrameSink sink(dir.Path(video_rel), so.camera.width_px, so.camera.height_px, so.sensor.bit_depth, so.fps);
     for (std::size_t k = 0; k < sim.frame_count(); ++k) {
@@ -154,23 +157,23 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
     sink.Close();
   }
 
-  io::Json m;
-  m["name"] = opt.name.empty() ? dir.stem() : opt.name;
-  m["epoch_utc"] = opt.epoch_utc;
-  m["station"] = {{"lat_deg", 0.0}, {"lon_deg", 0.0}, {"h_m", 0.0}};
-  io::Json att = {{"frames", "att/frames.csv"}, {"model", "att/camera.json"}, {"role", "features"}, {"target", "target.json"}};
+  trial::Manifest m;
+  m.name = opt.name.empty() ? dir.stem() : opt.name;
+  m.epoch_utc = opt.epoch_utc;
+  m.station = {{"lat_deg", 0.0}, {"lon_deg", 0.0}, {"h_m", 0.0}};
   // Without video there is nothing for rk-extract to read: the camera is left out of the manifest
   // (SPEC.md §6 wants a non-empty video list), the model and frame times are still written.
-  m["cameras"] = io::Json::object();
   if (opt.video) {
-    att["video"] = io::Json::array({video_rel});
-    m["cameras"]["att"] = att;
+    trial::CameraEntry att;
+    att.name = kCamera;
+    att.video = {video_rel};
+    att.frames = trial::CameraFile(kCamera, trial::kFramesFile);
+    att.model = trial::CameraFile(kCamera, trial::kCameraModelFile);
+    att.role = trial::CameraRole::kFeatures;
+    att.target = trial::kTargetModelFile;
+    m.cameras = {att};
   }
-  m["turret"] = "turret.csv";
-  m["range"] = nullptr;
-  m["theodolite"] = nullptr;
-  m["radar"] = nullptr;
-  m["steps"] = io::Json::object();
+  m.turret = trial::kTurretFile;
   io::Json simj;
   simj["generator"] = "rk-sim attitude";
   simj["seed"] = so.seed;
@@ -178,8 +181,8 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
   simj["options"] = AttitudeSimOptionsToJson(so);
   simj["truth"] = {{"pose", "truth/pose.csv"}, {"points", "truth/points.csv"}, {"turret", "truth/turret.csv"}};
   simj["summary"] = sum.ToJson();
-  m["sim"] = simj;
-  io::WriteJson(dir.Path("trial.json"), m);
+  m.extra["sim"] = simj;
+  trial::WriteManifest(dir.Path(trial::kManifestFile), m);
   dir.Commit();
   return sum;
 }

@@ -11,6 +11,8 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "sim/trial_folder.h"
+#include "trial/layout.h"
+#include "trial/manifest.h"
 #include "video/frame_sink.h"
 
 namespace rk::sim {
@@ -21,6 +23,7 @@ constexpr int kTimeDecimals = 9;
 constexpr int kAngleDecimals = 9;
 constexpr int kMetreDecimals = 6;
 constexpr int kPixelDecimals = 4;
+constexpr const char* kCamera = "az";  // the camera's name in the manifest and its folder
 
 double Deg(double rad) { return geo::RadToDeg(rad); }
 
@@ -63,12 +66,12 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
   TrialFolder folder(opt.out_dir, opt.force);
   const std::string stem = fs::path(folder.out()).filename().string();
   const fs::path root(folder.Path(""));
-  io::MakeDirectories((root / "az").string());
+  io::MakeDirectories((root / kCamera).string());
   io::MakeDirectories((root / "truth").string());
 
   TrialSummary sum;
   // Camera model and frame times.
-  io::WriteJson((root / "az" / "camera.json").string(), camera::CameraModelToJson(so.camera));
+  io::WriteJson((root / trial::CameraFile(kCamera, trial::kCameraModelFile)).string(), camera::CameraModelToJson(so.camera));
   io::CsvWriter frames_csv({"frame", "t_s"});
   io::CsvWriter beacon_csv({"frame", "t_s", "x_px", "y_px", "visible", "distractor_min_dist_px"});
   io::CsvWriter target_csv(
@@ -110,7 +113,7 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
     sum.max_range_m = std::max(sum.max_range_m, f.range_m);
     sum.max_elevation_deg = std::max(sum.max_elevation_deg, Deg(f.el_rad));
   }
-  frames_csv.Write((root / "az" / "frames.csv").string());
+  frames_csv.Write((root / trial::CameraFile(kCamera, trial::kFramesFile)).string());
   beacon_csv.Write((root / "truth" / "beacon.csv").string());
   target_csv.Write((root / "truth" / "target.csv").string());
 
@@ -124,7 +127,7 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
         .EndRow();
     ++sum.turret_rows;
   }
-  turret_csv.Write((root / "turret.csv").string());
+  turret_csv.Write((root / trial::kTurretFile).string());
   turret_truth.Write((root / "truth" / "turret.csv").string());
   io::CsvWriter range_csv({"t_s", "range_m", "status"}), range_truth({"t_s", "range_m"});
   for (const RangeSample& s : sim.RangeLog()) {
@@ -139,11 +142,11 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
     range_truth.Add(s.t_s, kTimeDecimals).Add(s.true_range_m, kMetreDecimals).EndRow();
     ++sum.range_rows;
   }
-  range_csv.Write((root / "range.csv").string());
+  range_csv.Write((root / trial::kRangeFile).string());
   range_truth.Write((root / "truth" / "range.csv").string());
 
   // Video.
-  const std::string video_rel = opt.format == "mkv" ? "az/video.mkv" : "az/%06d.png";
+  const std::string video_rel = trial::CameraFile(kCamera, opt.format == "mkv" ? "video.mkv" : "%06d.png");
   {
     video::FrameSink sink((root / video_rel).string(), so.camera.width_px, so.camera.height_px, so.sensor.bit_depth,
                           so.fps);
@@ -155,20 +158,19 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
   }
 
   // Manifest.
-  io::Json m;
-  m["name"] = opt.name.empty() ? stem : opt.name;
-  m["epoch_utc"] = opt.epoch_utc;
-  m["station"] = {{"lat_deg", opt.station_lat_deg}, {"lon_deg", opt.station_lon_deg}, {"h_m", opt.station_h_m}};
-  m["cameras"] = {{"az",
-                   {{"video", {video_rel}},
-                    {"frames", "az/frames.csv"},
-                    {"model", "az/camera.json"},
-                    {"role", "beacon"}}}};
-  m["turret"] = "turret.csv";
-  m["range"] = "range.csv";
-  m["theodolite"] = nullptr;
-  m["radar"] = nullptr;
-  m["steps"] = io::Json::object();
+  trial::Manifest m;
+  m.name = opt.name.empty() ? stem : opt.name;
+  m.epoch_utc = opt.epoch_utc;
+  m.station = {{"lat_deg", opt.station_lat_deg}, {"lon_deg", opt.station_lon_deg}, {"h_m", opt.station_h_m}};
+  trial::CameraEntry az;
+  az.name = kCamera;
+  az.video = {video_rel};
+  az.frames = trial::CameraFile(kCamera, trial::kFramesFile);
+  az.model = trial::CameraFile(kCamera, trial::kCameraModelFile);
+  az.role = trial::CameraRole::kBeacon;
+  m.cameras = {az};
+  m.turret = trial::kTurretFile;
+  m.range = trial::kRangeFile;
   io::Json simj;
   simj["generator"] = "rk-sim beacon";
   simj["seed"] = so.seed;
@@ -179,8 +181,8 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
                    {"turret", "truth/turret.csv"},
                    {"range", "truth/range.csv"}};
   simj["summary"] = sum.ToJson();
-  m["sim"] = simj;
-  io::WriteJson((root / "trial.json").string(), m);
+  m.extra["sim"] = simj;
+  trial::WriteManifest((root / trial::kManifestFile).string(), m);
 
   folder.Commit();
   return sum;

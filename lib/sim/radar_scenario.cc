@@ -10,6 +10,8 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "sim/trial_folder.h"
+#include "trial/layout.h"
+#include "trial/manifest.h"
 
 #include <filesystem>
 
@@ -430,8 +432,8 @@ RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWri
     }
   }
 
-  plots.Write(folder.Path("plots.csv"));
-  nav.Write(folder.Path("nav.csv"));
+  plots.Write(folder.Path(trial::kRadarPlotsFile));
+  nav.Write(folder.Path(trial::kRadarNavFile));
   biases.Write(folder.Path("truth/biases.csv"));
   targets.Write(folder.Path("truth/targets.csv"));
   platforms.Write(folder.Path("truth/platforms.csv"));
@@ -471,8 +473,8 @@ RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWri
                   {"v_enu_mps", {t.v_enu.x(), t.v_enu.y(), t.v_enu.z()}}});
   }
   j["targets"] = tj;
-  j["files"] = {{"plots", "plots.csv"},
-                {"nav", "nav.csv"},
+  j["files"] = {{"plots", trial::kRadarPlotsFile},
+                {"nav", trial::kRadarNavFile},
                 {"truth_biases", "truth/biases.csv"},
                 {"truth_targets", "truth/targets.csv"},
                 {"truth_platforms", "truth/platforms.csv"}};
@@ -481,19 +483,14 @@ RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWri
 
   // Trial manifest (SPEC.md §6), so that rk-run processes the folder like a recorded trial; the station is the
   // origin of the common frame.
-  io::Json m;
-  m["name"] = std::filesystem::path(opt.out_dir).lexically_normal().filename().string();
-  if (m["name"].get<std::string>().empty()) m["name"] = std::filesystem::path(opt.out_dir).parent_path().filename().string();
-  m["epoch_utc"] = opt.epoch_utc;
-  m["station"] = {{"lat_deg", so.origin_lat_deg}, {"lon_deg", so.origin_lon_deg}, {"h_m", so.origin_h_m}};
-  m["cameras"] = io::Json::object();
-  m["turret"] = nullptr;
-  m["range"] = nullptr;
-  m["theodolite"] = nullptr;
-  m["radar"] = {{"plots", "plots.csv"}, {"nav", "nav.csv"}};
-  m["steps"] = io::Json::object();
-  m["sim"] = {{"generator", "rk-sim radar"}, {"scenario", "scenario.json"}, {"truth", {{"biases", "truth/biases.csv"}}}};
-  io::WriteJson(folder.Path("trial.json"), m);
+  trial::Manifest m;
+  m.name = std::filesystem::path(opt.out_dir).lexically_normal().filename().string();
+  if (m.name.empty()) m.name = std::filesystem::path(opt.out_dir).parent_path().filename().string();
+  m.epoch_utc = opt.epoch_utc;
+  m.station = {{"lat_deg", so.origin_lat_deg}, {"lon_deg", so.origin_lon_deg}, {"h_m", so.origin_h_m}};
+  m.radar = trial::RadarEntry{trial::kRadarPlotsFile, trial::kRadarNavFile};
+  m.extra["sim"] = {{"generator", "rk-sim radar"}, {"scenario", "scenario.json"}, {"truth", {{"biases", "truth/biases.csv"}}}};
+  trial::WriteManifest(folder.Path(trial::kManifestFile), m);
   folder.Commit();
   return sum;
 }

@@ -1,139 +1,9 @@
 // Silhouette rendering for rk-sim theodolite; model in theodolite_render.h.
 #include "sim/theodolite_render.h"
 
-#include <Eigen/Geometry>
-#include <algorithm>
 #include <cmath>
-#include <opencv2/imgproc.hpp>
 
 namespace rk::sim {
-namespace {
-
-double Cross(const Eigen::Vector2d& o, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-  return (a.x() - o.x()) * (b.y() - o.y()) - (a.y() - o.y()) * (b.x() - o.x());
-}
-
-// Andrew's monotone chain; counter-clockwise in a y-up frame, collinear points dropped.
-std::vector<Eigen::Vector2d> ConvexHull(std::vector<Eigen::Vector2d> p) {
-  std::sort(p.begin(), p.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
-    return a.x() < b.x() || (a.x() == b.x() && a.y() < b.y());
-  });
-  if (p.size() < 3) return p;
-  std::vector<Eigen::Vector2d> h(2 * p.size());
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < p.size(); ++i) {
-    while (k >= 2 && Cross(h[k - 2], h[k - 1], p[i]) <= 0) --k;
-    h[k++] = p[i];
-  }
-  for (std::size_t i = p.size() - 1, t = k + 1; i > 0; --i) {
-    while (k >= t && Cross(h[k - 2], h[k - 1], p[i - 1]) <= 0) --k;
-    h[k++] = p[i - 1];
-  }
-  h.resize(k - 1);
-  return h;
-}
-
-// Sutherland–Hodgman clip of a convex polygon by the half-plane coord(axis) >= v (keep_above) or <= v.
-void ClipAxis(const std::vector<Eigen::Vector2d>& in, int axis, double v, bool keep_above,
-              std::vector<Eigen::Vector2d>* out) {
-  out->clear();
-  const std::size_t n = in.size();
-  if (n == 0) return;
-  auto inside = [&](const Eigen::Vector2d& p) { return keep_above ? p(axis) >= v : p(axis) <= v; };
-  for (std::size_t i = 0; i < n; ++i) {
-    const Eigen::Vector2d& a = in[i];
-    const Eigen::Vector2d& b = in[(i + 1) % n];
-    const bool ia = inside(a), ib = inside(b);
-    if (ia) out->push_back(a);
-    if (ia != ib) {
-      const double t = (v - a(axis)) / (b(axis) - a(axis));
-      Eigen::Vector2d p = a + t * (b - a);
-      p(axis) = v;
-      out->push_back(p);
-    }
-  }
-}
-
-}  // namespace
-
-cv::Rect PolygonWindow(const std::vector<Eigen::Vector2d>& poly, int margin) {
-  if (poly.empty()) return {};
-  double x0 = poly[0].x(), x1 = x0, y0 = poly[0].y(), y1 = y0;
-  for (const auto& p : poly) {
-    x0 = std::min(x0, p.x());
-    x1 = std::max(x1, p.x());
-    y0 = std::min(y0, p.y());
-    y1 = std::max(y1, p.y());
-  }
-  cv::Rect r(static_cast<int>(std::floor(x0)) - margin, static_cast<int>(std::floor(y0)) - margin, 0, 0);
-  r.width = static_cast<int>(std::ceil(x1)) + margin - r.x + 1;
-  r.height = static_cast<int>(std::ceil(y1)) + margin - r.y + 1;
-  return r;
-}
-
-double PolygonArea(const std::vector<Eigen::Vector2d>& poly) {
-  double s = 0.0;
-  for (std::size_t i = 0, n = poly.size(); i < n; ++i) {
-    const Eigen::Vector2d& a = poly[i];
-    const Eigen::Vector2d& b = poly[(i + 1) % n];
-    s += a.x() * b.y() - b.x() * a.y();
-  }
-  return 0.5 * std::abs(s);
-}
-
-std::vector<Eigen::Vector2d> SilhouettePolygon(const camera::CameraModel& cam, const CylinderPose& pose,
-                                               const CylinderShape& shape, double az_rad, double el_rad,
-                                               int rim_samples) {
-  const Eigen::Vector3d a = pose.Axis();
-  Eigen::Vector3d e1 = a.cross(Eigen::Vector3d::UnitZ());
-  if (e1.norm() < 1e-6) e1 = a.cross(Eigen::Vector3d::UnitX());
-  e1.normalize();
-  const Eigen::Vector3d e2 = a.cross(e1);
-  const double r = 0.5 * shape.diameter_m;
-  const Eigen::Vector3d base = pose.tail_centre_enu + (shape.length_m - shape.nose_length_m) * a;
-  std::vector<Eigen::Vector2d> pts;
-  pts.reserve(static_cast<std::size_t>(2 * rim_samples + 1));
-  for (int i = 0; i < rim_samples; ++i) {
-    const double phi = 2.0 * M_PI * i / rim_samples;
-    const Eigen::Vector3d off = r * (std::cos(phi) * e1 + std::sin(phi) * e2);
-    for (const Eigen::Vector3d& c : {pose.tail_centre_enu, base}) {
-      const auto p = cam.ProjectEnu(c + off, az_rad, el_rad);
-      if (!p) return {};
-      pts.push_back(*p);
-    }
-  }
-  const auto tip = cam.ProjectEnu(pose.tail_centre_enu + shape.length_m * a, az_rad, el_rad);
-  if (!tip) return {};
-  pts.push_back(*tip);
-  return ConvexHull(std::move(pts));
-}
-
-cv::Mat RasterizeConvexPolygon(const std::vector<Eigen::Vector2d>& poly, const cv::Rect& roi) {
-  cv::Mat cov(roi.size(), CV_32FC1, cv::Scalar(0));
-  if (poly.size() < 3) return cov;
-  std::vector<Eigen::Vector2d> a, band, b, cell;
-  for (int i = 0; i < roi.height; ++i) {
-    const double y = roi.y + i;
-    ClipAxis(poly, 1, y - 0.5, true, &a);
-    ClipAxis(a, 1, y + 0.5, false, &band);
-    if (band.size() < 3) continue;
-    double xmin = band[0].x(), xmax = band[0].x();
-    for (const auto& p : band) {
-      xmin = std::min(xmin, p.x());
-      xmax = std::max(xmax, p.x());
-    }
-    const int j0 = std::max(0, static_cast<int>(std::floor(xmin + 0.5)) - roi.x);
-    const int j1 = std::min(roi.width - 1, static_cast<int>(std::floor(xmax + 0.5)) - roi.x);
-    float* row = cov.ptr<float>(i);
-    for (int j = j0; j <= j1; ++j) {
-      const double x = roi.x + j;
-      ClipAxis(band, 0, x - 0.5, true, &b);
-      ClipAxis(b, 0, x + 0.5, false, &cell);
-      if (cell.size() >= 3) row[j] = static_cast<float>(std::min(1.0, PolygonArea(cell)));
-    }
-  }
-  return cov;
-}
 
 bool SilhouetteRenderOptions::Check(std::string* why) const {
   for (double v : {sky_dn, body_dn}) {
@@ -165,65 +35,11 @@ bool SilhouetteRenderOptions::Check(std::string* why) const {
   return true;
 }
 
-namespace {
-
-// SilhouetteSignal in arithmetic T (float for the renderer, double for Fisher-information derivatives).
-template <typename T>
-cv::Mat SignalIn(const camera::CameraModel& cam, const TheodoliteFrameTruth& f, const CylinderShape& shape,
-                 const SilhouetteRenderOptions& o) {
-  const int W = cam.width_px, H = cam.height_px;
+cv::Mat RenderSilhouetteFrame(const camera::CameraModel& cam, const TheodoliteFrameTruth& f,
+                              const target::CylinderShape& shape, const SilhouetteRenderOptions& o,
+                              std::mt19937_64& rng) {
   const double scale = o.sensor.bit_depth == 16 ? 256.0 : 1.0;
-  cv::Mat signal(H, W, cv::DataType<T>::type);
-  for (int y = 0; y < H; ++y) {
-    const T v = static_cast<T>(scale * (o.sky_dn + o.sky_gradient_dn * (static_cast<double>(y) / std::max(1, H - 1) - 0.5)));
-    T* row = signal.ptr<T>(y);
-    for (int x = 0; x < W; ++x) row[x] = v;
-  }
-  const std::vector<Eigen::Vector2d> poly = SilhouettePolygon(cam, f.pose, shape, f.boresight_az_rad, f.boresight_el_rad);
-  if (poly.size() >= 3) {
-    const int margin = static_cast<int>(std::ceil(5.0 * o.psf_sigma_px)) + 2;
-    cv::Rect roi = PolygonWindow(poly, margin);
-    roi &= cv::Rect(0, 0, W, H);
-    if (roi.area() > 0) {
-      cv::Mat cov = RasterizeConvexPolygon(poly, roi);
-      if (cov.type() != cv::DataType<T>::type) cov.convertTo(cov, cv::DataType<T>::type);
-      if (o.psf_sigma_px > 0.0) {
-        const int k = 2 * static_cast<int>(std::ceil(4.0 * o.psf_sigma_px)) + 1;
-        cv::GaussianBlur(cov, cov, cv::Size(k, k), o.psf_sigma_px, o.psf_sigma_px, cv::BORDER_CONSTANT);
-      }
-      // Image axis and half width for the shading.
-      const Eigen::Vector2d tail = 0.5 * (f.tail1_px + f.tail2_px);
-      Eigen::Vector2d dir = f.nose_px - tail;
-      dir = dir.norm() > 0 ? dir.normalized() : Eigen::Vector2d(1, 0);
-      const Eigen::Vector2d nrm(-dir.y(), dir.x());
-      const double w = std::max(0.5 * (f.tail1_px - f.tail2_px).norm(), 1e-6);
-      for (int i = 0; i < roi.height; ++i) {
-        const T* c = cov.ptr<T>(i);
-        T* s = signal.ptr<T>(roi.y + i);
-        for (int j = 0; j < roi.width; ++j) {
-          if (c[j] == T(0)) continue;
-          const Eigen::Vector2d p(roi.x + j, roi.y + i);
-          const double v = std::clamp((p - tail).dot(nrm) / w, -1.0, 1.0);
-          const double body = scale * (o.body_dn + o.shading_dn * v);
-          s[roi.x + j] += static_cast<T>(c[j] * (body - s[roi.x + j]));
-        }
-      }
-    }
-  }
-  return signal;
-}
-
-}  // namespace
-
-cv::Mat SilhouetteSignal(const camera::CameraModel& cam, const TheodoliteFrameTruth& f, const CylinderShape& shape,
-                         const SilhouetteRenderOptions& o, int depth) {
-  return depth == CV_64F ? SignalIn<double>(cam, f, shape, o) : SignalIn<float>(cam, f, shape, o);
-}
-
-cv::Mat RenderSilhouetteFrame(const camera::CameraModel& cam, const TheodoliteFrameTruth& f, const CylinderShape& shape,
-                              const SilhouetteRenderOptions& o, std::mt19937_64& rng) {
-  const cv::Mat signal = SilhouetteSignal(cam, f, shape, o);
-  const double scale = o.sensor.bit_depth == 16 ? 256.0 : 1.0;
+  const cv::Mat signal = target::SilhouetteSignal(cam, f.pose, shape, f.boresight_az_rad, f.boresight_el_rad, o, scale);
   SensorOptions sensor = o.sensor;
   sensor.background_dn = 0.0;
   sensor.read_noise_dn *= scale;

@@ -39,57 +39,15 @@ camera::CameraModel Seed004Camera() {
   return c;
 }
 
-bool CylinderShape::Check(std::string* why) const {
-  if (!(length_m > 0.0 && std::isfinite(length_m))) {
-    *why = "--length-m must be > 0";
-    return false;
-  }
-  if (!(diameter_m > 0.0 && std::isfinite(diameter_m))) {
-    *why = "--diameter-m must be > 0";
-    return false;
-  }
-  if (!(nose_length_m > 0.0 && nose_length_m < length_m)) {
-    *why = "--nose-length-m must be in (0, length)";
-    return false;
-  }
-  return true;
-}
-
-Eigen::Vector3d CylinderPose::Axis() const { return geo::DirectionFromAzEl(yaw_rad, pitch_rad); }
-
-SilhouettePoints3d SilhouettePointsOf(const CylinderPose& pose, const CylinderShape& shape) {
-  SilhouettePoints3d p;
-  const Eigen::Vector3d a = pose.Axis();
-  p.tail_centre = pose.tail_centre_enu;
-  p.nose = p.tail_centre + shape.length_m * a;
-  const Eigen::Vector3d n = a.cross(p.tail_centre).normalized();
-  p.tail1 = p.tail_centre + 0.5 * shape.diameter_m * n;
-  p.tail2 = p.tail_centre - 0.5 * shape.diameter_m * n;
-  return p;
-}
-
-CylinderPose PoseAt(double range_m, double az_rad, double el_rad, double yaw_rad, double pitch_rad,
-                    const CylinderShape& shape) {
-  CylinderPose pose;
-  pose.yaw_rad = yaw_rad;
-  pose.pitch_rad = pitch_rad;
-  const Eigen::Vector3d mid = range_m * geo::DirectionFromAzEl(az_rad, el_rad);
-  pose.tail_centre_enu = mid - 0.5 * shape.length_m * pose.Axis();
-  return pose;
-}
-
-double ViewAngle(const CylinderPose& pose) {
-  const Eigen::Vector3d a = pose.Axis();
-  const Eigen::Vector3d los = pose.tail_centre_enu.normalized();
-  return std::atan2(a.cross(los).norm(), a.dot(los));
-}
-
 bool TheodoliteSimOptions::Check(std::string* why) const {
   auto fail = [&](const std::string& w) {
     *why = w;
     return false;
   };
-  if (!shape.Check(why)) return false;
+  if (!(shape.length_m > 0.0 && std::isfinite(shape.length_m))) return fail("--length-m must be > 0");
+  if (!(shape.diameter_m > 0.0 && std::isfinite(shape.diameter_m))) return fail("--diameter-m must be > 0");
+  if (!(shape.nose_length_m > 0.0 && shape.nose_length_m < shape.length_m))
+    return fail("--nose-length-m must be in (0, length)");
   if (!(range_m >= 10.0 && range_m <= 1e6)) return fail("--range-m must be in [10, 1e6] m");
   if (!(el_deg >= -10.0 && el_deg <= 89.0)) return fail("--el-deg must be in [-10, 89]");
   if (!(pitch_deg >= -90.0 && pitch_deg <= 90.0)) return fail("--pitch-deg must be in [-90, 90]");
@@ -140,7 +98,7 @@ TheodoliteSimulator::TheodoliteSimulator(TheodoliteSimOptions opt) : opt_(std::m
   if (!opt_.Check(&why)) throw UsageError(why);
   using geo::DegToRad;
   t_ref_ = opt_.t0_s + 0.5 * opt_.duration_s;
-  pose_ref_ = PoseAt(opt_.range_m, DegToRad(opt_.az_deg), DegToRad(opt_.el_deg), DegToRad(opt_.yaw_deg),
+  pose_ref_ = target::PoseAt(opt_.range_m, DegToRad(opt_.az_deg), DegToRad(opt_.el_deg), DegToRad(opt_.yaw_deg),
                      DegToRad(opt_.pitch_deg), opt_.shape);
   {
     std::mt19937_64 rng = Stream(opt_.seed, 1);
@@ -166,7 +124,7 @@ TheodoliteSimulator::TheodoliteSimulator(TheodoliteSimOptions opt) : opt_(std::m
       throw UsageError("the axis points exactly along the line of sight at frame " + std::to_string(k) +
                        " (tail-chase view): tail1/tail2 are undefined");
     }
-    f.points = SilhouettePointsOf(f.pose, opt_.shape);
+    f.points = target::SilhouettePointsOf(f.pose, opt_.shape);
     TrueBoresight(f.t_s, &f.boresight_az_rad, &f.boresight_el_rad);
     const Eigen::Vector3d* pts[3] = {&f.points.nose, &f.points.tail1, &f.points.tail2};
     Eigen::Vector2d* px[3] = {&f.nose_px, &f.tail1_px, &f.tail2_px};
@@ -191,7 +149,7 @@ TheodoliteSimulator::TheodoliteSimulator(TheodoliteSimOptions opt) : opt_(std::m
                        " image at frame " + std::to_string(k) + " (t = " + Num(f.t_s) +
                        " s); reduce --track-error-px, the speed or the duration, or increase --range-m");
     }
-    f.view_angle_rad = ViewAngle(f.pose);
+    f.view_angle_rad = target::ViewAngle(f.pose);
     f.image_length_px = (f.nose_px - 0.5 * (f.tail1_px + f.tail2_px)).norm();
     // Mirror solution on the exact rays: R2 = R3 = R, c = c12 = c13, R1 = R c ± sqrt(L'² − R² (1 − c²)).
     {
@@ -219,12 +177,12 @@ TheodoliteSimulator::TheodoliteSimulator(TheodoliteSimOptions opt) : opt_(std::m
   }
 }
 
-CylinderPose TheodoliteSimulator::PoseAtTime(double t_s) const {
+target::CylinderPose TheodoliteSimulator::PoseAtTime(double t_s) const {
   using geo::DegToRad;
   const double dt = t_s - t_ref_;
   const Eigen::Vector3d a_ref = pose_ref_.Axis();
   const Eigen::Vector3d mid_ref = pose_ref_.tail_centre_enu + 0.5 * opt_.shape.length_m * a_ref;
-  CylinderPose pose;
+  target::CylinderPose pose;
   pose.yaw_rad = geo::WrapTwoPi(DegToRad(opt_.yaw_deg + opt_.yaw_rate_deg_s * dt));
   pose.pitch_rad = DegToRad(std::clamp(opt_.pitch_deg + opt_.pitch_rate_deg_s * dt, -90.0, 90.0));
   const Eigen::Vector3d mid = mid_ref + opt_.speed_mps * dt * a_ref;
@@ -233,7 +191,7 @@ CylinderPose TheodoliteSimulator::PoseAtTime(double t_s) const {
 }
 
 void TheodoliteSimulator::TrueBoresight(double t_s, double* az_rad, double* el_rad) const {
-  const CylinderPose pose = PoseAtTime(t_s);
+  const target::CylinderPose pose = PoseAtTime(t_s);
   const Eigen::Vector3d mid = pose.tail_centre_enu + 0.5 * opt_.shape.length_m * pose.Axis();
   const camera::CameraModel& cam = opt_.camera;
   const Eigen::Vector2d want =

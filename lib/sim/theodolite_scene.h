@@ -1,15 +1,8 @@
 // Synthetic single-station theodolite trial of a cylindrical target with ground truth (rk-sim theodolite;
 // seed 004, Tang et al. 2004 §4: cine-theodolite with f = 1500 mm, 0.011 mm pixels, 16.9 mm sensor).
 //
-// Target. A rocket-like solid of revolution: a cylinder of diameter d from the tail plane to the base of a
-// conical nose whose tip is at distance l (length, nose tip to tail plane) from the tail plane; nose cone
-// length l_c (< l). Pose: tail-rim centre s0 (station ENU, m) and axis a = (sin ψ cos θ, cos ψ cos θ, sin θ)
-// for yaw ψ (clockwise from north) and pitch θ (up positive), SPEC.md §3.
-// Silhouette points (SPEC.md §3, seed 004 §3.1): nose P1 = s0 + l a; tail1/tail2 = s0 ± (d/2) n with
-//   n = unit(a × s0)   (perpendicular to the axis and to the line of sight to the tail centre),
-// i.e. the ends of the tail-rim diameter seen edge-on; tail1 = s0 + (d/2) n lies to the LEFT of the
-// tail → nose direction in the image (x right, y down) and tail2 to the right. (The true silhouette
-// tangent points of the rim differ from these by a fraction (d/2)²/|s0|² of d: < 1e-7 px here.)
+// Target: target::CylinderShape and target::CylinderPose (target/cylinder.h: the solid, its pose and the
+// silhouette points of SPEC.md §3).
 //
 // Motion. The target's mid-point c = s0 + (l/2) a is at range R, azimuth A0, elevation E0 from the station at
 // the reference time t_ref = t0 + duration/2; it moves along the reference axis at speed v:
@@ -33,6 +26,7 @@
 
 #include "camera/camera_model.h"
 #include "io/json_util.h"
+#include "target/cylinder.h"
 
 namespace rk::sim {
 
@@ -40,37 +34,9 @@ namespace rk::sim {
 // centre, no distortion.
 camera::CameraModel Seed004Camera();
 
-struct CylinderShape {
-  double length_m = 2.5;        // nose tip to tail plane, > 0
-  double diameter_m = 0.25;     // > 0
-  double nose_length_m = 0.6;   // conical nose, (0, length)
-  bool Check(std::string* why) const;
-};
-
-struct CylinderPose {
-  Eigen::Vector3d tail_centre_enu{0, 1000, 0};  // s0 (m)
-  double yaw_rad = 0.0;
-  double pitch_rad = 0.0;
-  Eigen::Vector3d Axis() const;  // unit, tail → nose
-};
-
-struct SilhouettePoints3d {
-  Eigen::Vector3d nose, tail1, tail2, tail_centre;  // station ENU (m)
-};
-// Points of SPEC.md §3 for a pose (station at the origin). Requires s0 not along the axis.
-SilhouettePoints3d SilhouettePointsOf(const CylinderPose& pose, const CylinderShape& shape);
-
-// Pose whose mid-point is at range R, azimuth/elevation (A, E) from the station, with axis (yaw, pitch).
-CylinderPose PoseAt(double range_m, double az_rad, double el_rad, double yaw_rad, double pitch_rad,
-                    const CylinderShape& shape);
-
-// Angle between the axis and the line of sight to the tail centre (rad, [0, π]): π/2 = side-on view,
-// 0 = tail chase (axis pointing away), π = head-on.
-double ViewAngle(const CylinderPose& pose);
-
 struct TheodoliteSimOptions {
   camera::CameraModel camera = Seed004Camera();
-  CylinderShape shape;
+  target::CylinderShape shape;      // Check() below also requires 0 < nose_length_m < length_m
   double range_m = 1132.0;          // to the target mid-point at t_ref, [10, 1e6]
   double az_deg = 326.2;            // station → target azimuth at t_ref (see docs/rk-sim.md: seed 004's set-up)
   double el_deg = 16.274;           // elevation at t_ref, [-10, 89]
@@ -98,8 +64,8 @@ io::Json TheodoliteSimOptionsToJson(const TheodoliteSimOptions& opt);
 struct TheodoliteFrameTruth {
   std::int64_t frame = 0;
   double t_s = 0.0;
-  CylinderPose pose;
-  SilhouettePoints3d points;
+  target::CylinderPose pose;
+  target::SilhouettePoints3d points;
   double boresight_az_rad = 0.0, boresight_el_rad = 0.0;  // true
   Eigen::Vector2d nose_px{0, 0}, tail1_px{0, 0}, tail2_px{0, 0};  // exact projections
   std::array<Eigen::Vector2d, 3> measured_px;               // written points (noise, quantisation)
@@ -123,7 +89,7 @@ class TheodoliteSimulator {
 
   const TheodoliteSimOptions& options() const { return opt_; }
   const std::vector<TheodoliteFrameTruth>& frames() const { return frames_; }
-  CylinderPose PoseAtTime(double t_s) const;
+  target::CylinderPose PoseAtTime(double t_s) const;
   // True boresight at any time (tracks the target with the tracking error).
   void TrueBoresight(double t_s, double* az_rad, double* el_rad) const;
   // Theodolite log over [t0 − 0.5, t_last + 0.5] s.
@@ -134,7 +100,7 @@ class TheodoliteSimulator {
  private:
   TheodoliteSimOptions opt_;
   double t_ref_ = 0.0;
-  CylinderPose pose_ref_;
+  target::CylinderPose pose_ref_;
   double phase_x_ = 0.0, phase_y_ = 0.0;
   double bias_az_ = 0.0, bias_el_ = 0.0;
   std::vector<TheodoliteFrameTruth> frames_;

@@ -12,6 +12,8 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "sim/trial_folder.h"
+#include "trial/layout.h"
+#include "trial/manifest.h"
 #include "video/frame_sink.h"
 
 namespace rk::sim {
@@ -21,6 +23,7 @@ constexpr int kTimeDecimals = 9;
 constexpr int kAngleDecimals = 9;
 constexpr int kMetreDecimals = 6;
 constexpr int kPixelDecimals = 6;
+constexpr const char* kCamera = "theo";  // the camera's name in the manifest and its folder
 
 std::mt19937_64 FrameStream(std::uint64_t seed, std::int64_t k) {
   std::seed_seq seq{seed, static_cast<std::uint64_t>(1000), static_cast<std::uint64_t>(k)};
@@ -59,7 +62,7 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
   if (!opt.Check(&why)) throw UsageError(why);
   const TheodoliteSimOptions& so = sim.options();
   TrialFolder dir(opt.out_dir, opt.force);
-  io::MakeDirectories(dir.Path("theo"));
+  io::MakeDirectories(dir.Path(kCamera));
   io::MakeDirectories(dir.Path("truth"));
   using geo::RadToDeg;
 
@@ -69,10 +72,10 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
   sum.bias_az_arcsec = sim.bias_az_rad() * geo::kArcsecPerRad;
   sum.bias_el_arcsec = sim.bias_el_rad() * geo::kArcsecPerRad;
 
-  io::WriteJson(dir.Path("theo/camera.json"), camera::CameraModelToJson(so.camera));
-  io::WriteJson(dir.Path("target.json"), {{"length_m", so.shape.length_m},
-                                          {"diameter_m", so.shape.diameter_m},
-                                          {"nose_length_m", so.shape.nose_length_m}});
+  io::WriteJson(dir.Path(trial::CameraFile(kCamera, trial::kCameraModelFile)), camera::CameraModelToJson(so.camera));
+  io::WriteJson(dir.Path(trial::kTargetModelFile), {{"length_m", so.shape.length_m},
+                                                    {"diameter_m", so.shape.diameter_m},
+                                                    {"nose_length_m", so.shape.nose_length_m}});
   io::CsvWriter frames_csv({"frame", "t_s"});
   io::CsvWriter points_csv({"frame", "t_s", "id", "x_px", "y_px"});
   io::CsvWriter truth_points({"frame", "t_s", "id", "x_px", "y_px"});
@@ -107,7 +110,7 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
     sum.min_image_length_px = std::min(sum.min_image_length_px, f.image_length_px);
     sum.max_image_length_px = std::max(sum.max_image_length_px, f.image_length_px);
   }
-  frames_csv.Write(dir.Path("theo/frames.csv"));
+  frames_csv.Write(dir.Path(trial::CameraFile(kCamera, trial::kFramesFile)));
   points_csv.Write(dir.Path("points.csv"));
   truth_points.Write(dir.Path("truth/points.csv"));
   axis_csv.Write(dir.Path("truth/axis.csv"));
@@ -121,16 +124,25 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
         .EndRow();
     ++sum.theodolite_rows;
   }
-  theo_csv.Write(dir.Path("theodolite.csv"));
+  theo_csv.Write(dir.Path(trial::kTheodoliteFile));
   theo_truth.Write(dir.Path("truth/theodolite.csv"));
 
-  io::Json camera_entry = {{"frames", "theo/frames.csv"},
-                           {"model", "theo/camera.json"},
-                           {"role", "silhouette"},
-                           {"target", "target.json"}};
+  trial::Manifest m;
+  m.name = opt.name.empty() ? dir.stem() : opt.name;
+  m.epoch_utc = opt.epoch_utc;
+  m.station = {{"lat_deg", 0.0}, {"lon_deg", 0.0}, {"h_m", 0.0}};
+  // Without images there is nothing for rk-extract to read: the camera is left out of the manifest
+  // (SPEC.md §6 wants a non-empty video list); rk-attitude cylinder can still run on points.csv.
   if (opt.images != "none") {
-    const std::string video_rel = opt.images == "mkv" ? "theo/video.mkv" : "theo/%06d.png";
-    camera_entry["video"] = io::Json::array({video_rel});
+    const std::string video_rel = trial::CameraFile(kCamera, opt.images == "mkv" ? "video.mkv" : "%06d.png");
+    trial::CameraEntry theo;
+    theo.name = kCamera;
+    theo.video = {video_rel};
+    theo.frames = trial::CameraFile(kCamera, trial::kFramesFile);
+    theo.model = trial::CameraFile(kCamera, trial::kCameraModelFile);
+    theo.role = trial::CameraRole::kSilhouette;
+    theo.target = trial::kTargetModelFile;
+    m.cameras = {theo};
     video::FrameSink sink(dir.Path(video_rel), so.camera.width_px, so.camera.height_px, opt.render.sensor.bit_depth,
                           so.fps);
     for (std::size_t k = 0; k < sim.frames().size(); ++k) {
@@ -141,19 +153,7 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
     sink.Close();
   }
 
-  io::Json m;
-  m["name"] = opt.name.empty() ? dir.stem() : opt.name;
-  m["epoch_utc"] = opt.epoch_utc;
-  m["station"] = {{"lat_deg", 0.0}, {"lon_deg", 0.0}, {"h_m", 0.0}};
-  // Without images there is nothing for rk-extract to read: the camera is left out of the manifest
-  // (SPEC.md §6 wants a non-empty video list); rk-attitude cylinder can still run on points.csv.
-  m["cameras"] = io::Json::object();
-  if (opt.images != "none") m["cameras"]["theo"] = camera_entry;
-  m["turret"] = nullptr;
-  m["range"] = nullptr;
-  m["theodolite"] = "theodolite.csv";
-  m["radar"] = nullptr;
-  m["steps"] = io::Json::object();
+  m.theodolite = trial::kTheodoliteFile;
   io::Json simj;
   simj["generator"] = "rk-sim theodolite";
   simj["seed"] = so.seed;
@@ -170,8 +170,8 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
   simj["points"] = "points.csv";
   simj["truth"] = {{"axis", "truth/axis.csv"}, {"points", "truth/points.csv"}, {"theodolite", "truth/theodolite.csv"}};
   simj["summary"] = sum.ToJson();
-  m["sim"] = simj;
-  io::WriteJson(dir.Path("trial.json"), m);
+  m.extra["sim"] = simj;
+  trial::WriteManifest(dir.Path(trial::kManifestFile), m);
   dir.Commit();
   return sum;
 }

@@ -11,6 +11,7 @@
 #include "geo/line_of_sight.h"
 #include "sim/theodolite_render.h"
 #include "sim/theodolite_scene.h"
+#include "target/cylinder.h"
 
 namespace rk::attitude {
 namespace {
@@ -28,7 +29,7 @@ constexpr double kNoiseFreeTolDeg = 0.002;
 struct Scene {
   camera::CameraModel cam;
   sim::TheodoliteFrameTruth truth;
-  sim::CylinderShape shape;
+  target::CylinderShape shape;
 };
 
 Scene MakeScene(double dx_px, double dy_px) {
@@ -37,8 +38,8 @@ Scene MakeScene(double dx_px, double dy_px) {
   s.cam.width_px = s.cam.height_px = 640;
   s.cam.principal_point_px = {319.5, 319.5};
   s.truth.pose =
-      sim::PoseAt(1224.0, DegToRad(326.2), DegToRad(16.274), DegToRad(76.211), DegToRad(31.257), s.shape);
-  s.truth.points = sim::SilhouettePointsOf(s.truth.pose, s.shape);
+      target::PoseAt(1224.0, DegToRad(326.2), DegToRad(16.274), DegToRad(76.211), DegToRad(31.257), s.shape);
+  s.truth.points = target::SilhouettePointsOf(s.truth.pose, s.shape);
   const Eigen::Vector3d mid = s.truth.pose.tail_centre_enu + 0.5 * s.shape.length_m * s.truth.pose.Axis();
   const geo::AzEl ae = geo::AzElFromEnu(mid);
   s.truth.boresight_az_rad = ae.az_rad + dx_px / s.cam.fx() / std::cos(ae.el_rad);
@@ -52,8 +53,7 @@ Scene MakeScene(double dx_px, double dy_px) {
 
 CylinderImageFitResult FitFrom(const Scene& s, const cv::Mat& img, double dyaw_deg, double dpitch_deg,
                                const Eigen::Vector3d& dpos_m) {
-  return FitCylinderImage(img, s.cam, s.truth.boresight_az_rad, s.truth.boresight_el_rad,
-                          CylinderTarget{s.shape.length_m, s.shape.diameter_m},
+  return FitCylinderImage(img, s.cam, s.truth.boresight_az_rad, s.truth.boresight_el_rad, s.shape,
                           s.truth.pose.tail_centre_enu + dpos_m, s.truth.pose.yaw_rad + DegToRad(dyaw_deg),
                           s.truth.pose.pitch_rad + DegToRad(dpitch_deg), CylinderImageFitOptions{});
 }

@@ -25,7 +25,7 @@ struct Trial {
   sim::TheodoliteSimulator sim;
   CylinderPointsFile points;
   locate::TurretLog theo;
-  CylinderTarget target;
+  target::CylinderShape shape;
 };
 
 std::string PointsCsv(const sim::TheodoliteSimulator& sim) {
@@ -55,7 +55,7 @@ Trial MakeTrial(sim::TheodoliteSimOptions o) {
   sim::TheodoliteSimulator sim(o);
   CylinderPointsFile pts = ReadCylinderPoints(io::CsvTable::Parse(PointsCsv(sim), "points.csv"));
   locate::TurretLog theo = TheoLog(sim);
-  return Trial{std::move(sim), std::move(pts), std::move(theo), CylinderTarget{o.shape.length_m, o.shape.diameter_m}};
+  return Trial{std::move(sim), std::move(pts), std::move(theo), o.shape};
 }
 
 TEST(CylinderRun, ExactPointsGiveTheTruthAndTheMirror) {
@@ -63,7 +63,7 @@ TEST(CylinderRun, ExactPointsGiveTheTruthAndTheMirror) {
   o.duration_s = 1.0;
   o.speed_mps = 80.0;
   const Trial t = MakeTrial(o);
-  const CylinderRunResult r = RunCylinder(t.points, t.theo, t.sim.options().camera, t.target, CylinderRunOptions{});
+  const CylinderRunResult r = RunCylinder(t.points, t.theo, t.sim.options().camera, t.shape, CylinderRunOptions{});
   ASSERT_EQ(r.rows.size(), t.sim.frames().size());
   for (std::size_t k = 0; k < r.rows.size(); ++k) {
     const CylinderRow& row = r.rows[k];
@@ -94,7 +94,7 @@ TEST(CylinderRun, ContinuityThroughTheSideOnView) {
   const Trial t = MakeTrial(o);
   ASSERT_GT(t.sim.frames().front().view_angle_rad, M_PI / 2);
   ASSERT_LT(t.sim.frames().back().view_angle_rad, M_PI / 2);
-  const CylinderRunResult r = RunCylinder(t.points, t.theo, t.sim.options().camera, t.target, CylinderRunOptions{});
+  const CylinderRunResult r = RunCylinder(t.points, t.theo, t.sim.options().camera, t.shape, CylinderRunOptions{});
   int side_on = 0;
   for (std::size_t k = 0; k < r.rows.size(); ++k) {
     const CylinderRow& row = r.rows[k];
@@ -120,7 +120,7 @@ TEST(CylinderRun, YawThroughNorthStaysContinuous) {
   o.yaw_rate_deg_s = 4.0;  // 358° → 2° over the trial
   o.duration_s = 1.0;
   const Trial t = MakeTrial(o);
-  const CylinderRunResult r = RunCylinder(t.points, t.theo, t.sim.options().camera, t.target, CylinderRunOptions{});
+  const CylinderRunResult r = RunCylinder(t.points, t.theo, t.sim.options().camera, t.shape, CylinderRunOptions{});
   bool low = false, high = false;
   for (std::size_t k = 0; k < r.rows.size(); ++k) {
     ASSERT_TRUE(r.rows[k].yaw_rad.has_value());
@@ -184,7 +184,7 @@ TEST(CylinderRun, StatusesForBadRows) {
     gap.az_rad.push_back(theo.az_rad[i]);
     gap.el_rad.push_back(theo.el_rad[i]);
   }
-  const CylinderRunResult r = RunCylinder(pts, gap, cam, CylinderTarget{o.shape.length_m, o.shape.diameter_m},
+  const CylinderRunResult r = RunCylinder(pts, gap, cam, o.shape,
                                           CylinderRunOptions{});
   using S = CylinderSolutionStatus;
   EXPECT_EQ(r.rows[2].status, RowStatus::kLost);
@@ -215,7 +215,7 @@ TEST(CylinderRun, NoCoverageAndNoPointsAreErrors) {
   locate::TurretLog late = t.theo;
   for (double& x : late.t_s) x += 100.0;
   try {
-    RunCylinder(t.points, late, t.sim.options().camera, t.target, CylinderRunOptions{});
+    RunCylinder(t.points, late, t.sim.options().camera, t.shape, CylinderRunOptions{});
     ADD_FAILURE();
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ExitCode::kInvalidData);
@@ -224,7 +224,7 @@ TEST(CylinderRun, NoCoverageAndNoPointsAreErrors) {
   const CylinderPointsFile only_nose =
       ReadCylinderPoints(io::CsvTable::Parse("frame,t_s,id,x_px,y_px\n0,1.0,nose,700,700\n", "p.csv"));
   try {
-    RunCylinder(only_nose, t.theo, t.sim.options().camera, t.target, CylinderRunOptions{});
+    RunCylinder(only_nose, t.theo, t.sim.options().camera, t.shape, CylinderRunOptions{});
     ADD_FAILURE();
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ExitCode::kProcessing);

@@ -11,6 +11,7 @@
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
 #include "sim/theodolite_scene.h"
+#include "target/cylinder.h"
 
 namespace rk::attitude {
 namespace {
@@ -26,10 +27,9 @@ constexpr double kRangeExactRel = 1e-10;
 constexpr double kAgreeRad = 2e-8;
 
 struct Case {
-  sim::CylinderPose pose;
-  sim::CylinderShape shape;
+  target::CylinderPose pose;
+  target::CylinderShape shape;
   CylinderRays rays;
-  CylinderTarget target;
 };
 
 Case MakeCase(double range_m, double az_deg, double el_deg, double yaw_deg, double pitch_deg, double length_m,
@@ -38,10 +38,9 @@ Case MakeCase(double range_m, double az_deg, double el_deg, double yaw_deg, doub
   c.shape.length_m = length_m;
   c.shape.diameter_m = diameter_m;
   c.shape.nose_length_m = 0.2 * length_m;
-  c.pose = sim::PoseAt(range_m, DegToRad(az_deg), DegToRad(el_deg), DegToRad(yaw_deg), DegToRad(pitch_deg), c.shape);
-  const sim::SilhouettePoints3d p = sim::SilhouettePointsOf(c.pose, c.shape);
+  c.pose = target::PoseAt(range_m, DegToRad(az_deg), DegToRad(el_deg), DegToRad(yaw_deg), DegToRad(pitch_deg), c.shape);
+  const target::SilhouettePoints3d p = target::SilhouettePointsOf(c.pose, c.shape);
   c.rays = {p.nose.normalized(), p.tail1.normalized(), p.tail2.normalized()};
-  c.target = {length_m, diameter_m};
   return c;
 }
 
@@ -109,18 +108,18 @@ TEST(CylinderSolve, ExactDataBothMethodsFindTruthAndMirror) {
     const double range = 200.0 + 4800.0 * U(rng);
     const Case c = MakeCase(range, 360.0 * U(rng), -5.0 + 80.0 * U(rng), 360.0 * U(rng), -70.0 + 140.0 * U(rng),
                             1.0 + 7.0 * U(rng), 0.1 + 0.6 * U(rng));
-    const double view = RadToDeg(sim::ViewAngle(c.pose));
+    const double view = RadToDeg(target::ViewAngle(c.pose));
     // Near side-on (double root) the two solutions merge; near tail chase the points overlap.
     if (std::abs(view - 90.0) < 3.0 || view < 10.0 || view > 170.0) continue;
     ++tested;
-    const CylinderSolveResult s = SolveCylinder(c.rays, c.target, Opt(CylinderMethod::kSearch));
-    const CylinderSolveResult p = SolveCylinder(c.rays, c.target, Opt(CylinderMethod::kP3P));
+    const CylinderSolveResult s = SolveCylinder(c.rays, c.shape, Opt(CylinderMethod::kSearch));
+    const CylinderSolveResult p = SolveCylinder(c.rays, c.shape, Opt(CylinderMethod::kP3P));
     ASSERT_EQ(s.solutions.size(), 2u) << "case " << n << " view " << view;
     ASSERT_EQ(p.solutions.size(), 2u) << "case " << n << " view " << view;
     double e = 0;
     const CylinderSolution* best = Nearest(p, c.pose.Axis(), &e);
     EXPECT_LT(e, kAxisExactRad) << "case " << n;
-    const sim::SilhouettePoints3d pts = sim::SilhouettePointsOf(c.pose, c.shape);
+    const target::SilhouettePoints3d pts = target::SilhouettePointsOf(c.pose, c.shape);
     EXPECT_NEAR(best->range_m(0), pts.nose.norm(), kRangeExactRel * range);
     EXPECT_NEAR(best->range_m(1), pts.tail1.norm(), kRangeExactRel * range);
     EXPECT_NEAR(best->range_m(2), pts.tail2.norm(), kRangeExactRel * range);
@@ -151,7 +150,7 @@ TEST(CylinderSolve, SearchAndClosedFormAgreeOnNoisyRays) {
   for (int n = 0; n < 120; ++n) {
     const Case c = MakeCase(800.0 + 3000.0 * U(rng), 360.0 * U(rng), 5.0 + 60.0 * U(rng), 360.0 * U(rng),
                             -50.0 + 100.0 * U(rng), 2.5, 0.25);
-    const double view = RadToDeg(sim::ViewAngle(c.pose));
+    const double view = RadToDeg(target::ViewAngle(c.pose));
     if (view < 20.0 || view > 160.0) continue;
     const geo::AzEl bore = geo::AzElFromEnu(c.pose.tail_centre_enu);
     CylinderRays noisy;
@@ -162,8 +161,8 @@ TEST(CylinderSolve, SearchAndClosedFormAgreeOnNoisyRays) {
       px += 0.3 * Eigen::Vector2d(N(rng), N(rng));
       *out[i] = cam.RayEnu(px, bore.az_rad, bore.el_rad);
     }
-    const CylinderSolveResult s = SolveCylinder(noisy, c.target, Opt(CylinderMethod::kSearch));
-    const CylinderSolveResult p = SolveCylinder(noisy, c.target, Opt(CylinderMethod::kP3P));
+    const CylinderSolveResult s = SolveCylinder(noisy, c.shape, Opt(CylinderMethod::kSearch));
+    const CylinderSolveResult p = SolveCylinder(noisy, c.shape, Opt(CylinderMethod::kP3P));
     ASSERT_EQ(s.solutions.size(), p.solutions.size()) << "case " << n << " view " << view;
     for (std::size_t i = 0; i < s.solutions.size(); ++i) {
       EXPECT_LT(AxisAngle(s.solutions[i].axis_enu, p.solutions[i].axis_enu), kAgreeRad) << "case " << n;
@@ -185,7 +184,7 @@ TEST(CylinderSolve, Seed004Table2HighElevationRowsAreTheMirrorSolution) {
   };
   for (const Row& r : {Row{42.376, 87.508, 19.738}, Row{62.207, 92.890, -3.629}, Row{74.490, 89.110, -17.532}}) {
     const Case c = MakeCase(1132.0, 326.2, r.el, 76.211, 31.257, 2.5, 0.25);
-    const CylinderSolveResult p = SolveCylinder(c.rays, c.target, Opt(CylinderMethod::kP3P));
+    const CylinderSolveResult p = SolveCylinder(c.rays, c.shape, Opt(CylinderMethod::kP3P));
     ASSERT_EQ(p.solutions.size(), 2u);
     const CylinderSolution& nearer = p.solutions.front();
     EXPECT_NEAR(RadToDeg(nearer.yaw_rad), r.yaw, kPaperTolDeg) << "E " << r.el;
@@ -202,8 +201,8 @@ TEST(CylinderSolve, SideOnViewsBothMethodsFindAllRoots) {
   for (double el : {0.0, 10.0}) {
     for (double yaw : {89.95, 90.0, 90.05, 90.5}) {
       const Case c = MakeCase(1000.0, 0.0, el, yaw, 0.0, 2.5, 0.25);
-      const CylinderSolveResult s = SolveCylinder(c.rays, c.target, Opt(CylinderMethod::kSearch));
-      const CylinderSolveResult p = SolveCylinder(c.rays, c.target, Opt(CylinderMethod::kP3P));
+      const CylinderSolveResult s = SolveCylinder(c.rays, c.shape, Opt(CylinderMethod::kSearch));
+      const CylinderSolveResult p = SolveCylinder(c.rays, c.shape, Opt(CylinderMethod::kP3P));
       ASSERT_EQ(s.solutions.size(), p.solutions.size()) << el << " " << yaw;
       ASSERT_GE(p.solutions.size(), 2u);
       double e = 0;
@@ -222,7 +221,7 @@ TEST(CylinderSolve, SideOnViewsBothMethodsFindAllRoots) {
 TEST(CylinderSolve, YawAcrossNorth) {
   for (double yaw : {359.99, 0.01, 180.0, 90.0}) {
     const Case c = MakeCase(1500.0, 75.0, 12.0, yaw, 20.0, 3.0, 0.3);
-    const CylinderSolveResult p = SolveCylinder(c.rays, c.target, Opt(CylinderMethod::kP3P));
+    const CylinderSolveResult p = SolveCylinder(c.rays, c.shape, Opt(CylinderMethod::kP3P));
     double e = 0;
     const CylinderSolution* best = Nearest(p, c.pose.Axis(), &e);
     ASSERT_NE(best, nullptr);
@@ -234,7 +233,7 @@ TEST(CylinderSolve, YawAcrossNorth) {
 }
 
 TEST(CylinderSolve, DegenerateRaysGiveNoSolution) {
-  const CylinderTarget target{2.5, 0.25};
+  const target::CylinderShape target{2.5, 0.25};
   CylinderRays same;
   same.nose = same.tail1 = same.tail2 = Eigen::Vector3d(0.3, 0.9, 0.1).normalized();
   for (CylinderMethod m : {CylinderMethod::kSearch, CylinderMethod::kP3P}) {
@@ -247,7 +246,7 @@ TEST(CylinderSolve, DegenerateRaysGiveNoSolution) {
 
 // Rays far too wide apart for the target (the points cannot belong to it): no solution rather than a wrong one.
 TEST(CylinderSolve, InconsistentRaysGiveNoSolution) {
-  const CylinderTarget target{2.5, 0.25};
+  const target::CylinderShape target{2.5, 0.25};
   CylinderRays r;
   r.nose = Eigen::Vector3d(0.0, 1.0, 0.0);
   r.tail1 = Eigen::Vector3d(0.2, 1.0, 0.01).normalized();
@@ -256,14 +255,6 @@ TEST(CylinderSolve, InconsistentRaysGiveNoSolution) {
     const CylinderSolveResult res = SolveCylinder(r, target, Opt(m));
     for (const CylinderSolution& s : res.solutions) EXPECT_LT(s.miss_m, 1e-9);  // any answer is an exact root
   }
-}
-
-TEST(CylinderTarget, ChecksValues) {
-  std::string why;
-  EXPECT_TRUE((CylinderTarget{2.5, 0.25}).Check(&why));
-  EXPECT_FALSE((CylinderTarget{0.0, 0.25}).Check(&why));
-  EXPECT_FALSE((CylinderTarget{2.5, -1.0}).Check(&why));
-  EXPECT_NEAR((CylinderTarget{2.0, 1.0}).SlantM(), std::sqrt(4.25), 1e-15);
 }
 
 }  // namespace

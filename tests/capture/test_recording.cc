@@ -12,14 +12,14 @@
 #include "capture/recorder.h"
 #include "capture/recover.h"
 #include "capture/station_config.h"
-#include "capture/trial_layout.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
 #include "io/json_util.h"
+#include "test_temp_dir.h"
+#include "trial/layout.h"
 #include "video/frame_sink.h"
 #include "video/frame_source.h"
-#include "test_temp_dir.h"
 
 namespace rk::capture {
 namespace {
@@ -40,7 +40,7 @@ io::Json SyntheticStation(const std::string& format = "y4m") {
 // Reads every frame of a camera as the manifest lists it and checks it against frames.csv.
 // Returns the number of frames.
 std::int64_t CheckCamera(const std::string& trial, const std::string& cam) {
-  const io::Json m = io::LoadJson(trial + "/" + kManifestFile);
+  const io::Json m = io::LoadJson(trial + "/" + trial::kManifestFile);
   std::vector<std::string> segs;
   for (const auto& v : m["cameras"][cam]["video"]) segs.push_back(trial + "/" + v.get<std::string>());
   const io::CsvTable t = io::CsvTable::Read(trial + "/" + m["cameras"][cam]["frames"].get<std::string>());

@@ -11,7 +11,6 @@
 
 #include "extract/features_detect.h"
 #include "extract/features_identify.h"
-#include "extract/features_model.h"
 #include "extract/features_run.h"
 #include "extract/features_tracker.h"
 #include "geo/angles.h"
@@ -19,12 +18,13 @@
 #include "sim/attitude_render.h"
 #include "sim/attitude_scenario.h"
 #include "sim/render.h"
+#include "target/feature_model.h"
 
 namespace rk::extract {
 namespace {
 
-TargetModel DefaultModel() {
-  TargetModel m;
+target::FeatureModel DefaultModel() {
+  target::FeatureModel m;
   m.source = "target.json";
   sim::DefaultAttitudeMarkers(&m.ids, &m.p_body);
   return m;
@@ -185,7 +185,7 @@ TEST(MarkerDetect, FindsEveryMarkerOnTheBodyAndNotTheGlint) {
 }
 
 // Detections from a random view of the model with the attitude camera.
-std::vector<Eigen::Vector2d> View(const TargetModel& m, std::uint64_t k, double range_m) {
+std::vector<Eigen::Vector2d> View(const target::FeatureModel& m, std::uint64_t k, double range_m) {
   const Eigen::Matrix3d R = sim::RandomRotation(31, k);
   const camera::CameraModel cam = sim::AttitudeCamera();
   std::vector<Eigen::Vector2d> px;
@@ -194,7 +194,7 @@ std::vector<Eigen::Vector2d> View(const TargetModel& m, std::uint64_t k, double 
 }
 
 TEST(Identify, AssignsIdsDespiteSpuriousMissingAndShuffledDetections) {
-  const TargetModel model = DefaultModel();
+  const target::FeatureModel model = DefaultModel();
   const AffineCameraModel affine(model);
   EXPECT_FALSE(affine.planar());
   int identified_views = 0;
@@ -248,7 +248,7 @@ TEST(Identify, AssignsIdsDespiteSpuriousMissingAndShuffledDetections) {
 TEST(Identify, RefusesASymmetricLayoutAndTooFewMarkers) {
   // A layout symmetric about the body x-z plane, seen along the body y axis: mirrored
   // assignments explain the image equally well → refused, never a guess.
-  TargetModel sym;
+  target::FeatureModel sym;
   sym.source = "sym.json";
   sym.ids = {"a", "b", "c", "d", "e", "f"};
   sym.p_body = {{0.4, 0.3, 0.0}, {0.4, -0.3, 0.0}, {-0.3, 0.2, 0.1}, {-0.3, -0.2, 0.1}, {0.0, 0.0, -0.3},
@@ -265,7 +265,7 @@ TEST(Identify, RefusesASymmetricLayoutAndTooFewMarkers) {
   const Identification id = Identify(px, sym, affine, IdentifyOptions{});
   EXPECT_FALSE(id.ok);
   EXPECT_TRUE(id.ambiguous) << id.why;
-  const TargetModel model = DefaultModel();
+  const target::FeatureModel model = DefaultModel();
   const AffineCameraModel a2(model);
   std::vector<Eigen::Vector2d> four = View(model, 1, 20.0);
   four.resize(4);
@@ -286,7 +286,7 @@ TEST(FeatureTracker, TracksThroughAHiddenMarkerWithoutIdentityErrors) {
   o.leg_in_s = 4.0;  // a brisk approach: 2.3 m in 2 s
   o.hides.push_back({"fin", 0.4, 0.4});
   const sim::AttitudeSimulator sim(o);
-  TargetModel model;
+  target::FeatureModel model;
   model.source = "target.json";
   model.ids = sim.marker_ids();
   model.p_body = sim.options().markers_body;
@@ -326,7 +326,7 @@ TEST(FeatureTracker, TracksThroughAHiddenMarkerWithoutIdentityErrors) {
 }
 
 TEST(FeaturePointsCsv, LongFormatOneRowPerFrameAndId) {
-  TargetModel model = DefaultModel();
+  target::FeatureModel model = DefaultModel();
   FeatureFrameResult r;
   r.frame = 7;
   r.t_s = 1.25;

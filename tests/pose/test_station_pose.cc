@@ -10,14 +10,14 @@
 #include <vector>
 
 #include "camera/camera_model.h"
-#include "extract/features_model.h"
-#include "extract/features_points.h"
 #include "geo/angles.h"
 #include "geo/body_attitude.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "locate/boresight.h"
+#include "pose/image_points.h"
 #include "pose/station_pose.h"
+#include "target/feature_model.h"
 
 namespace rk::pose {
 namespace {
@@ -34,7 +34,7 @@ camera::CameraModel AttitudeCamera() {
 }
 
 // A non-planar 8-marker target about 0.7 m across (the rk-sim attitude layout's scale).
-extract::TargetModel Model() {
+target::FeatureModel Model() {
   io::Json j = {{"points",
                  {{"nose", {0.40, 0.0, 0.02}},
                   {"tail", {-0.35, 0.0, -0.05}},
@@ -44,7 +44,7 @@ extract::TargetModel Model() {
                   {"belly", {0.12, 0.03, 0.12}},
                   {"ltail", {-0.30, -0.15, 0.0}},
                   {"canopy", {0.22, -0.02, -0.08}}}}};
-  return extract::TargetModelFromJson(j, "target.json");
+  return target::FeatureModelFromJson(j, "target.json");
 }
 
 struct Truth {
@@ -57,7 +57,7 @@ struct Truth {
 // Pixels of every model point for a station-frame truth (exact camera model incl. mount and
 // distortion), as an image-points CSV text.
 std::string PointsCsv(const std::vector<Truth>& truth, const camera::CameraModel& cam,
-                      const extract::TargetModel& model, double noise_px, std::uint64_t seed,
+                      const target::FeatureModel& model, double noise_px, std::uint64_t seed,
                       const std::vector<std::pair<int, std::string>>& drop = {}) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<double> g(0.0, noise_px);
@@ -159,7 +159,7 @@ TEST(BodyAttitude, EulerRoundTripAcrossWraps) {
 // 0/360 and roll crosses ±180 during the run.
 struct Scene {
   camera::CameraModel cam;
-  extract::TargetModel model = Model();
+  target::FeatureModel model = Model();
   std::vector<Truth> truth;
   std::string turret_csv;
 };
@@ -201,7 +201,7 @@ Scene MakeScene(int frames, double yaw0_deg, double roll0_deg) {
 
 AttitudeOiResult RunScene(const Scene& s, const std::string& points_csv, AttitudeOiOptions opt = {}) {
   const io::CsvTable pts = io::CsvTable::Parse(points_csv, "points.csv");
-  const extract::ImagePoints ip = extract::ReadImagePoints(pts, s.model);
+  const ImagePoints ip = ReadImagePoints(pts, s.model);
   const locate::TurretLog log = locate::ReadTurretLog(io::CsvTable::Parse(s.turret_csv, "turret.csv"));
   const locate::BoresightSource b = locate::BoresightSource::FromLog(log, track::InterpMethod::kCubic, 0.1);
   return RunAttitudeOi(ip, s.model, s.cam, b, opt);
@@ -260,7 +260,7 @@ TEST(AttitudeOi, SigmaColumnsMatchTheScatter) {
       csv += buf;
     }
   }
-  const extract::ImagePoints ip = extract::ReadImagePoints(io::CsvTable::Parse(csv, "p.csv"), s.model);
+  const ImagePoints ip = ReadImagePoints(io::CsvTable::Parse(csv, "p.csv"), s.model);
   AttitudeOiOptions opt;
   opt.sigma_px = 0.3;
   opt.turret_sigma_rad = 0.0;
@@ -343,7 +343,7 @@ TEST(AttitudeOi, PointsOfAMirroredTargetGiveNoPose) {
   // behind it, reflected through its centre): no proper pose in front of the camera fits a
   // non-planar target's mirror image, so the row is invalid (reprojection), never a wrong pose.
   Scene s = MakeScene(3, 200.0, 0.0);
-  extract::TargetModel mirrored = s.model;
+  target::FeatureModel mirrored = s.model;
   for (auto& p : mirrored.p_body) p.y() = -p.y();
   const std::string normal = PointsCsv(s.truth, s.cam, s.model, 0.02, 3);
   const std::string mirror = PointsCsv(s.truth, s.cam, mirrored, 0.02, 3);
@@ -368,7 +368,7 @@ TEST(AttitudeOi, DegenerateFrameIsInvalid) {
                   {"e", {0.0, 0.3, 0.0}},
                   {"f", {0.1, 0.0, 0.3}}}}};
   Scene s = MakeScene(3, 40.0, 0.0);
-  s.model = extract::TargetModelFromJson(j, "line.json");
+  s.model = target::FeatureModelFromJson(j, "line.json");
   const std::string csv = PointsCsv(s.truth, s.cam, s.model, 0.02, 3, {{1, "e"}, {1, "f"}});
   const AttitudeOiResult r = RunScene(s, csv);
   EXPECT_EQ(r.rows[0].status, RowStatus::kOk);
@@ -418,39 +418,6 @@ TEST(AttitudeOi, BadInputIsDataError) {
     EXPECT_EQ(e.code(), ExitCode::kInvalidData);
     EXPECT_NE(std::string(e.what()).find("turret.csv"), std::string::npos);
   }
-}
-
-TEST(TargetModel, RejectsBadModels) {
-  auto error_of = [](const io::Json& j) -> std::string {
-    try {
-      extract::TargetModelFromJson(j, "t.json");
-    } catch (const Error& e) {
-      return e.what();
-    }
-    return "no error";
-  };
-  EXPECT_NE(error_of({{"length_m", 1.0}}).find("missing field 'points'"), std::string::npos);
-  EXPECT_NE(error_of({{"points", {{"a", {0, 0, 0}}, {"b", {1, 0, 0}}, {"c", {0, 1, 0}}}}}).find("at least 4"),
-            std::string::npos);
-  EXPECT_NE(error_of({{"points", {{"a", {0, 0, 0}}, {"b", {1, 0, 0}}, {"c", {2, 0, 0}}, {"d", {3, 0, 0}}}}})
-                .find("collinear"),
-            std::string::npos);
-  EXPECT_NE(error_of({{"points", {{"a", {0, 0, 0}}, {"b", {1, 0, 0}}, {"c", {0, 1, 0}}, {"d", {1e300, 0, 0}}}}})
-                .find("within 10 km"),
-            std::string::npos);
-  EXPECT_NE(error_of({{"points", {{"a", {0, 0, 0}}, {"b", {1, 0, 0}}, {"c", {0, 1, 0}}, {"d", {0, 0}}}}})
-                .find("[x, y, z]"),
-            std::string::npos);
-  EXPECT_NE(error_of({{"points", {{"a,b", {0, 0, 0}}, {"b", {1, 0, 0}}, {"c", {0, 1, 0}}, {"d", {0, 0, 1}}}}})
-                .find("no ','"),
-            std::string::npos);
-  EXPECT_NE(error_of({{"points", {{"a", {0, 0, 0}}, {"b", {0, 0, 0}}, {"c", {0, 1, 0}}, {"d", {0, 0, 1}}}}})
-                .find("coincide"),
-            std::string::npos);
-  const extract::TargetModel m = Model();
-  EXPECT_EQ(m.Find("nose"), 5);  // belly canopy fin ltail lwing nose ...
-  EXPECT_EQ(m.Find("zzz"), -1);
-  EXPECT_GT(m.Planarity(), 0.05);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// Unit tests of rangekit::run: SHA-256 against FIPS 180-4 test vectors, JSON positions, the manifest's
+// Unit tests of rangekit::run: SHA-256 against FIPS 180-4 test vectors, the manifest's
 // checks (errors at trial.json:LINE:COL), the step graph (SPEC.md §1.1 command lines), the size+mtime
 // digest shortcut, the trial lock, and the out/ swap with its recovery.
 #include <gtest/gtest.h>
@@ -16,7 +16,6 @@
 #include "run/digest.h"
 #include "run/elf_build_id.h"
 #include "run/process.h"
-#include "run/json_positions.h"
 #include "run/manifest.h"
 #include "run/plan.h"
 #include "run/sha256.h"
@@ -80,24 +79,6 @@ TEST(Sha256, FileMatchesString) {
 }
 
 // ------------------------------------------------------------------------------------------ positions
-TEST(JsonPositions, NestedValuesKeysAndComments) {
-  const std::string text =
-      "{\n"
-      "  // comment with \"quotes\" and { braces\n"
-      "  \"a\": {\"b\": [1, {\"c\": \"x\"}]},\n"
-      "  /* block\n comment */ \"d/e\": true\n"
-      "}\n";
-  JsonPositions p(text);
-  EXPECT_EQ(p.At("/a").line, 3u);
-  EXPECT_EQ(p.At("/a").column, 8u);
-  EXPECT_EQ(p.At("/a/b/1/c").line, 3u);
-  EXPECT_EQ(p.At("/a/b/1/c").column, 24u);
-  EXPECT_EQ(p.KeyAt("/d~1e").line, 5u);
-  EXPECT_EQ(p.KeyAt("/d~1e").column, 13u);
-  // Unknown pointers fall back to the nearest ancestor.
-  EXPECT_EQ(p.At("/a/zzz").line, 3u);
-}
-
 // ------------------------------------------------------------------------------------------- manifest
 const char* const kBeaconManifest = R"({"name": "t0001", "epoch_utc": "2026-11-21T08:00:00Z",
  "station": {"lat_deg": 10, "lon_deg": 20, "h_m": 5},

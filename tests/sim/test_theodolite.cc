@@ -10,7 +10,6 @@
 #include "geo/line_of_sight.h"
 #include "io/csv.h"
 #include "io/error.h"
-#include "sim/theodolite_render.h"
 #include "sim/theodolite_scene.h"
 #include "sim/theodolite_trial.h"
 
@@ -19,48 +18,13 @@ namespace {
 
 using geo::DegToRad;
 
-constexpr double kGeomM = 1e-9;   // metres, double precision on ~1e3 m coordinates
 constexpr double kPixel = 1e-7;   // px, projection round trips
-constexpr double kArea = 1e-5;    // px², polygon clipping sums (float coverage)
 
 TEST(TheodoliteScene, Seed004CameraIsThePapersSetUp) {
   const camera::CameraModel c = Seed004Camera();
   EXPECT_EQ(c.width_px, 1536);  // 16.9 mm / 0.011 mm
   EXPECT_NEAR(c.fx(), 1500.0 / 0.011, 1e-9);
   EXPECT_NEAR(c.principal_point_px.x(), 767.5, 0);
-}
-
-TEST(TheodoliteScene, SilhouettePointsAreTheEdgeOnDiameter) {
-  CylinderShape shape;
-  shape.length_m = 3.0;
-  shape.diameter_m = 0.4;
-  for (double yaw : {0.0, 76.211, 200.0, 359.9}) {
-    const CylinderPose pose = PoseAt(1500.0, DegToRad(326.2), DegToRad(20.0), DegToRad(yaw), DegToRad(31.257), shape);
-    const SilhouettePoints3d p = SilhouettePointsOf(pose, shape);
-    const double slant = std::sqrt(0.04 + 9.0);
-    EXPECT_NEAR((p.nose - p.tail1).norm(), slant, kGeomM);
-    EXPECT_NEAR((p.nose - p.tail2).norm(), slant, kGeomM);
-    EXPECT_NEAR((p.tail1 - p.tail2).norm(), 0.4, kGeomM);
-    EXPECT_NEAR((p.nose - p.tail_centre).norm(), 3.0, kGeomM);
-    // Edge-on: the diameter is perpendicular to the axis and to the line of sight; R2 = R3.
-    EXPECT_NEAR((p.tail1 - p.tail2).dot(pose.Axis()), 0.0, kGeomM);
-    EXPECT_NEAR((p.tail1 - p.tail2).normalized().dot(p.tail_centre.normalized()), 0.0, 1e-12);
-    EXPECT_NEAR(p.tail1.norm(), p.tail2.norm(), kGeomM);
-    // The mid-point is at the requested range and direction.
-    const Eigen::Vector3d mid = p.tail_centre + 1.5 * pose.Axis();
-    EXPECT_NEAR(mid.norm(), 1500.0, kGeomM);
-  }
-}
-
-TEST(TheodoliteScene, ViewAngleConventions) {
-  CylinderShape shape;
-  CylinderPose away;  // axis north, target north of the station: tail chase
-  away.tail_centre_enu = Eigen::Vector3d(0, 1000, 0);
-  away.yaw_rad = 0.0;
-  away.pitch_rad = 0.0;
-  EXPECT_NEAR(ViewAngle(away), 0.0, 1e-12);
-  away.yaw_rad = DegToRad(90.0);
-  EXPECT_NEAR(ViewAngle(away), M_PI / 2, 1e-12);
 }
 
 TEST(TheodoliteSimulator, ExactProjectionTrackingAndLog) {
@@ -122,43 +86,6 @@ TEST(TheodoliteSimulator, QuantisationAndDeterminism) {
   bad.shape.nose_length_m = 3.0;
   std::string why;
   EXPECT_FALSE(bad.Check(&why));
-}
-
-TEST(TheodoliteRender, CoverageSumsToThePolygonArea) {
-  // A slanted quadrilateral and a thin sliver: per-pixel clipped areas add up to the area.
-  const std::vector<std::vector<Eigen::Vector2d>> polys = {
-      {{10.3, 5.2}, {30.7, 9.9}, {25.1, 28.4}, {8.9, 20.05}},
-      {{3.0, 3.0}, {40.0, 3.4}, {40.0, 3.9}},
-  };
-  for (const auto& poly : polys) {
-    const cv::Mat cov = RasterizeConvexPolygon(poly, cv::Rect(0, 0, 48, 40));
-    EXPECT_NEAR(cv::sum(cov)[0], PolygonArea(poly), kArea);
-  }
-  // Pixel (5, 5) fully inside a big square, pixel (9, 5) half covered.
-  const std::vector<Eigen::Vector2d> sq = {{0.0, 0.0}, {9.0, 0.0}, {9.0, 9.0}, {0.0, 9.0}};
-  const cv::Mat cov = RasterizeConvexPolygon(sq, cv::Rect(0, 0, 12, 12));
-  EXPECT_NEAR(cov.at<float>(5, 5), 1.0, 1e-6);
-  EXPECT_NEAR(cov.at<float>(5, 9), 0.5, 1e-6);
-  EXPECT_NEAR(cov.at<float>(5, 10), 0.0, 1e-6);
-}
-
-TEST(TheodoliteRender, OutlineHasTheTipAndTheTailPoints) {
-  TheodoliteSimOptions o;
-  const TheodoliteSimulator sim(o);
-  const TheodoliteFrameTruth& f = sim.frames().front();
-  const auto poly = SilhouettePolygon(o.camera, f.pose, o.shape, f.boresight_az_rad, f.boresight_el_rad);
-  ASSERT_GE(poly.size(), 8u);
-  double best_tip = 1e9, best_t1 = 1e9, best_t2 = 1e9;
-  for (const auto& p : poly) {
-    best_tip = std::min(best_tip, (p - f.nose_px).norm());
-    best_t1 = std::min(best_t1, (p - f.tail1_px).norm());
-    best_t2 = std::min(best_t2, (p - f.tail2_px).norm());
-  }
-  EXPECT_LT(best_tip, kPixel);  // the tip is a hull vertex
-  // The rim is sampled every 2π/2048: the tail points are within one sample spacing of a hull vertex.
-  const double r_px = 0.5 * (f.tail1_px - f.tail2_px).norm();
-  EXPECT_LT(best_t1, r_px * 2 * M_PI / 2048);
-  EXPECT_LT(best_t2, r_px * 2 * M_PI / 2048);
 }
 
 TEST(TheodoliteTrial, WritesTheFilesAtomically) {

@@ -20,14 +20,14 @@
 #include <string>
 #include <vector>
 
-#include "extract/features_model.h"
 #include "io/csv.h"
 #include "io/row_status.h"
+#include "target/feature_model.h"
 
-namespace rk::extract {
+namespace rk::pose {
 
 struct ImagePoint {
-  int model_index = -1;                  // into TargetModel::ids
+  int model_index = -1;                  // into target::FeatureModel::ids
   Eigen::Vector2d px{0, 0};
   std::optional<double> sigma_px;        // from the file, if given
   std::size_t line = 0, col_x = 0;       // where x_px is (messages)
@@ -49,8 +49,8 @@ struct ImagePoints {
   std::size_t unusable_rows = 0;         // rows without a usable measurement
 };
 
-ImagePoints ReadImagePoints(const io::CsvTable& table, const TargetModel& model);
+ImagePoints ReadImagePoints(const io::CsvTable& table, const target::FeatureModel& model);
 // The cells ReadImagePoints needs of every row (for io::CsvReadOptions::rule, --bad-rows skip).
 io::CsvRowRule ImagePointsRowRule();
 
-}  // namespace rk::extract
+}  // namespace rk::pose

@@ -8,7 +8,7 @@
 #include <map>
 #include <string>
 
-namespace rk::run {
+namespace rk::trial {
 
 struct TextPosition {
   std::size_t line = 0;    // 1-based; 0 = unknown
@@ -34,4 +34,4 @@ class JsonPositions {
 // JSON pointer escaping of one reference token (~ → ~0, / → ~1).
 std::string PointerToken(const std::string& key);
 
-}  // namespace rk::run
+}  // namespace rk::trial

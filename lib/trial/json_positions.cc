@@ -1,8 +1,8 @@
-#include "run/json_positions.h"
+#include "trial/json_positions.h"
 
 #include <cctype>
 
-namespace rk::run {
+namespace rk::trial {
 namespace {
 
 class Scanner {
@@ -189,4 +189,4 @@ TextPosition JsonPositions::KeyAt(const std::string& pointer) const {
   return At(pointer);
 }
 
-}  // namespace rk::run
+}  // namespace rk::trial

@@ -1,18 +1,28 @@
-// Names and columns of the trial directory written by rk-capture (SPEC.md §6, docs/rk-capture.md).
+// Names and columns of the files of a trial directory (SPEC.md §6), written by rk-capture and rk-sim and read
+// by rk-run and `rk-capture recover` (docs/rk-capture.md, docs/rk-run.md). Paths in the manifest are relative
+// to the trial folder; a camera's files sit in a folder named after the camera (CameraFile).
 #pragma once
 
-namespace rk::capture {
+#include <string>
+
+namespace rk::trial {
 
 inline constexpr const char* kManifestFile = "trial.json";
 inline constexpr const char* kEventsFile = "events.log";
 inline constexpr const char* kRangeFile = "range.csv";
 inline constexpr const char* kTurretFile = "turret.csv";
+inline constexpr const char* kTheodoliteFile = "theodolite.csv";
+inline constexpr const char* kRadarPlotsFile = "plots.csv";
+inline constexpr const char* kRadarNavFile = "nav.csv";
 inline constexpr const char* kFramesFile = "frames.csv";  // in each camera's folder
 inline constexpr const char* kCameraModelFile = "camera.json";
 inline constexpr const char* kTargetModelFile = "target.json";
 // Held (flock) by rk-capture while it records into the folder; the kernel releases it when the
 // process ends, even by kill -9. `recover` refuses a folder whose lock is held.
-inline constexpr const char* kLockFile = ".rk-capture.lock";
+inline constexpr const char* kCaptureLockFile = ".rk-capture.lock";
+
+// "<camera>/<file>": a file of a camera's folder, as the manifest names it.
+inline std::string CameraFile(const std::string& camera, const char* file) { return camera + "/" + file; }
 
 // frame: 0-based decode index over all segments; seq: the source's frame counter (a jump = frames
 // dropped before the disk); segment: index of the segment holding the frame.
@@ -22,4 +32,4 @@ inline constexpr const char* kRangeColumns = "t_s,range_m,status,host_mono_s,hos
 inline constexpr const char* kTurretColumns =
     "t_s,az_deg,el_deg,pan_pos,tilt_pos,pan_res_arcsec,tilt_res_arcsec,pair_dt_s,host_mono_s,host_real_s";
 
-}  // namespace rk::capture
+}  // namespace rk::trial

@@ -1,4 +1,4 @@
-// Target model of feature points (SPEC.md §3 "Target attitude"): a JSON object
+// target::FeatureModel, the target model of feature points (SPEC.md §3 "Target attitude"): a JSON object
 //   {"points": {"<id>": [x, y, z], ...}}
 // with coordinates in body metres (body frame x forward/nose, y right, z down). Other keys
 // are allowed and ignored. Used by `rk-extract features` (which ids to look for, and the
@@ -18,9 +18,9 @@
 
 #include "io/json_util.h"
 
-namespace rk::extract {
+namespace rk::target {
 
-struct TargetModel {
+struct FeatureModel {
   std::string source;                   // file name, for messages
   std::vector<std::string> ids;         // sorted
   std::vector<Eigen::Vector3d> p_body;  // same order (m)
@@ -34,8 +34,8 @@ struct TargetModel {
   std::string IdList() const;
 };
 
-TargetModel LoadTargetModel(const std::string& path);
-TargetModel TargetModelFromJson(const io::Json& j, const std::string& where);
-io::Json TargetModelToJson(const TargetModel& model);
+FeatureModel LoadFeatureModel(const std::string& path);
+FeatureModel FeatureModelFromJson(const io::Json& j, const std::string& where);
+io::Json FeatureModelToJson(const FeatureModel& model);
 
-}  // namespace rk::extract
+}  // namespace rk::target

@@ -1,13 +1,13 @@
-// Image-points CSV reader; format in features_points.h.
-#include "extract/features_points.h"
+// Image-points CSV reader; format in image_points.h.
+#include "pose/image_points.h"
 
 #include <set>
 
 #include "io/error.h"
 
-namespace rk::extract {
+namespace rk::pose {
 
-ImagePoints ReadImagePoints(const io::CsvTable& table, const TargetModel& model) {
+ImagePoints ReadImagePoints(const io::CsvTable& table, const target::FeatureModel& model) {
   ImagePoints out;
   out.source = table.name();
   const int c_t = table.RequireColumn("t_s");
@@ -107,4 +107,4 @@ io::CsvRowRule ImagePointsRowRule() {
   return rule;
 }
 
-}  // namespace rk::extract
+}  // namespace rk::pose

@@ -1,5 +1,5 @@
-// Target model JSON; format and checks in features_model.h.
-#include "extract/features_model.h"
+// Target model JSON; format and checks in feature_model.h.
+#include "target/feature_model.h"
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -7,9 +7,9 @@
 
 #include "io/error.h"
 
-namespace rk::extract {
+namespace rk::target {
 
-int TargetModel::Find(std::string_view id) const {
+int FeatureModel::Find(std::string_view id) const {
   const auto it = std::lower_bound(ids.begin(), ids.end(), id, [](const std::string& a, std::string_view b) {
     return std::string_view(a) < b;
   });
@@ -17,7 +17,7 @@ int TargetModel::Find(std::string_view id) const {
   return static_cast<int>(it - ids.begin());
 }
 
-double TargetModel::Planarity() const {
+double FeatureModel::Planarity() const {
   if (p_body.size() < 3) return 0.0;
   Eigen::Vector3d c = Eigen::Vector3d::Zero();
   for (const auto& p : p_body) c += p;
@@ -29,20 +29,20 @@ double TargetModel::Planarity() const {
   return l1 > 0 ? std::max(0.0, es.eigenvalues()(0)) / l1 : 0.0;
 }
 
-std::string TargetModel::IdList() const {
+std::string FeatureModel::IdList() const {
   std::string s;
   for (const auto& id : ids) s += (s.empty() ? "" : ", ") + id;
   return s;
 }
 
-TargetModel TargetModelFromJson(const io::Json& j, const std::string& where) {
+FeatureModel FeatureModelFromJson(const io::Json& j, const std::string& where) {
   if (!j.is_object()) throw DataError(where, 0, 0, "target model must be a JSON object");
   if (!j.contains("points")) {
     throw DataError(where, 0, 0, "missing field 'points' (expected {\"points\": {\"<id>\": [x, y, z], ...}})");
   }
   const io::Json& pts = j.at("points");
   if (!pts.is_object()) throw DataError(where, 0, 0, "field 'points' must be an object of id: [x, y, z]");
-  TargetModel m;
+  FeatureModel m;
   m.source = where;
   constexpr double kMaxCoordM = 1e4;
   for (auto it = pts.begin(); it != pts.end(); ++it) {
@@ -73,7 +73,7 @@ TargetModel TargetModelFromJson(const io::Json& j, const std::string& where) {
     std::vector<std::size_t> order(m.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return m.ids[a] < m.ids[b]; });
-    TargetModel sorted;
+    FeatureModel sorted;
     sorted.source = m.source;
     for (std::size_t i : order) {
       sorted.ids.push_back(m.ids[i]);
@@ -105,9 +105,9 @@ TargetModel TargetModelFromJson(const io::Json& j, const std::string& where) {
   return m;
 }
 
-TargetModel LoadTargetModel(const std::string& path) { return TargetModelFromJson(io::LoadJson(path), path); }
+FeatureModel LoadFeatureModel(const std::string& path) { return FeatureModelFromJson(io::LoadJson(path), path); }
 
-io::Json TargetModelToJson(const TargetModel& model) {
+io::Json FeatureModelToJson(const FeatureModel& model) {
   io::Json pts = io::Json::object();
   for (std::size_t i = 0; i < model.size(); ++i) {
     pts[model.ids[i]] = {model.p_body[i].x(), model.p_body[i].y(), model.p_body[i].z()};
@@ -115,4 +115,4 @@ io::Json TargetModelToJson(const TargetModel& model) {
   return io::Json{{"points", pts}};
 }
 
-}  // namespace rk::extract
+}  // namespace rk::target

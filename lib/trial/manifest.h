@@ -1,0 +1,84 @@
+// The trial manifest trial.json (SPEC.md §6): one struct, its reader (every field checked, errors that name
+// trial.json's line and column) and its writer. rk-sim and rk-capture write it, rk-run reads it (and checks
+// "steps" against its own step kinds, run/manifest.h); `rk-capture recover` repairs it as raw JSON (it must
+// keep whatever a torn recording left) using the names of trial/layout.h.
+//
+// The manifest describes the trial's files: the station, the cameras (video, frame times, camera model,
+// role, target model), the turret, range and theodolite logs and the radar files, all as paths relative to
+// the trial folder; "steps" holds rk-run's per-step options (docs/rk-run.md); other keys (the writer's own
+// record: "sim", "capture", an operator's notes) are kept as they are.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "io/json_util.h"
+#include "trial/json_positions.h"
+
+namespace rk::trial {
+
+enum class CameraRole { kBeacon, kFeatures, kSilhouette };
+const char* CameraRoleName(CameraRole role);
+// "beacon", "features", "silhouette" → *role; false for any other text.
+bool ParseCameraRole(const std::string& text, CameraRole* role);
+
+struct CameraEntry {
+  std::string name;                 // key in "cameras" (also the folder name in out/)
+  std::vector<std::string> video;   // segments or image-sequence patterns, relative to the trial dir
+  std::string frames;               // frame-times CSV (empty when fps is given instead)
+  std::optional<double> fps;        // constant frame rate (Hz) when there is no frames CSV
+  std::optional<double> t0_s;       // time of frame 0 with fps (s)
+  std::string model;                // camera model JSON (written as null when empty)
+  CameraRole role = CameraRole::kBeacon;
+  std::string target;               // target model JSON (features, silhouette)
+  std::optional<std::pair<double, double>> boresight_deg;  // fixed camera (az, el) when no turret log
+};
+
+struct RadarEntry {
+  std::string plots;  // radar plots CSV
+  std::string nav;    // platform navigation CSV
+};
+
+struct Manifest {
+  // Where it was read from (empty for a manifest being written).
+  std::string manifest_path;  // absolute path of trial.json
+  std::string dir;            // absolute trial directory (the manifest's folder)
+  std::string text;           // the file's text (its SHA-256 is part of rk-run's report)
+  io::Json json;              // the whole manifest, extra keys included
+  JsonPositions positions;
+
+  std::string name;           // "name", else the folder's name
+  std::string epoch_utc;
+  io::Json station;           // {"lat_deg","lon_deg","h_m"} or null (kept as JSON: written as given)
+  std::vector<CameraEntry> cameras;  // read: in name order
+  std::string turret, range, theodolite;  // empty = none
+  std::optional<RadarEntry> radar;
+  io::Json steps = io::Json::object();  // rk-run's "steps" object (the reader checks only that it is one)
+  // Written: further top-level keys, e.g. {"sim": {...}} or {"capture": {...}} (read: see `json`).
+  io::Json extra = io::Json::object();
+
+  // Every path the manifest names (trial files), relative to dir, in a stable order.
+  std::vector<std::string> AllPaths() const;
+};
+
+// Reads and checks trial.json. `path` may name the manifest or the trial directory (then
+// DIR/trial.json). Throws IoError (unreadable), DataError "trial.json:LINE:COL: field: what".
+Manifest LoadManifest(const std::string& path);
+// The same from text (tests); `manifest_path` names the file in messages and gives the trial dir.
+Manifest ParseManifest(const std::string& text, const std::string& manifest_path);
+
+// DataError at the value (or, at_key, the key) of JSON pointer `pointer` of a manifest read from `file`:
+// "file:LINE:COL: dotted.pointer: what".
+[[noreturn]] void FailAt(const std::string& file, const JsonPositions& positions, const std::string& pointer,
+                         const std::string& what, bool at_key = false);
+
+// The manifest as written: name, epoch_utc, station, cameras (video always a list; model null when empty;
+// frames, target, fps, t0_s, boresight_deg only when set), turret/range/theodolite (path or null), radar
+// (object or null), steps, then the keys of `extra`.
+io::Json ManifestToJson(const Manifest& manifest);
+// ManifestToJson written atomically (io::WriteJson) to `path`.
+void WriteManifest(const std::string& path, const Manifest& manifest);
+
+}  // namespace rk::trial
