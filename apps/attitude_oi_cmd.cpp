@@ -91,7 +91,8 @@ int RunOi(const OiArgs& a, const Context& ctx) {
 
   const target::FeatureModel model = target::LoadFeatureModel(a.target);
   const camera::CameraModel camera = camera::LoadCameraModel(a.camera);
-  const pose::ImagePoints points = pose::ReadImagePoints(io::CsvTable::Read(a.points, {a.bad_rows, pose::ImagePointsRowRule()}), model);
+  const pose::ImagePoints points =
+      pose::ReadImagePoints(io::CsvTable::Read(a.points, {a.bad_rows, pose::ImagePointsRowRule()}), model);
   if (points.frames.empty()) throw DataError(points.source, 0, 0, "no image points (header only)");
   std::optional<locate::TurretLog> turret_log;
   if (!a.turret.empty()) turret_log = locate::ReadTurretLog(io::CsvTable::Read(a.turret, {a.bad_rows, locate::TurretLogRowRule()}));

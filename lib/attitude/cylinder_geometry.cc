@@ -32,7 +32,8 @@ RayAngles AnglesOf(const CylinderRays& r) {
   return a;
 }
 
-Eigen::Vector3d DistanceResiduals(const RayAngles& a, const target::CylinderShape& t, const Eigen::Vector3d& R) {
+Eigen::Vector3d DistanceResiduals(const RayAngles& a, const target::CylinderShape& t,
+                                  const Eigen::Vector3d& R) {
   const double L2 = t.SlantM() * t.SlantM();
   const double d2 = t.diameter_m * t.diameter_m;
   auto side2 = [](double x, double y, double k) { return (x - y) * (x - y) + 2.0 * x * y * k; };
@@ -43,8 +44,8 @@ double AxisAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return std::atan2(a.cross(b).norm(), a.dot(b));
 }
 
-CylinderSolution SolutionFromRanges(const CylinderRays& rays, const RayAngles& a, const target::CylinderShape& t,
-                                    const Eigen::Vector3d& R) {
+CylinderSolution SolutionFromRanges(const CylinderRays& rays, const RayAngles& a,
+                                    const target::CylinderShape& t, const Eigen::Vector3d& R) {
   CylinderSolution s;
   s.range_m = R;
   s.nose_enu = R(0) * rays.nose;
@@ -93,7 +94,8 @@ double MaxNoseRange(const RayAngles& a, const target::CylinderShape& t) {
   return s > 0.0 ? t.SlantM() / s : std::numeric_limits<double>::infinity();
 }
 
-Eigen::Vector3d PolishRanges(const RayAngles& a, const target::CylinderShape& t, const Eigen::Vector3d& R0, int iterations) {
+Eigen::Vector3d PolishRanges(const RayAngles& a, const target::CylinderShape& t, const Eigen::Vector3d& R0,
+                             int iterations) {
   Eigen::Vector3d R = R0;
   Eigen::Vector3d F = DistanceResiduals(a, t, R);
   double norm = F.norm();

@@ -2,8 +2,8 @@
 // mono-view"): a cylindrical target seen from one station, three silhouette points.
 //
 //   P1 = nose tip (id `nose`), P2, P3 = the two ends of the tail-rim diameter seen edge-on
-//   (ids `tail1`, `tail2`, SPEC.md §3). With length l (nose to tail plane) and diameter d (target::CylinderShape,
-//   target/cylinder.h; L' = SlantM()):
+//   (ids `tail1`, `tail2`, SPEC.md §3). With length l (nose to tail plane) and diameter d
+//   (target::CylinderShape, target/cylinder.h; L' = SlantM()):
 //     |P2 − P3| = d,   |P1 − P2| = |P1 − P3| = L' = sqrt((d/2)² + l²)        (paper eq. 2)
 //   Each point lies on its line of sight from the station: P_i = R_i u_i, |u_i| = 1 (station ENU, origin at
 //   the theodolite rotation centre, u_i from SPEC.md §3's exact pixel → ray geometry, never the paper's
@@ -51,7 +51,8 @@ struct RayAngles {
 RayAngles AnglesOf(const CylinderRays& rays);
 
 // Residuals (m²) F1, F2, F3 of the three distance equations for ranges R = (R1, R2, R3).
-Eigen::Vector3d DistanceResiduals(const RayAngles& a, const target::CylinderShape& target, const Eigen::Vector3d& R);
+Eigen::Vector3d DistanceResiduals(const RayAngles& a, const target::CylinderShape& target,
+                                  const Eigen::Vector3d& R);
 
 // One solution of the isosceles P3P, with the axis it implies.
 struct CylinderSolution {
@@ -71,8 +72,8 @@ struct CylinderSolution {
 };
 
 // Completes a solution from its ranges: points, tail centre, axis, yaw, pitch, residual, tilt.
-CylinderSolution SolutionFromRanges(const CylinderRays& rays, const RayAngles& a, const target::CylinderShape& target,
-                                    const Eigen::Vector3d& range_m);
+CylinderSolution SolutionFromRanges(const CylinderRays& rays, const RayAngles& a,
+                                    const target::CylinderShape& target, const Eigen::Vector3d& range_m);
 
 // Angle between two unit axes (rad), in [0, π].
 double AxisAngle(const Eigen::Vector3d& a, const Eigen::Vector3d& b);
@@ -85,14 +86,15 @@ struct BranchPoint {
   double R1 = 0, R2 = 0, R3 = 0, f = 0;
   bool valid = false;
 };
-BranchPoint EvaluateBranch(const RayAngles& a, const target::CylinderShape& target, int s2, int s3, double R1);
+BranchPoint EvaluateBranch(const RayAngles& a, const target::CylinderShape& target, int s2, int s3,
+                           double R1);
 
 // Largest nose range for which both tail ranges are real: L' / max(s12, s13) (m); +inf if the rays coincide.
 double MaxNoseRange(const RayAngles& a, const target::CylinderShape& target);
 
 // Newton polish of (R1, R2, R3) on F1..F3 (at most `iterations` steps, stops when a step no longer reduces
 // the residual). Returns the polished ranges.
-Eigen::Vector3d PolishRanges(const RayAngles& a, const target::CylinderShape& target, const Eigen::Vector3d& R,
-                             int iterations = 8);
+Eigen::Vector3d PolishRanges(const RayAngles& a, const target::CylinderShape& target,
+                             const Eigen::Vector3d& R, int iterations = 8);
 
 }  // namespace rk::attitude

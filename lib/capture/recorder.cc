@@ -602,12 +602,10 @@ io::Json Recorder::ManifestJson(const std::string& state) {
   m.station = cfg_.station;
   std::lock_guard<std::mutex> lock(manifest_mutex_);
   for (const auto& cam : cameras_) {
-    trial::CameraEntry c;
-    c.name = cam->cfg.name;
-    c.video = video_lists_[cam->cfg.name];
-    c.frames = trial::CameraFile(cam->cfg.name, trial::kFramesFile);
-    if (!cam->cfg.model_path.empty()) c.model = trial::CameraFile(cam->cfg.name, trial::kCameraModelFile);
-    trial::ParseCameraRole(cam->cfg.role, &c.role);  // checked by the station configuration's reader
+    trial::CameraRole role = trial::CameraRole::kBeacon;
+    trial::ParseCameraRole(cam->cfg.role, &role);  // checked by the station configuration's reader
+    trial::CameraEntry c = trial::CameraInItsFolder(cam->cfg.name, role, video_lists_[cam->cfg.name]);
+    if (cam->cfg.model_path.empty()) c.model.clear();  // written as null
     if (!cam->cfg.target_path.empty()) c.target = trial::CameraFile(cam->cfg.name, trial::kTargetModelFile);
     m.cameras.push_back(c);
   }

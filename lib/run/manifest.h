@@ -1,6 +1,6 @@
 // The trial manifest trial.json (SPEC.md §6) as rk-run reads it: lib/trial's reader, then rk-run's checks of
-// "steps", with errors that name trial.json's line and column. The form of "steps" (per-step option overrides and
-// switches) is rk-run's and is documented in docs/rk-run.md:
+// "steps", with errors that name trial.json's line and column. The form of "steps" (per-step option overrides
+// and switches) is rk-run's and is documented in docs/rk-run.md:
 //   "steps": {"locate": {"range-interp": "linear"},      // options of every beacon camera's locate
 //             "az/extract-beacon": {"k-detect": 6},       // camera "az" only (merged over the above)
 //             "resample-range": false,                    // switch a step off
@@ -53,7 +53,8 @@ struct TrialManifest : trial::Manifest {
 };
 
 // Reads and checks trial.json (trial::LoadManifest), then its "steps". `path` may name the manifest or the
-// trial directory (then DIR/trial.json). Throws IoError (unreadable), DataError "trial.json:LINE:COL: field: what".
+// trial directory (then DIR/trial.json). Throws IoError (unreadable), DataError "trial.json:LINE:COL: field:
+// what".
 TrialManifest LoadManifest(const std::string& path);
 // The same from text (tests); `manifest_path` names the file in messages and gives the trial dir.
 TrialManifest ParseManifest(const std::string& text, const std::string& manifest_path);

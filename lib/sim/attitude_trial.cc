@@ -69,13 +69,15 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
   io::MakeDirectories(dir.Path("truth"));
 
   AttitudeTrialSummary sum;
-  io::WriteJson(dir.Path(trial::CameraFile(kCamera, trial::kCameraModelFile)), camera::CameraModelToJson(so.camera));
+  io::WriteJson(dir.Path(trial::CameraFile(kCamera, trial::kCameraModelFile)),
+                camera::CameraModelToJson(so.camera));
   {
     io::Json pts = io::Json::object();
     for (std::size_t i = 0; i < so.marker_ids.size(); ++i) {
       pts[so.marker_ids[i]] = {so.markers_body[i].x(), so.markers_body[i].y(), so.markers_body[i].z()};
     }
-    io::WriteJson(dir.Path(trial::kTargetModelFile), io::Json{{"points", pts}, {"marker_radius_m", so.marker_radius_m}});
+    io::WriteJson(dir.Path(trial::kTargetModelFile),
+                  io::Json{{"points", pts}, {"marker_radius_m", so.marker_radius_m}});
   }
 
   io::CsvWriter frames_csv({"frame", "t_s"});
@@ -164,12 +166,7 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
   // Without video there is nothing for rk-extract to read: the camera is left out of the manifest
   // (SPEC.md §6 wants a non-empty video list), the model and frame times are still written.
   if (opt.video) {
-    trial::CameraEntry att;
-    att.name = kCamera;
-    att.video = {video_rel};
-    att.frames = trial::CameraFile(kCamera, trial::kFramesFile);
-    att.model = trial::CameraFile(kCamera, trial::kCameraModelFile);
-    att.role = trial::CameraRole::kFeatures;
+    trial::CameraEntry att = trial::CameraInItsFolder(kCamera, trial::CameraRole::kFeatures, {video_rel});
     att.target = trial::kTargetModelFile;
     m.cameras = {att};
   }

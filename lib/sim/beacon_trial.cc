@@ -71,7 +71,8 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
 
   TrialSummary sum;
   // Camera model and frame times.
-  io::WriteJson((root / trial::CameraFile(kCamera, trial::kCameraModelFile)).string(), camera::CameraModelToJson(so.camera));
+  io::WriteJson((root / trial::CameraFile(kCamera, trial::kCameraModelFile)).string(),
+                camera::CameraModelToJson(so.camera));
   io::CsvWriter frames_csv({"frame", "t_s"});
   io::CsvWriter beacon_csv({"frame", "t_s", "x_px", "y_px", "visible", "distractor_min_dist_px"});
   io::CsvWriter target_csv(
@@ -162,13 +163,7 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
   m.name = opt.name.empty() ? stem : opt.name;
   m.epoch_utc = opt.epoch_utc;
   m.station = {{"lat_deg", opt.station_lat_deg}, {"lon_deg", opt.station_lon_deg}, {"h_m", opt.station_h_m}};
-  trial::CameraEntry az;
-  az.name = kCamera;
-  az.video = {video_rel};
-  az.frames = trial::CameraFile(kCamera, trial::kFramesFile);
-  az.model = trial::CameraFile(kCamera, trial::kCameraModelFile);
-  az.role = trial::CameraRole::kBeacon;
-  m.cameras = {az};
+  m.cameras = {trial::CameraInItsFolder(kCamera, trial::CameraRole::kBeacon, {video_rel})};
   m.turret = trial::kTurretFile;
   m.range = trial::kRangeFile;
   io::Json simj;

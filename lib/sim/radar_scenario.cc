@@ -4,6 +4,7 @@
 #include <GeographicLib/Geocentric.hpp>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <random>
 
 #include "geo/angles.h"
@@ -12,8 +13,6 @@
 #include "sim/trial_folder.h"
 #include "trial/layout.h"
 #include "trial/manifest.h"
-
-#include <filesystem>
 
 namespace rk::sim {
 namespace {
@@ -489,7 +488,9 @@ RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWri
   m.epoch_utc = opt.epoch_utc;
   m.station = {{"lat_deg", so.origin_lat_deg}, {"lon_deg", so.origin_lon_deg}, {"h_m", so.origin_h_m}};
   m.radar = trial::RadarEntry{trial::kRadarPlotsFile, trial::kRadarNavFile};
-  m.extra["sim"] = {{"generator", "rk-sim radar"}, {"scenario", "scenario.json"}, {"truth", {{"biases", "truth/biases.csv"}}}};
+  m.extra["sim"] = {{"generator", "rk-sim radar"},
+                    {"scenario", "scenario.json"},
+                    {"truth", {{"biases", "truth/biases.csv"}}}};
   trial::WriteManifest(folder.Path(trial::kManifestFile), m);
   folder.Commit();
   return sum;

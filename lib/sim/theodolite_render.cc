@@ -39,7 +39,8 @@ cv::Mat RenderSilhouetteFrame(const camera::CameraModel& cam, const TheodoliteFr
                               const target::CylinderShape& shape, const SilhouetteRenderOptions& o,
                               std::mt19937_64& rng) {
   const double scale = o.sensor.bit_depth == 16 ? 256.0 : 1.0;
-  const cv::Mat signal = target::SilhouetteSignal(cam, f.pose, shape, f.boresight_az_rad, f.boresight_el_rad, o, scale);
+  const cv::Mat signal =
+      target::SilhouetteSignal(cam, f.pose, shape, f.boresight_az_rad, f.boresight_el_rad, o, scale);
   SensorOptions sensor = o.sensor;
   sensor.background_dn = 0.0;
   sensor.read_noise_dn *= scale;

@@ -1,7 +1,7 @@
-// Frames of rk-sim theodolite (silhouette extraction, seed 004): the noise-free image of the cylindrical target
-// against the sky (target::SilhouetteSignal, target/silhouette_image.h: exact outline, area-sampled coverage,
-// Gaussian PSF, sky gradient and body shading), digitised by sim::Digitise (shot noise, read noise, rounding,
-// clipping; 8 or 16 bit, DN values on the 8-bit scale are ×256 for 16 bit).
+// Frames of rk-sim theodolite (silhouette extraction, seed 004): the noise-free image of the cylindrical
+// target against the sky (target::SilhouetteSignal, target/silhouette_image.h: exact outline, area-sampled
+// coverage, Gaussian PSF, sky gradient and body shading), digitised by sim::Digitise (shot noise, read noise,
+// rounding, clipping; 8 or 16 bit, DN values on the 8-bit scale are ×256 for 16 bit).
 #pragma once
 
 #include <opencv2/core.hpp>
@@ -22,8 +22,8 @@ struct SilhouetteRenderOptions : target::SilhouetteScene {
   bool Check(std::string* why) const;
 };
 
-// Frame of a TheodoliteSimulator at its true boresight, with noise from `rng`: target::SilhouetteSignal digitised
-// by sim::Digitise.
+// Frame of a TheodoliteSimulator at its true boresight, with noise from `rng`: target::SilhouetteSignal
+// digitised by sim::Digitise.
 cv::Mat RenderSilhouetteFrame(const camera::CameraModel& camera, const TheodoliteFrameTruth& frame,
                               const target::CylinderShape& shape, const SilhouetteRenderOptions& options,
                               std::mt19937_64& rng);

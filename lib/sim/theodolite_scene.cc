@@ -98,8 +98,8 @@ TheodoliteSimulator::TheodoliteSimulator(TheodoliteSimOptions opt) : opt_(std::m
   if (!opt_.Check(&why)) throw UsageError(why);
   using geo::DegToRad;
   t_ref_ = opt_.t0_s + 0.5 * opt_.duration_s;
-  pose_ref_ = target::PoseAt(opt_.range_m, DegToRad(opt_.az_deg), DegToRad(opt_.el_deg), DegToRad(opt_.yaw_deg),
-                     DegToRad(opt_.pitch_deg), opt_.shape);
+  pose_ref_ = target::PoseAt(opt_.range_m, DegToRad(opt_.az_deg), DegToRad(opt_.el_deg),
+                             DegToRad(opt_.yaw_deg), DegToRad(opt_.pitch_deg), opt_.shape);
   {
     std::mt19937_64 rng = Stream(opt_.seed, 1);
     std::uniform_real_distribution<double> phase(0.0, geo::kTwoPi);

@@ -8,15 +8,15 @@
 // the reference time t_ref = t0 + duration/2; it moves along the reference axis at speed v:
 //   c(t) = c_ref + v (t − t_ref) a_ref,   ψ(t) = ψ0 + ψ' (t − t_ref),   θ(t) = θ0 + θ' (t − t_ref).
 // Theodolite. The true boresight points at c(t) plus a tracking error: the image of c is offset from the
-// principal point by (track_px · sin(2π 0.37 t + φx), track_px · cos(2π 0.23 t + φy)) pixels (φ from the seed).
-// The log (`t_s,az_deg,el_deg`) is sampled at theodolite_rate_hz with a time offset from the frame grid;
-// recorded angles = true + bias (one draw per trial, N(0, angle_bias²) per axis: the static errors of the
-// paper's budget) + noise (N(0, angle_noise²) per sample), then quantised to the encoder step.
-// Image points. Exact SPEC.md §3 projection of P1..P3 at the true boresight (camera::CameraModel::ProjectEnu,
-// with the model's distortion and mount), then optionally Gaussian noise (point_noise_px) and rounding to
-// whole pixels (quantise: the paper's "1-pixel" reading error, pixel centres at integers).
-// Determinism: std::mt19937_64 streams from seed_seq{seed, stream[, index]}: 1 = trial constants (biases,
-// phases), 2 = theodolite noise, 3 = point noise, (1000, k) = image noise of frame k.
+// principal point by (track_px · sin(2π 0.37 t + φx), track_px · cos(2π 0.23 t + φy)) pixels (φ from the
+// seed). The log (`t_s,az_deg,el_deg`) is sampled at theodolite_rate_hz with a time offset from the frame
+// grid; recorded angles = true + bias (one draw per trial, N(0, angle_bias²) per axis: the static errors of
+// the paper's budget) + noise (N(0, angle_noise²) per sample), then quantised to the encoder step. Image
+// points. Exact SPEC.md §3 projection of P1..P3 at the true boresight (camera::CameraModel::ProjectEnu, with
+// the model's distortion and mount), then optionally Gaussian noise (point_noise_px) and rounding to whole
+// pixels (quantise: the paper's "1-pixel" reading error, pixel centres at integers). Determinism:
+// std::mt19937_64 streams from seed_seq{seed, stream[, index]}: 1 = trial constants (biases, phases), 2 =
+// theodolite noise, 3 = point noise, (1000, k) = image noise of frame k.
 #pragma once
 
 #include <Eigen/Core>

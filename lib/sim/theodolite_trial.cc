@@ -72,7 +72,8 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
   sum.bias_az_arcsec = sim.bias_az_rad() * geo::kArcsecPerRad;
   sum.bias_el_arcsec = sim.bias_el_rad() * geo::kArcsecPerRad;
 
-  io::WriteJson(dir.Path(trial::CameraFile(kCamera, trial::kCameraModelFile)), camera::CameraModelToJson(so.camera));
+  io::WriteJson(dir.Path(trial::CameraFile(kCamera, trial::kCameraModelFile)),
+                camera::CameraModelToJson(so.camera));
   io::WriteJson(dir.Path(trial::kTargetModelFile), {{"length_m", so.shape.length_m},
                                                     {"diameter_m", so.shape.diameter_m},
                                                     {"nose_length_m", so.shape.nose_length_m}});
@@ -135,12 +136,7 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
   // (SPEC.md §6 wants a non-empty video list); rk-attitude cylinder can still run on points.csv.
   if (opt.images != "none") {
     const std::string video_rel = trial::CameraFile(kCamera, opt.images == "mkv" ? "video.mkv" : "%06d.png");
-    trial::CameraEntry theo;
-    theo.name = kCamera;
-    theo.video = {video_rel};
-    theo.frames = trial::CameraFile(kCamera, trial::kFramesFile);
-    theo.model = trial::CameraFile(kCamera, trial::kCameraModelFile);
-    theo.role = trial::CameraRole::kSilhouette;
+    trial::CameraEntry theo = trial::CameraInItsFolder(kCamera, trial::CameraRole::kSilhouette, {video_rel});
     theo.target = trial::kTargetModelFile;
     m.cameras = {theo};
     video::FrameSink sink(dir.Path(video_rel), so.camera.width_px, so.camera.height_px, opt.render.sensor.bit_depth,

@@ -28,7 +28,8 @@ bool CylinderShape::Check(std::string* why) const {
 
 CylinderShape LoadCylinderShape(const std::string& path) {
   const io::Json j = io::LoadJson(path);
-  if (!j.is_object()) throw DataError(path, 0, 0, "target model must be a JSON object {\"length_m\", \"diameter_m\"}");
+  if (!j.is_object())
+    throw DataError(path, 0, 0, "target model must be a JSON object {\"length_m\", \"diameter_m\"}");
   CylinderShape t;
   t.length_m = io::RequireNumber(j, "length_m", path);
   t.diameter_m = io::RequireNumber(j, "diameter_m", path);

@@ -1,18 +1,19 @@
 // The cylindrical target of seed 004 (Tang et al. 2004) and rk-sim theodolite: a rocket-like solid of
-// revolution, its pose, and the three silhouette points of SPEC.md §3. One description shared by the simulator
-// (rk-sim theodolite) and the estimators (rk-attitude cylinder, rk-analyze budget).
+// revolution, its pose, and the three silhouette points of SPEC.md §3. One description shared by the
+// simulator (rk-sim theodolite) and the estimators (rk-attitude cylinder, rk-analyze budget).
 //
-// Shape. A cylinder of diameter d from the tail plane to the base of a conical nose whose tip is at distance l
-// (length, nose tip to tail plane) from the tail plane; nose cone length l_c (< l). A target file
-// (SPEC.md §3, rk-attitude cylinder --target) gives only l and d: l_c matters only to the outline
+// Shape. A cylinder of diameter d from the tail plane to the base of a conical nose whose tip is at distance
+// l (length, nose tip to tail plane) from the tail plane; nose cone length l_c (< l). A target file (SPEC.md
+// §3, rk-attitude cylinder --target) gives only l and d: l_c matters only to the outline
 // (target/silhouette_image.h), where the simulator sets it and the image fit estimates it.
-// Pose: tail-rim centre s0 (station ENU, m) and axis a = (sin ψ cos θ, cos ψ cos θ, sin θ) for yaw ψ (clockwise
-// from north) and pitch θ (up positive), SPEC.md §3.
-// Silhouette points (SPEC.md §3, seed 004 §3.1): nose P1 = s0 + l a; tail1/tail2 = s0 ± (d/2) n with
+// Pose: tail-rim centre s0 (station ENU, m) and axis a = (sin ψ cos θ, cos ψ cos θ, sin θ) for yaw ψ
+// (clockwise from north) and pitch θ (up positive), SPEC.md §3. Silhouette points (SPEC.md §3, seed 004
+// §3.1): nose P1 = s0 + l a; tail1/tail2 = s0 ± (d/2) n with
 //   n = unit(a × s0)   (perpendicular to the axis and to the line of sight to the tail centre),
 // i.e. the ends of the tail-rim diameter seen edge-on; tail1 = s0 + (d/2) n lies to the LEFT of the
 // tail → nose direction in the image (x right, y down) and tail2 to the right. (The true silhouette
-// tangent points of the rim differ from these by a fraction (d/2)²/|s0|² of d: < 1e-7 px at seed 004's range.)
+// tangent points of the rim differ from these by a fraction (d/2)²/|s0|² of d: < 1e-7 px at seed 004's
+// range.)
 #pragma once
 
 #include <Eigen/Core>

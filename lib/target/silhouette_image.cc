@@ -139,19 +139,21 @@ namespace {
 
 // SilhouetteSignal in arithmetic T (float for the renderer, double for Fisher-information derivatives).
 template <typename T>
-cv::Mat SignalIn(const camera::CameraModel& cam, const CylinderPose& pose, const CylinderShape& shape, double az_rad,
-                 double el_rad, const SilhouetteScene& o, double scale) {
+cv::Mat SignalIn(const camera::CameraModel& cam, const CylinderPose& pose, const CylinderShape& shape,
+                 double az_rad, double el_rad, const SilhouetteScene& o, double scale) {
   const int W = cam.width_px, H = cam.height_px;
   cv::Mat signal(H, W, cv::DataType<T>::type);
   for (int y = 0; y < H; ++y) {
-    const T v = static_cast<T>(scale * (o.sky_dn + o.sky_gradient_dn * (static_cast<double>(y) / std::max(1, H - 1) - 0.5)));
+    const T v = static_cast<T>(
+        scale * (o.sky_dn + o.sky_gradient_dn * (static_cast<double>(y) / std::max(1, H - 1) - 0.5)));
     T* row = signal.ptr<T>(y);
     for (int x = 0; x < W; ++x) row[x] = v;
   }
   const std::vector<Eigen::Vector2d> poly = SilhouettePolygon(cam, pose, shape, az_rad, el_rad);
   // Exact projections of the SPEC.md §3 points: the image axis and half width for the shading.
   const SilhouettePoints3d pts = SilhouettePointsOf(pose, shape);
-  const auto nose_px = cam.ProjectEnu(pts.nose, az_rad, el_rad), tail1_px = cam.ProjectEnu(pts.tail1, az_rad, el_rad),
+  const auto nose_px = cam.ProjectEnu(pts.nose, az_rad, el_rad),
+             tail1_px = cam.ProjectEnu(pts.tail1, az_rad, el_rad),
              tail2_px = cam.ProjectEnu(pts.tail2, az_rad, el_rad);
   if (poly.size() >= 3 && nose_px && tail1_px && tail2_px) {
     const int margin = static_cast<int>(std::ceil(5.0 * o.psf_sigma_px)) + 2;
@@ -188,7 +190,8 @@ cv::Mat SignalIn(const camera::CameraModel& cam, const CylinderPose& pose, const
 }  // namespace
 
 cv::Mat SilhouetteSignal(const camera::CameraModel& cam, const CylinderPose& pose, const CylinderShape& shape,
-                         double az_rad, double el_rad, const SilhouetteScene& scene, double dn_scale, int depth) {
+                         double az_rad, double el_rad, const SilhouetteScene& scene, double dn_scale,
+                         int depth) {
   return depth == CV_64F ? SignalIn<double>(cam, pose, shape, az_rad, el_rad, scene, dn_scale)
                          : SignalIn<float>(cam, pose, shape, az_rad, el_rad, scene, dn_scale);
 }

@@ -1,5 +1,6 @@
 // Image of the cylindrical target (target/cylinder.h) against the sky: the forward model shared by rk-sim
-// theodolite's renderer and rk-attitude cylinder's image fit (and the Cramér–Rao bound of bench/cylinder_crlb).
+// theodolite's renderer and rk-attitude cylinder's image fit (and the Cramér–Rao bound of
+// bench/cylinder_crlb).
 //
 // Geometry: the solid (cylinder from the tail plane to the nose-cone base, cone to the tip) is convex, so its
 // image is the convex hull of the projections of the tail rim, the cone-base rim (2048 points each) and the
@@ -12,7 +13,8 @@
 //   sky(x, y) = sky_dn + sky_gradient_dn · (y/(H − 1) − 1/2)     (brighter towards the horizon, image bottom)
 //   body(x, y) = body_dn + shading_dn · clamp(v / w, −1, 1)    (v: signed distance from the image axis,
 //                                                                 w: half the tail width; sun from one side)
-// The image axis runs from the mid-point of the projected tail1/tail2 to the projected nose (SPEC.md §3 points).
+// The image axis runs from the mid-point of the projected tail1/tail2 to the projected nose (SPEC.md §3
+// points).
 #pragma once
 
 #include <Eigen/Core>
@@ -55,8 +57,8 @@ struct SilhouetteScene {
 // Expected (noise-free) frame of the whole image at boresight (az, el), before any sensor: CV_32FC1 (depth
 // CV_32F, what rk-sim theodolite digitises) or CV_64FC1 (computed in double: for derivatives); the scene's DN
 // values times dn_scale (1 for an 8-bit sensor, 256 for 16 bit).
-cv::Mat SilhouetteSignal(const camera::CameraModel& camera, const CylinderPose& pose, const CylinderShape& shape,
-                         double az_rad, double el_rad, const SilhouetteScene& scene, double dn_scale,
-                         int depth = CV_32F);
+cv::Mat SilhouetteSignal(const camera::CameraModel& camera, const CylinderPose& pose,
+                         const CylinderShape& shape, double az_rad, double el_rad,
+                         const SilhouetteScene& scene, double dn_scale, int depth = CV_32F);
 
 }  // namespace rk::target

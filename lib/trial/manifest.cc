@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <regex>
+#include <utility>
 
 #include "io/error.h"
 #include "io/file_util.h"
@@ -30,6 +31,16 @@ bool ParseCameraRole(const std::string& text, CameraRole* role) {
     }
   }
   return false;
+}
+
+CameraEntry CameraInItsFolder(const std::string& name, CameraRole role, std::vector<std::string> video) {
+  CameraEntry c;
+  c.name = name;
+  c.video = std::move(video);
+  c.frames = CameraFile(name, kFramesFile);
+  c.model = CameraFile(name, kCameraModelFile);
+  c.role = role;
+  return c;
 }
 
 namespace {

@@ -25,16 +25,20 @@ const char* CameraRoleName(CameraRole role);
 bool ParseCameraRole(const std::string& text, CameraRole* role);
 
 struct CameraEntry {
-  std::string name;                 // key in "cameras" (also the folder name in out/)
-  std::vector<std::string> video;   // segments or image-sequence patterns, relative to the trial dir
-  std::string frames;               // frame-times CSV (empty when fps is given instead)
-  std::optional<double> fps;        // constant frame rate (Hz) when there is no frames CSV
-  std::optional<double> t0_s;       // time of frame 0 with fps (s)
-  std::string model;                // camera model JSON (written as null when empty)
+  std::string name;                // key in "cameras" (also the folder name in out/)
+  std::vector<std::string> video;  // segments or image-sequence patterns, relative to the trial dir
+  std::string frames;              // frame-times CSV (empty when fps is given instead)
+  std::optional<double> fps;       // constant frame rate (Hz) when there is no frames CSV
+  std::optional<double> t0_s;      // time of frame 0 with fps (s)
+  std::string model;               // camera model JSON (written as null when empty)
   CameraRole role = CameraRole::kBeacon;
-  std::string target;               // target model JSON (features, silhouette)
+  std::string target;                                      // target model JSON (features, silhouette)
   std::optional<std::pair<double, double>> boresight_deg;  // fixed camera (az, el) when no turret log
 };
+
+// A camera whose frame times and model sit in its own folder under the names of trial/layout.h
+// (<name>/frames.csv, <name>/camera.json), as rk-sim and rk-capture write them.
+CameraEntry CameraInItsFolder(const std::string& name, CameraRole role, std::vector<std::string> video);
 
 struct RadarEntry {
   std::string plots;  // radar plots CSV
@@ -49,9 +53,9 @@ struct Manifest {
   io::Json json;              // the whole manifest, extra keys included
   JsonPositions positions;
 
-  std::string name;           // "name", else the folder's name
+  std::string name;  // "name", else the folder's name
   std::string epoch_utc;
-  io::Json station;           // {"lat_deg","lon_deg","h_m"} or null (kept as JSON: written as given)
+  io::Json station;                  // {"lat_deg","lon_deg","h_m"} or null (kept as JSON: written as given)
   std::vector<CameraEntry> cameras;  // read: in name order
   std::string turret, range, theodolite;  // empty = none
   std::optional<RadarEntry> radar;

@@ -19,7 +19,8 @@ TEST(Cylinder, SilhouettePointsAreTheEdgeOnDiameter) {
   shape.length_m = 3.0;
   shape.diameter_m = 0.4;
   for (double yaw : {0.0, 76.211, 200.0, 359.9}) {
-    const CylinderPose pose = PoseAt(1500.0, DegToRad(326.2), DegToRad(20.0), DegToRad(yaw), DegToRad(31.257), shape);
+    const CylinderPose pose =
+        PoseAt(1500.0, DegToRad(326.2), DegToRad(20.0), DegToRad(yaw), DegToRad(31.257), shape);
     const SilhouettePoints3d p = SilhouettePointsOf(pose, shape);
     const double slant = std::sqrt(0.04 + 9.0);
     EXPECT_NEAR((p.nose - p.tail1).norm(), slant, kGeomM);

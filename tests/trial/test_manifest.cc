@@ -1,4 +1,5 @@
-// Unit tests of trial/manifest.h: the writer's form (keys, nulls) and that the reader reads back what it wrote.
+// Unit tests of trial/manifest.h: the writer's form (keys, nulls) and that the reader reads back what it
+// wrote.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -15,12 +16,7 @@ Manifest BeaconTrial() {
   m.name = "t0001";
   m.epoch_utc = "2026-11-21T08:00:00Z";
   m.station = {{"lat_deg", 10.5}, {"lon_deg", 20}, {"h_m", 5.0}};
-  CameraEntry az;
-  az.name = "az";
-  az.video = {"az/seg_000.mkv", "az/seg_001.mkv"};
-  az.frames = CameraFile("az", kFramesFile);
-  az.model = CameraFile("az", kCameraModelFile);
-  az.role = CameraRole::kBeacon;
+  const CameraEntry az = CameraInItsFolder("az", CameraRole::kBeacon, {"az/seg_000.mkv", "az/seg_001.mkv"});
   CameraEntry theo;
   theo.name = "theo";
   theo.video = {"theo/%06d.png"};
@@ -44,8 +40,8 @@ TEST(ManifestWriter, EveryKeyOfTheSpecAndNullsForAbsentFiles) {
   m.cameras[0].model.clear();  // rk-capture without a camera model: null
   m.radar.reset();
   const io::Json j = ManifestToJson(m);
-  for (const char* key : {"name", "epoch_utc", "station", "cameras", "turret", "range", "theodolite", "radar", "steps",
-                          "sim"}) {
+  for (const char* key : {"name", "epoch_utc", "station", "cameras", "turret", "range", "theodolite", "radar",
+                          "steps", "sim"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_EQ(j.size(), 10u);
@@ -55,6 +51,7 @@ TEST(ManifestWriter, EveryKeyOfTheSpecAndNullsForAbsentFiles) {
   EXPECT_FALSE(j["cameras"]["az"].contains("target"));
   EXPECT_FALSE(j["cameras"]["az"].contains("fps"));
   EXPECT_EQ(j["cameras"]["az"]["role"], "beacon");
+  EXPECT_EQ(j["cameras"]["az"]["frames"], "az/frames.csv");
   EXPECT_EQ(j["cameras"]["theo"]["boresight_deg"], io::Json::array({326.25, 16.5}));
   // The station is written as given (an integer stays an integer).
   EXPECT_EQ(j["station"].dump(), R"({"h_m":5.0,"lat_deg":10.5,"lon_deg":20})");
@@ -88,7 +85,8 @@ TEST(ManifestWriter, ReaderReadsBackWhatTheWriterWrote) {
   EXPECT_EQ(r.radar->nav, "nav.csv");
   EXPECT_EQ(r.steps, w.steps);
   EXPECT_EQ(r.json["sim"]["generator"], "test");
-  EXPECT_EQ(r.AllPaths().size(), 11u);  // 3 videos, 1 frames, 2 models, 1 target, turret, theodolite, plots, nav
+  EXPECT_EQ(r.AllPaths().size(),
+            11u);  // 3 videos, 1 frames, 2 models, 1 target, turret, theodolite, plots, nav
 }
 
 }  // namespace
