@@ -142,8 +142,8 @@ struct LmPass {
   Eigen::VectorXd& r;  // residuals at p
   Eigen::MatrixXd J;   // last Jacobian, per step h(c): scaled units
   double step_tol = 0.0, drop_tol = 0.0;
-  Params q;
-  Eigen::VectorXd rq;  // residuals at q
+  Params q = Params::Zero();
+  Eigen::VectorXd rq = Eigen::VectorXd();  // residuals at q
 
   bool Linearize(Eigen::Matrix<double, kNonlinear, kNonlinear>* A, Params* g) {
     for (int c = 0; c < kNonlinear; ++c) {
