@@ -93,7 +93,7 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
     std::vector<std::string> reserved = {"t_s", "kind", "status", "reason"};
     for (const auto& c : columns) {
       reserved.push_back(c);
-      reserved.push_back(filter::SingerSigmaColumnName(c));
+      reserved.push_back(filter::DerivedColumnName(c, 0, true));
     }
     for (std::size_t c = 0; c < at_table.header().size(); ++c) {
       const std::string& h = at_table.header()[c];
@@ -127,7 +127,7 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
   header.push_back("status");
   header.push_back("reason");
   if (with_sigmas) {
-    for (const auto& c : columns) header.push_back(filter::SingerSigmaColumnName(c));
+    for (const auto& c : columns) header.push_back(filter::DerivedColumnName(c, 0, true));
   }
   io::CsvWriter w(header);
   const std::string kind = opt.method == filter::ResampleMethod::kKalman ? "smoothed" : "estimate";

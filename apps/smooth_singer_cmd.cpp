@@ -65,16 +65,16 @@ int RunSinger(const SingerArgs& args, const Context& ctx) {
   header.push_back("status");
   if (args.derivatives) {
     for (const auto& c : columns) {
-      header.push_back(filter::SingerRateColumnName(c));
-      header.push_back(filter::SingerAccelColumnName(c));
+      header.push_back(filter::DerivedColumnName(c, 1));
+      header.push_back(filter::DerivedColumnName(c, 2));
     }
   }
   if (args.sigmas) {
     for (const auto& c : columns) {
-      header.push_back(filter::SingerSigmaColumnName(c));
+      header.push_back(filter::DerivedColumnName(c, 0, true));
       if (args.derivatives) {
-        header.push_back(filter::SingerSigmaColumnName(c, 1));
-        header.push_back(filter::SingerSigmaColumnName(c, 2));
+        header.push_back(filter::DerivedColumnName(c, 1, true));
+        header.push_back(filter::DerivedColumnName(c, 2, true));
       }
     }
   }

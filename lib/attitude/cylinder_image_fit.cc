@@ -10,6 +10,7 @@
 
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
+#include "numeric/levenberg_marquardt.h"
 #include "target/cylinder.h"
 #include "target/silhouette_image.h"
 
@@ -130,6 +131,52 @@ class Problem {
   int evaluations_ = 0;
 };
 
+// One Levenberg–Marquardt pass of the fit (numeric/levenberg_marquardt.h's Problem): parameters p in units
+// of the steps h, Jacobian by central differences, the axis-step cap and the PSF-σ bounds on a candidate.
+struct LmPass {
+  Problem& prob;
+  const Params& h;
+  Params& p;
+  Eigen::VectorXd& r;  // residuals at p
+  Eigen::MatrixXd J;   // last Jacobian, per step h(c): scaled units
+  double step_tol = 0.0, drop_tol = 0.0;
+  Params q = Params::Zero();
+  Eigen::VectorXd rq = Eigen::VectorXd();  // residuals at q
+
+  bool Linearize(Eigen::Matrix<double, kNonlinear, kNonlinear>* A, Params* g) {
+    for (int c = 0; c < kNonlinear; ++c) {
+      Params pp = p, pm = p;
+      pp(c) += h(c);
+      pm(c) -= h(c);
+      Eigen::VectorXd rp, rm;
+      if (!prob.Residual(pp, &rp) || !prob.Residual(pm, &rm)) return false;
+      J.col(c) = (rp - rm) / 2.0;
+    }
+    A->noalias() = J.transpose() * J;
+    *g = J.transpose() * r;
+    return true;
+  }
+  bool TryStep(const Params& du, double* cost) {
+    q = p + du.cwiseProduct(h);
+    // A step turning the axis by more than 1° leaves the start's basin (the mirror minimum is a few
+    // degrees away near side-on): damp more instead.
+    if (std::abs(q(3) - p(3)) > kMaxAxisStepRad || std::abs(q(4) - p(4)) > kMaxAxisStepRad) return false;
+    q(6) = std::clamp(q(6), kMinSigmaPx, kMaxSigmaPx);
+    if (!prob.Residual(q, &rq)) return false;
+    *cost = rq.squaredNorm();
+    return true;
+  }
+  void Accept() {
+    p = q;
+    r = rq;
+  }
+  bool Converged(const Params& du, double cost_before, double cost_after) const {
+    const double drop = cost_before - cost_after;
+    return du.cwiseAbs().maxCoeff() < step_tol ||
+           drop <= drop_tol * cost_after / static_cast<double>(prob.size());
+  }
+};
+
 }  // namespace
 
 bool CylinderImageFitOptions::Check(std::string* why) const {
@@ -218,58 +265,29 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
   }
   if (!std::isfinite(cost)) return out;
 
-  Eigen::MatrixXd J(prob.size(), kNonlinear);
+  // Levenberg–Marquardt from p (numeric::LevenbergMarquardt with the damping below); false if a model
+  // cannot be evaluated. Converged: a step moves the outline by less than step_tol × 0.02 px, or lowers the
+  // cost by less than drop_tol × the residual variance (a parameter change of ~sqrt(drop_tol) of its σ; the
+  // range along the line of sight is too weakly seen for a step test alone).
+  LmPass lm{prob, h, p, r, Eigen::MatrixXd(prob.size(), kNonlinear)};
   Eigen::Matrix<double, kNonlinear, kNonlinear> A;
+  Params g;
   int it = 0;
-  // Levenberg–Marquardt from p; false if a model cannot be evaluated. Converged: a step moves the outline by
-  // less than step_tol × 0.02 px, or lowers the cost by less than drop_tol × the residual variance (a
-  // parameter change of ~sqrt(drop_tol) of its σ; the range along the line of sight is too weakly seen for a
-  // step test alone).
-  const double n_px = static_cast<double>(prob.size());
+  const numeric::LmDamping damping{.initial = 1e-2, .diagonal_floor = 0.0, .increase = 8.0,
+                                   .decrease = 0.25, .min = 1e-12, .max_tries = 10,
+                                   .accept_equal_cost = true, .linearize_at_solution = false};
   const auto levenberg_marquardt = [&](int max_iterations, double step_tol, double drop_tol,
                                        bool* converged) {
-    double lambda = 1e-2;
-    *converged = false;
-    for (int k = 0; k < max_iterations && !*converged; ++k, ++it) {
-      for (int c = 0; c < kNonlinear; ++c) {
-        Params pp = p, pm = p;
-        pp(c) += h(c);
-        pm(c) -= h(c);
-        Eigen::VectorXd rp, rm;
-        if (!prob.Residual(pp, &rp) || !prob.Residual(pm, &rm)) return false;
-        J.col(c) = (rp - rm) / 2.0;  // per step h(c): scaled units
-      }
-      A.noalias() = J.transpose() * J;
-      const Params g = J.transpose() * r;
-      bool accepted = false;
-      for (int tries = 0; tries < 10 && !accepted; ++tries) {
-        Eigen::Matrix<double, kNonlinear, kNonlinear> M = A;
-        M.diagonal() += lambda * A.diagonal();
-        const Params du = -M.ldlt().solve(g);
-        if (!du.allFinite()) return false;
-        Params q = p + du.cwiseProduct(h);
-        // A step turning the axis by more than 1° leaves the start's basin (the mirror minimum is a few
-        // degrees away near side-on): damp more instead.
-        if (std::abs(q(3) - p(3)) > kMaxAxisStepRad || std::abs(q(4) - p(4)) > kMaxAxisStepRad) {
-          lambda *= 8.0;
-          continue;
-        }
-        q(6) = std::clamp(q(6), kMinSigmaPx, kMaxSigmaPx);
-        if (prob.Residual(q, &rt) && rt.squaredNorm() <= cost) {
-          const double drop = cost - rt.squaredNorm();
-          p = q;
-          r = rt;
-          cost = r.squaredNorm();
-          lambda = std::max(lambda / 4.0, 1e-12);
-          accepted = true;
-          if (du.cwiseAbs().maxCoeff() < step_tol || drop <= drop_tol * cost / n_px) *converged = true;
-        } else {
-          lambda *= 8.0;
-        }
-      }
-      if (!accepted) *converged = true;  // no descent direction left: at the minimum to rounding
-    }
-    return true;
+    lm.step_tol = step_tol;
+    lm.drop_tol = drop_tol;
+    if (!lm.Linearize(&A, &g)) return false;
+    const numeric::LmSummary summary =
+        numeric::LevenbergMarquardt<kNonlinear>(lm, cost, damping, max_iterations, &A, &g);
+    it += summary.iterations;
+    cost = summary.cost;
+    *converged = summary.status == numeric::LmStatus::kConverged;
+    return summary.status == numeric::LmStatus::kConverged ||
+           summary.status == numeric::LmStatus::kMaxIterations;
   };
 
   // Pass 1 unweighted; then the noise variance per pixel modelled as c0 + c1 · signal (read + shot noise:

@@ -9,6 +9,8 @@
 
 #include <Eigen/Dense>
 
+#include "numeric/robust_stats.h"
+
 namespace rk::extract {
 namespace {
 
@@ -24,7 +26,8 @@ PixelBox Clip(PixelBox b, const cv::Mat& f) {
 
 PixelBox Expand(const PixelBox& b, int d) { return {b.x0 - d, b.y0 - d, b.x1 + d, b.y1 + d}; }
 
-// Robust level and noise of samples (reordered in place): median and MAD, then
+// Robust level and noise of samples (reordered in place): median and MAD (selected on |deviation| with
+// the signed deviations kept for the clipped pass, so not numeric::UpperMedianAndMadInPlace), then
 // the mean and standard deviation of the samples within 4 σ of the median
 // (the MAD of integer data is coarsely quantised; the clipped moments are not).
 NoiseStats Robust(std::vector<double>* s, double min_sigma) {
@@ -133,10 +136,8 @@ double ProfileNoise(const std::vector<double>& r, std::vector<double>* work) {
   work->clear();
   for (std::size_t i = 1; i < r.size(); ++i) work->push_back(std::fabs(r[i] - r[i - 1]));
   if (work->empty()) return 1.0;
-  auto mid = work->begin() + static_cast<std::ptrdiff_t>(work->size() / 2);
-  std::nth_element(work->begin(), mid, work->end());
   // |difference| of two N(0, s²) has median 0.6745·√2·s.
-  return std::max(*mid / (0.6745 * std::sqrt(2.0)), 1.0);
+  return std::max(numeric::UpperMedianInPlace(*work) / (0.6745 * std::sqrt(2.0)), 1.0);
 }
 
 }  // namespace

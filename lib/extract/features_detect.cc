@@ -7,18 +7,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "numeric/levenberg_marquardt.h"
+#include "numeric/robust_stats.h"
+
 namespace rk::extract {
 namespace {
 
 constexpr double kInvSqrt2 = 0.70710678118654752440;
 constexpr double kInvSqrt2Pi = 0.39894228040143267794;
-
-double Median(std::vector<double>* v) {
-  if (v->empty()) return 0.0;
-  auto mid = v->begin() + static_cast<std::ptrdiff_t>(v->size() / 2);
-  std::nth_element(v->begin(), mid, v->end());
-  return *mid;
-}
 
 }  // namespace
 
@@ -60,10 +56,8 @@ void MarkerDetector::SetFrame(const cv::Mat& frame) {
       dv.push_back(row[x + 1] - row[x]);
     }
   }
-  level_dn_ = Median(&lv);
-  const double md = Median(&dv);
-  for (double& d : dv) d = std::abs(d - md);
-  noise_dn_ = std::max(1.4826 * Median(&dv) / std::sqrt(2.0), 0.3);
+  level_dn_ = numeric::UpperMedianInPlace(lv);
+  noise_dn_ = std::max(1.4826 * numeric::UpperMedianAndMadInPlace(dv).mad / std::sqrt(2.0), 0.3);
 }
 
 void MarkerDetector::MakeTemplate(double radius_px, double edge_px, int half) {
@@ -154,7 +148,7 @@ MarkerMeasurement MarkerDetector::Fit(const Eigen::Vector2d& start, double radiu
     ring.push_back(image_.at<float>(y0 + k, x0 - half));
     ring.push_back(image_.at<float>(y0 + k, x0 + half));
   }
-  const double b_start = Median(&ring);
+  const double b_start = numeric::UpperMedianInPlace(ring);
   // θ = (cx, cy, ρ, s, a, b0, bx, by); the plane is about (x0, y0).
   Vec8 th;
   const double phi0 = 0.5 * std::erfc(-radius_px / std::max(edge_px, 0.3) * kInvSqrt2);
@@ -201,44 +195,37 @@ MarkerMeasurement MarkerDetector::Fit(const Eigen::Vector2d& start, double radiu
     return sse;
   };
 
-  Mat8 H;
-  Vec8 g;
-  double sse = eval(th, &H, &g);
-  double mu = 1e-3;
-  int it = 0;
-  bool converged = false;
-  for (; it < opt_.max_iterations; ++it) {
-    bool accepted = false;
-    Vec8 step = Vec8::Zero();
-    for (int tries = 0; tries < 8 && !accepted; ++tries) {
-      Mat8 A = H;
-      for (int q = 0; q < 8; ++q) A(q, q) += mu * std::max(H(q, q), 1e-12);
-      step = -A.ldlt().solve(g);
-      if (!step.allFinite()) break;
-      Vec8 cand = th + step;
+  // Levenberg–Marquardt; the radius stays >= 0 and the edge width in [0.3, 10] px. Converged: no step
+  // lowers the SSE, or the centre moves by less than 1e-5 px.
+  struct MarkerLm {
+    decltype(eval)& evaluate;
+    Vec8 th, cand;
+    bool TryStep(const Vec8& step, double* cost) {
+      cand = th + step;
       cand(2) = std::max(cand(2), 0.0);
       cand(3) = std::clamp(cand(3), 0.3, 10.0);
-      const double c = eval(cand, nullptr, nullptr);
-      if (c < sse) {
-        th = cand;
-        sse = c;
-        mu = std::max(mu * 0.2, 1e-9);
-        accepted = true;
-      } else {
-        mu *= 10.0;
-      }
+      *cost = evaluate(cand, nullptr, nullptr);
+      return true;
     }
-    if (!accepted) {
-      converged = true;
-      break;
+    void Accept() { th = cand; }
+    bool Linearize(Mat8* H, Vec8* g) {
+      evaluate(th, H, g);
+      return true;
     }
-    eval(th, &H, &g);
-    if (step.head<2>().norm() < 1e-5) {
-      converged = true;
-      break;
-    }
-  }
-  m.iterations = it;
+    bool Converged(const Vec8& step, double, double) const { return step.head<2>().norm() < 1e-5; }
+  } fit{eval, th, th};
+  Mat8 H;
+  Vec8 g;
+  const numeric::LmDamping damping{.initial = 1e-3, .diagonal_floor = 1e-12, .increase = 10.0,
+                                   .decrease = 0.2, .min = 1e-9, .max_tries = 8, .accept_equal_cost = false};
+  const numeric::LmSummary lm =
+      numeric::LevenbergMarquardt<8>(fit, eval(th, &H, &g), damping, opt_.max_iterations, &H, &g);
+  th = fit.th;
+  const double sse = lm.cost;
+  // A non-finite step means no step is left: converged at the current point.
+  const bool converged =
+      lm.status == numeric::LmStatus::kConverged || lm.status == numeric::LmStatus::kNonFiniteStep;
+  m.iterations = lm.iterations - (converged ? 1 : 0);  // iterations before the one that stopped
   const int npx = (2 * half + 1) * (2 * half + 1);
   const double var = sse / std::max(1, npx - 8);
   m.rms_dn = std::sqrt(var);
@@ -282,9 +269,9 @@ std::vector<MarkerMeasurement> MarkerDetector::DetectAll() {
   for (int y = 2; y < tophat.rows; y += 4) {
     for (int x = 2; x < tophat.cols; x += 4) s.push_back(tophat.at<float>(y, x));
   }
-  const double med = Median(&s);
-  for (double& v : s) v = std::abs(v - med);
-  const double sig = std::max(1.4826 * Median(&s), noise_dn_ / D * 0.5);
+  const numeric::MedianMad background = numeric::UpperMedianAndMadInPlace(s);
+  const double med = background.median;
+  const double sig = std::max(1.4826 * background.mad, noise_dn_ / D * 0.5);
   cv::Mat mask = tophat > (med + opt_.k_detect * sig);
   cv::Mat labels, stats, centroids;
   const int n = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);

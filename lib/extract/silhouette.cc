@@ -7,6 +7,8 @@
 #include <opencv2/imgproc.hpp>
 #include <vector>
 
+#include "numeric/robust_stats.h"
+
 namespace rk::extract {
 
 const char* SilhouetteStatusName(SilhouetteStatus s) {
@@ -47,13 +49,6 @@ struct Plane {
   double At(double x, double y) const { return a + b * x + c * y; }
 };
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
-
 // Least-squares plane through (x, y, value) samples, 3σ-clipped twice (σ from the MAD). False if too few.
 bool FitPlane(const std::vector<Eigen::Vector3d>& s, Plane* p, double* sigma) {
   std::vector<char> use(s.size(), 1);
@@ -75,7 +70,7 @@ bool FitPlane(const std::vector<Eigen::Vector3d>& s, Plane* p, double* sigma) {
     res.reserve(s.size());
     for (std::size_t i = 0; i < s.size(); ++i)
       if (use[i]) res.push_back(std::abs(s[i].z() - p->At(s[i].x(), s[i].y())));
-    *sigma = std::max(1.4826 * Median(res), 1e-6);
+    *sigma = std::max(1.4826 * numeric::UpperMedian(res), 1e-6);
     if (pass == 2) break;
     for (std::size_t i = 0; i < s.size(); ++i)
       use[i] = std::abs(s[i].z() - p->At(s[i].x(), s[i].y())) <= 3.0 * *sigma;
@@ -292,7 +287,7 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
     for (int x = 0; x < roi.width; ++x)
       if (reg[x]) inside.push_back(row[roi.x + x] - local.At(roi.x + x, roi.y + y));
   }
-  const double sign = Median(inside) >= 0 ? 1.0 : -1.0;
+  const double sign = numeric::UpperMedian(inside) >= 0 ? 1.0 : -1.0;
   {
     const int er = static_cast<int>(std::ceil(3.0 * opt.psf_sigma_px)) + 2;
     cv::Mat core;
@@ -308,7 +303,7 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
     level.clear();
     std::vector<double> mag;
     for (double v : inside) mag.push_back(sign * v);
-    const double med = Median(mag);
+    const double med = numeric::UpperMedian(mag);
     std::size_t i = 0;
     for (int y = 0; y < roi.height; ++y) {
       const float* row = img.ptr<float>(roi.y + y);
@@ -317,7 +312,7 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
         if (reg[x] && mag[i++] >= med) level.push_back(row[roi.x + x]);
     }
   }
-  const double body = Median(level);
+  const double body = numeric::UpperMedian(level);
   cv::Mat alpha(roi.size(), CV_32FC1);
   double contrast_sum = 0;
   for (int y = 0; y < roi.height; ++y) {
@@ -434,7 +429,7 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
       const double t = (p.u[i] - u_first) / std::max(u_last - u_first, 1e-9);
       if (t >= 0.25 && t <= 0.55) mid.push_back(p.S[i]);
     }
-    width = Median(mid);
+    width = numeric::UpperMedian(mid);
     if (!(width >= opt.min_width_px)) {
       res.status = SilhouetteStatus::kTooSmall;
       return res;
@@ -449,14 +444,14 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
     std::vector<double> smooth(p.S.size()), scatter;
     for (std::size_t i = 0; i < p.S.size(); ++i) {
       const std::size_t a = i > half_win ? i - half_win : 0, z = std::min(p.S.size() - 1, i + half_win);
-      smooth[i] = Median(std::vector<double>(p.S.begin() + static_cast<std::ptrdiff_t>(a),
-                                             p.S.begin() + static_cast<std::ptrdiff_t>(z) + 1));
+      smooth[i] = numeric::UpperMedian(std::vector<double>(p.S.begin() + static_cast<std::ptrdiff_t>(a),
+                                                           p.S.begin() + static_cast<std::ptrdiff_t>(z) + 1));
     }
     for (std::size_t i = 0; i < p.u.size(); ++i) {
       const double t = (p.u[i] - u_first) / std::max(u_last - u_first, 1e-9);
       if (t >= 0.25 && t <= 0.55) scatter.push_back(std::abs(p.S[i] - smooth[i]));
     }
-    const double sigma_s = 1.4826 * Median(scatter);
+    const double sigma_s = 1.4826 * numeric::UpperMedian(scatter);
     const double drop = std::max(0.03 * width, 4.0 * sigma_s);
     std::size_t ic = ib;
     while (ic < p.u.size() && smooth[ic] >= width - drop) ++ic;

@@ -8,6 +8,7 @@
 
 #include "geo/angles.h"
 #include "io/error.h"
+#include "numeric/robust_stats.h"
 
 namespace rk::filter {
 
@@ -219,11 +220,6 @@ struct Model {
   }
 };
 
-double Median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-  return v[v.size() / 2];
-}
-
 }  // namespace
 
 bool EstimateColumnNoise(const Series& series, int column, double T, double* sigma, double* q, std::size_t rows) {
@@ -306,7 +302,7 @@ double MedianInterval(const std::vector<double>& t, std::size_t rows) {
   std::vector<double> dt;
   dt.reserve(rows);
   for (std::size_t k = 1; k < rows; ++k) dt.push_back(t[k] - t[k - 1]);
-  return Median(std::move(dt));
+  return numeric::UpperMedian(std::move(dt));
 }
 
 // σ and q of every column not given, fitted on the rows [0, rows); given values are copied. `known[c]` is
@@ -845,18 +841,6 @@ AukfResult RunAukf(const Series& series, const AukfOptions& options) {
   return res;
 }
 
-std::string RateColumnName(const std::string& column) {
-  const auto u = column.rfind('_');
-  if (u == std::string::npos || u == 0 || u + 1 == column.size()) return column + "_rate_per_s";
-  return column.substr(0, u) + "_rate_" + column.substr(u + 1) + "_s";
-}
-
-std::string AccelColumnName(const std::string& column) {
-  const auto u = column.rfind('_');
-  if (u == std::string::npos || u == 0 || u + 1 == column.size()) return column + "_accel_per_s2";
-  return column.substr(0, u) + "_accel_" + column.substr(u + 1) + "_s2";
-}
-
 io::CsvWriter AukfCsv(const Series& series, const AukfResult& result, const AukfOutputOptions& out) {
   const int m = result.m;
   std::vector<std::string> header = {"t_s", "kind"};
@@ -864,12 +848,12 @@ io::CsvWriter AukfCsv(const Series& series, const AukfResult& result, const Aukf
   header.push_back("status");
   if (out.derivatives) {
     for (const auto& c : series.columns) {
-      header.push_back(RateColumnName(c));
-      header.push_back(AccelColumnName(c));
+      header.push_back(DerivedColumnName(c, 1));
+      header.push_back(DerivedColumnName(c, 2));
     }
   }
   if (out.sigmas) {
-    for (const auto& c : series.columns) header.push_back(SingerSigmaColumnName(c));
+    for (const auto& c : series.columns) header.push_back(DerivedColumnName(c, 0, true));
   }
   // Output range of each angle column, shared with `singer` (AngleColumnIs360): [0, 360) for
   // azimuth/yaw-like names or when some input value exceeds 180°, else (−180, 180].

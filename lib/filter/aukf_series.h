@@ -185,15 +185,10 @@ bool EstimateColumnNoise(const Series& series, int column, double interval_s, do
                          std::size_t rows = static_cast<std::size_t>(-1));
 
 struct AukfOutputOptions {
-  bool derivatives = false;  // <base>_rate_<unit>_s, <base>_accel_<unit>_s2 columns (singer_series.h naming)
+  bool derivatives = false;  // <base>_rate_<unit>_s, <base>_accel_<unit>_s2 columns (DerivedColumnName)
   bool sigmas = false;       // <base>_sigma_<unit> (1σ of the value) columns
   int decimals = 9;
 };
-
-// Names of the derivative columns of a value column (`yaw_deg` → `yaw_rate_deg_s`, `yaw_accel_deg_s2`;
-// a name without '_' → `<name>_rate_per_s`, `<name>_accel_per_s2`). Shared by the rk-smooth subcommands.
-std::string RateColumnName(const std::string& column);
-std::string AccelColumnName(const std::string& column);
 
 // Output table `t_s,kind,<columns>,status[,<rate>,<accel> per column][,<base>_sigma_<unit> per column]`, rows in
 // time order: `estimate` (sample times) / `prediction` (mid-times), each followed by its `smoothed`

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "geo/angles.h"
+#include "numeric/robust_stats.h"
 
 namespace rk::filter {
 
@@ -147,8 +148,7 @@ bool FitWhiteJerkQMl(const double* t_s, const double* z, std::size_t n, bool ang
   std::vector<double> dt;
   dt.reserve(n - 1);
   for (std::size_t k = 1; k < n; ++k) dt.push_back(t_s[k] - t_s[k - 1]);
-  std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
-  const double T = dt[dt.size() / 2];
+  const double T = numeric::UpperMedianInPlace(dt);
   if (!(T > 0.0)) return false;
 
   std::vector<Block> blocks;

@@ -8,6 +8,7 @@
 
 #include "geo/angles.h"
 #include "io/error.h"
+#include "numeric/robust_stats.h"
 #include "track/interp.h"
 
 namespace rk::filter {
@@ -82,8 +83,7 @@ ResampleResult Resample(const Series& series, const std::vector<double>& targets
   {
     std::vector<double> dt;
     for (std::size_t r = 1; r < n; ++r) dt.push_back(series.t_s[r] - series.t_s[r - 1]);
-    std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
-    res.median_interval_s = dt.empty() ? kNaN : dt[dt.size() / 2];
+    res.median_interval_s = dt.empty() ? kNaN : numeric::UpperMedianInPlace(dt);
   }
   res.max_gap_s = options.max_gap_s > 0.0 ? options.max_gap_s : kDefaultGapFactor * res.median_interval_s;
   res.values.assign(nc, std::vector<double>(targets.size(), kNaN));

@@ -72,4 +72,23 @@ io::CsvRowRule SeriesRowRule(const std::vector<std::string>& columns) {
   return rule;
 }
 
+bool SplitUnit(const std::string& column, std::string* base, std::string* unit) {
+  const auto p = column.rfind('_');
+  if (p == std::string::npos || p == 0 || p + 1 >= column.size()) return false;
+  *base = column.substr(0, p);
+  *unit = column.substr(p + 1);
+  return true;
+}
+
+std::string DerivedColumnName(const std::string& column, int order, bool sigma) {
+  RK_CHECK(order >= 0 && order <= 2, "derivative order " + std::to_string(order));
+  static const char* const kWhat[3] = {"", "_rate", "_accel"};
+  static const char* const kPer[3] = {"", "_s", "_s2"};
+  const std::string what = std::string(kWhat[order]) + (sigma ? "_sigma" : "");
+  std::string base, unit;
+  if (!SplitUnit(column, &base, &unit))
+    return column + what + (order ? "_per" + std::string(kPer[order]) : "");
+  return base + what + "_" + unit + kPer[order];
+}
+
 }  // namespace rk::filter

@@ -33,4 +33,16 @@ io::CsvRowRule SeriesRowRule(const std::vector<std::string>& columns);
 // True if a column name is an angle in degrees (SPEC.md units: suffix `_deg`).
 bool IsAngleColumn(const std::string& name);
 
+// Splits "<base>_<unit>" at the last '_'; false (outputs untouched) for a name without '_', or one that
+// starts or ends with it.
+bool SplitUnit(const std::string& column, std::string* base, std::string* unit);
+
+// The one naming rule of the columns the rk-smooth filters derive from value column `<base>_<unit>`
+// (docs/rk-smooth-singer-resample.md): `order` 0 / 1 / 2 = the value / its rate / its acceleration,
+// `sigma` = its 1σ instead of the estimate. `yaw_deg` → `yaw_rate_deg_s`, `yaw_accel_deg_s2`, and with
+// sigma `yaw_sigma_deg`, `yaw_rate_sigma_deg_s`, `yaw_accel_sigma_deg_s2`; a name without a unit gets
+// `_rate_per_s`, `_accel_per_s2`, `_sigma`, `_rate_sigma_per_s`, `_accel_sigma_per_s2`. Order 0 without
+// sigma is the column itself.
+std::string DerivedColumnName(const std::string& column, int order, bool sigma = false);
+
 }  // namespace rk::filter

@@ -9,6 +9,7 @@
 
 #include "geo/angles.h"
 #include "io/error.h"
+#include "numeric/robust_stats.h"
 #include "track/singer.h"
 
 namespace rk::filter {
@@ -19,30 +20,10 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kMeasSigmaFloorRel = 1e-9;
 constexpr double kMeasSigmaFloorAbs = 1e-12;
 
-double Median(std::vector<double> v) {
-  if (v.empty()) return kNaN;
-  const std::size_t m = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m), v.end());
-  double med = v[m];
-  if (v.size() % 2 == 0) {
-    med = 0.5 * (med + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m)));
-  }
-  return med;
-}
-
 double Binomial(int n, int k) {
   double c = 1.0;
   for (int i = 1; i <= k; ++i) c = c * (n - k + i) / i;
   return c;
-}
-
-// Splits "<base>_<unit>" at the last '_'.
-bool SplitUnit(const std::string& column, std::string* base, std::string* unit) {
-  const auto p = column.rfind('_');
-  if (p == std::string::npos || p == 0 || p + 1 >= column.size()) return false;
-  *base = column.substr(0, p);
-  *unit = column.substr(p + 1);
-  return true;
 }
 
 template <typename T>
@@ -192,9 +173,7 @@ double EstimateNoiseSigma(const std::vector<double>& values, bool angle, int ord
     for (std::size_t i = 0; i + 1 < v.size() - static_cast<std::size_t>(k); ++i) v[i] = v[i + 1] - v[i];
   }
   v.resize(v.size() - static_cast<std::size_t>(order));
-  const double med = Median(v);
-  for (double& d : v) d = std::abs(d - med);
-  const double mad = Median(v);
+  const double mad = numeric::MedianAndMad(std::move(v)).mad;
   return 1.482602218505602 * mad / std::sqrt(Binomial(2 * order, order));
 }
 
@@ -207,16 +186,14 @@ double NoiseSigmaFromDifferences(const std::vector<double>& values, bool angle, 
     v.push_back(x);
   }
   double best = kNaN;
-  std::vector<double> dev;
   for (int k = 1; k <= max_order && static_cast<int>(v.size()) >= k + 3; ++k) {
     for (std::size_t i = 0; i + 1 < v.size() - static_cast<std::size_t>(k - 1); ++i) v[i] = v[i + 1] - v[i];
     if (k < min_order) continue;
     const std::size_t count = v.size() - static_cast<std::size_t>(k);
     std::vector<double> d(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(count));
-    const double med = Median(d);
-    dev.resize(count);
-    for (std::size_t i = 0; i < count; ++i) dev[i] = std::abs(d[i] - med);
-    const double mad = 1.482602218505602 * Median(dev);
+    const numeric::MedianMad mm = numeric::MedianAndMad(d);
+    const double med = mm.median;
+    const double mad = 1.482602218505602 * mm.mad;
     // RMS of the differences within 4 robust σ of their median: efficient like an RMS, robust like the MAD.
     double sum = 0.0;
     std::size_t used = 0;
@@ -462,24 +439,6 @@ std::vector<double> ColumnUnitsToInternal(const std::vector<double>& values, con
     out[c] = series.is_angle[c] ? geo::DegToRad(v) : v;
   }
   return out;
-}
-
-std::string SingerRateColumnName(const std::string& column) {
-  std::string base, unit;
-  if (!SplitUnit(column, &base, &unit)) return column + "_rate_per_s";
-  return base + "_rate_" + unit + "_s";
-}
-std::string SingerAccelColumnName(const std::string& column) {
-  std::string base, unit;
-  if (!SplitUnit(column, &base, &unit)) return column + "_accel_per_s2";
-  return base + "_accel_" + unit + "_s2";
-}
-std::string SingerSigmaColumnName(const std::string& column, int order) {
-  static const char* const kWhat[3] = {"_sigma", "_rate_sigma", "_accel_sigma"};
-  static const char* const kPer[3] = {"", "_s", "_s2"};
-  std::string base, unit;
-  if (!SplitUnit(column, &base, &unit)) return column + kWhat[order] + (order ? "_per" + std::string(kPer[order]) : "");
-  return base + kWhat[order] + "_" + unit + kPer[order];
 }
 
 bool AngleColumnIs360(const std::string& column, const std::vector<double>& values_rad) {

@@ -144,15 +144,8 @@ std::size_t MaskByStatus(const io::CsvTable& table, Series* series, std::size_t 
 std::vector<double> ColumnUnitsToInternal(const std::vector<double>& values, const Series& series,
                                           const std::string& option);
 
-// Output naming and angle range (docs/rk-smooth-singer-resample.md):
-//   `<base>_<unit>` → rate `<base>_rate_<unit>_s`, acceleration `<base>_accel_<unit>_s2`,
-//   1σ `<base>_sigma_<unit>` (of the rate `<base>_rate_sigma_<unit>_s`, of the acceleration
-//   `<base>_accel_sigma_<unit>_s2`); a name without '_' gets `_rate_per_s`, `_accel_per_s2`, `_sigma`
-//   (the derivative names are those of aukf_series.h).
-std::string SingerRateColumnName(const std::string& column);
-std::string SingerAccelColumnName(const std::string& column);
-// order 0: `<base>_sigma_<unit>`, 1: `<base>_rate_sigma_<unit>_s`, 2: `<base>_accel_sigma_<unit>_s2`.
-std::string SingerSigmaColumnName(const std::string& column, int order = 0);
+// Output column names: DerivedColumnName (series.h).
+
 // True if an angle column is written in [0, 360): azimuth-like name (starts with "az" or
 // "yaw", SPEC.md §2), or no input value < 0 and some > 180° (the aukf rule); else (−180, 180].
 bool AngleColumnIs360(const std::string& column, const std::vector<double>& values_rad);

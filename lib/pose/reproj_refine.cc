@@ -5,6 +5,8 @@
 #include <cmath>
 #include <limits>
 
+#include "numeric/levenberg_marquardt.h"
+
 namespace rk::pose {
 
 namespace {
@@ -96,11 +98,6 @@ ReprojRefineResult RefineReprojection(std::span<const Eigen::Vector2d> xn, std::
   Eigen::Vector3d t = t0;
   bool front = false;
   double chi2 = ReprojectionChi2(xn, p_body, sigma_px, fx, fy, R, t, &front);
-  double mu = 1e-8;
-
-  auto normal_equations = [&](const Eigen::Matrix3d& Rc, const Eigen::Vector3d& tc, Mat6* H, Vec6* g) {
-    NormalEquations(xn, p_body, sigma_px, fx, fy, Rc, tc, H, g);
-  };
 
   if (!front || xn.size() < 3) {
     res.R_cam_body = R;
@@ -109,46 +106,49 @@ ReprojRefineResult RefineReprojection(std::span<const Eigen::Vector2d> xn, std::
     res.in_front = front;
     return res;
   }
+  // Levenberg–Marquardt on (rotation increment, translation): R ← Exp(δω) R, t ← t + δt; a candidate
+  // with a point behind the camera is rejected. Converged: no step lowers χ², or the step is below
+  // step_tol (rotation in rad plus translation relative to |t|).
+  struct Polish {
+    std::span<const Eigen::Vector2d> xn;
+    std::span<const Eigen::Vector3d> p_body;
+    std::span<const double> sigma_px;
+    double fx, fy, t_scale, step_tol;
+    Eigen::Matrix3d R, R_new;
+    Eigen::Vector3d t, t_new;
+    bool TryStep(const Vec6& delta, double* chi2) {
+      R_new = ExpSo3(delta.head<3>()) * R;
+      t_new = t + delta.tail<3>();
+      bool front = false;
+      *chi2 = ReprojectionChi2(xn, p_body, sigma_px, fx, fy, R_new, t_new, &front);
+      return front;
+    }
+    void Accept() {
+      R = R_new;
+      t = t_new;
+    }
+    bool Linearize(Mat6* H, Vec6* g) {
+      NormalEquations(xn, p_body, sigma_px, fx, fy, R, t, H, g);
+      return true;
+    }
+    bool Converged(const Vec6& delta, double, double) const {
+      return delta.head<3>().norm() + delta.tail<3>().norm() / t_scale < step_tol;
+    }
+  } polish{xn, p_body, sigma_px, fx, fy, std::max(t.norm(), 1e-9), options.step_tol, R, R, t, t};
   Mat6 H;
   Vec6 g;
-  normal_equations(R, t, &H, &g);
-  const double t_scale = std::max(t.norm(), 1e-9);
-  for (int it = 0; it < options.max_iterations; ++it) {
-    res.iterations = it + 1;
-    bool accepted = false;
-    Vec6 delta = Vec6::Zero();
-    for (int tries = 0; tries < 10 && !accepted; ++tries) {
-      Mat6 A = H;
-      for (int k = 0; k < 6; ++k) A(k, k) += mu * std::max(H(k, k), 1e-30);
-      delta = -A.ldlt().solve(g);
-      if (!delta.allFinite()) break;
-      const Eigen::Matrix3d R_new = ExpSo3(delta.head<3>()) * R;
-      const Eigen::Vector3d t_new = t + delta.tail<3>();
-      bool f = false;
-      const double c = ReprojectionChi2(xn, p_body, sigma_px, fx, fy, R_new, t_new, &f);
-      if (f && c <= chi2) {
-        R = R_new;
-        t = t_new;
-        chi2 = c;
-        mu = std::max(mu * 0.1, 1e-12);
-        accepted = true;
-      } else {
-        mu *= 10.0;
-      }
-    }
-    if (!accepted) {
-      res.converged = true;  // no descent direction left: at the minimum to rounding
-      break;
-    }
-    normal_equations(R, t, &H, &g);
-    if (delta.head<3>().norm() + delta.tail<3>().norm() / t_scale < options.step_tol) {
-      res.converged = true;
-      break;
-    }
-  }
-  res.R_cam_body = R;
-  res.t_cam = t;
-  res.chi2 = ReprojectionChi2(xn, p_body, sigma_px, fx, fy, R, t, &res.in_front, &res.sse_px2);
+  polish.Linearize(&H, &g);
+  const numeric::LmDamping damping{.initial = 1e-8, .diagonal_floor = 1e-30, .increase = 10.0,
+                                   .decrease = 0.1, .min = 1e-12, .max_tries = 10, .accept_equal_cost = true};
+  const numeric::LmSummary lm =
+      numeric::LevenbergMarquardt<6>(polish, chi2, damping, options.max_iterations, &H, &g);
+  // A non-finite step means no step is left: converged at the current point.
+  res.converged =
+      lm.status == numeric::LmStatus::kConverged || lm.status == numeric::LmStatus::kNonFiniteStep;
+  res.iterations = lm.iterations;
+  res.R_cam_body = polish.R;
+  res.t_cam = polish.t;
+  res.chi2 = ReprojectionChi2(xn, p_body, sigma_px, fx, fy, polish.R, polish.t, &res.in_front, &res.sse_px2);
   res.information = H;
   return res;
 }

@@ -9,6 +9,7 @@
 
 #include "geo/angles.h"
 #include "io/error.h"
+#include "numeric/robust_stats.h"
 #include "track/interp.h"
 
 namespace rk::registration {
@@ -120,8 +121,7 @@ double MedianRadarOffset(const RegistrationInput& in) {
     if (it != times[0].begin() && std::abs(*(it - 1) - tb) < std::abs(best)) best = *(it - 1) - tb;
     off.push_back(-best);  // t_b − t_a
   }
-  std::nth_element(off.begin(), off.begin() + static_cast<long>(off.size() / 2), off.end());
-  return off[off.size() / 2];
+  return numeric::UpperMedianInPlace(off);
 }
 
 void RequirePairedSteps(const RegistrationInput& in, double pair_tol_s) {

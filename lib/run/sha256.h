@@ -1,10 +1,10 @@
 // SHA-256 (FIPS 180-4) of byte strings and files, as lowercase hex: the content checksum rk-run
-// records for every input, tool executable and product, comparable with `sha256sum`.
+// records for every input, tool executable and product, comparable with `sha256sum`. Backed by
+// OpenSSL 3's libcrypto (EVP interface), which uses the CPU's SHA instructions where there are any.
 #pragma once
 
-#include <array>
 #include <cstddef>
-#include <cstdint>
+#include <memory>
 #include <string>
 #include <string_view>
 
@@ -13,17 +13,17 @@ namespace rk::run {
 class Sha256 {
  public:
   Sha256();
+  ~Sha256();
+  Sha256(Sha256&&) noexcept;
+  Sha256& operator=(Sha256&&) noexcept;
   void Update(const void* data, std::size_t bytes);
   void Update(std::string_view text) { Update(text.data(), text.size()); }
   // Finishes the digest (the object is spent afterwards) and returns 64 hex characters.
   std::string HexDigest();
 
  private:
-  void Block(const std::uint8_t* block);
-  std::array<std::uint32_t, 8> h_;
-  std::array<std::uint8_t, 64> buffer_{};
-  std::size_t buffered_ = 0;
-  std::uint64_t total_bytes_ = 0;
+  struct Context;  // the EVP_MD_CTX, kept out of this header (no OpenSSL include for the users)
+  std::unique_ptr<Context> ctx_;
 };
 
 std::string Sha256Hex(std::string_view text);

@@ -214,12 +214,12 @@ TEST(SingerSeries, OptionsAndNames) {
   EXPECT_THROW(RunSingerSeries(s, o), Error);
   const Series u = MakeSeries("x_kg", {0.0, 1.0, 2.0, 3.0}, {0.0, 1.0, 2.0, 3.0});
   EXPECT_THROW(RunSingerSeries(u, SingerSeriesOptions{}), Error);  // no default for the unit
-  EXPECT_EQ(SingerRateColumnName("range_m"), "range_rate_m_s");
-  EXPECT_EQ(SingerAccelColumnName("range_m"), "range_accel_m_s2");
-  EXPECT_EQ(SingerRateColumnName("yaw_deg"), "yaw_rate_deg_s");
-  EXPECT_EQ(SingerSigmaColumnName("az_deg"), "az_sigma_deg");
-  EXPECT_EQ(SingerSigmaColumnName("range_m", 1), "range_rate_sigma_m_s");
-  EXPECT_EQ(SingerSigmaColumnName("range_m", 2), "range_accel_sigma_m_s2");
+  EXPECT_EQ(DerivedColumnName("range_m", 1), "range_rate_m_s");
+  EXPECT_EQ(DerivedColumnName("range_m", 2), "range_accel_m_s2");
+  EXPECT_EQ(DerivedColumnName("yaw_deg", 1), "yaw_rate_deg_s");
+  EXPECT_EQ(DerivedColumnName("az_deg", 0, true), "az_sigma_deg");
+  EXPECT_EQ(DerivedColumnName("range_m", 1, true), "range_rate_sigma_m_s");
+  EXPECT_EQ(DerivedColumnName("range_m", 2, true), "range_accel_sigma_m_s2");
 }
 
 TEST(SingerSeries, MaskByStatus) {
