@@ -172,6 +172,247 @@ io::Json CylinderRunResult::SummaryJson() const {
   return j;
 }
 
+namespace {
+
+// The axes of the last accepted rows and the axis they predict for the next row (continuity).
+class AxisHistory {
+ public:
+  void Add(double t_s, const Eigen::Vector3d& axis) {
+    entries_.push_back({t_s, axis});
+    if (entries_.size() > kHistory) entries_.erase(entries_.begin());
+  }
+
+  // The axis predicted at t_s from the rows within `gap_s` of the last one (older history is
+  // forgotten): none without history, the last axis after one row, else a straight-line fit.
+  std::optional<Eigen::Vector3d> Predict(double t_s, double gap_s) {
+    while (!entries_.empty() && t_s - entries_.back().t_s > gap_s) entries_.clear();
+    if (entries_.size() == 1) return entries_.back().axis;
+    if (entries_.size() < 2) return std::nullopt;
+    // Straight-line least-squares fit of the axis components over the history (up to kHistory rows), so
+    // that one noisy row does not throw the prediction (two-point extrapolation doubles the noise).
+    const double t_ref = entries_.back().t_s;
+    double sw = 0, st = 0, stt = 0;
+    Eigen::Vector3d sa = Eigen::Vector3d::Zero(), sta = Eigen::Vector3d::Zero();
+    for (const Entry& h : entries_) {
+      const double t = h.t_s - t_ref;
+      sw += 1;
+      st += t;
+      stt += t * t;
+      sa += h.axis;
+      sta += t * h.axis;
+    }
+    const double det = sw * stt - st * st;
+    if (det > 1e-12 * std::max(1.0, stt * sw)) {
+      const Eigen::Vector3d slope = (sw * sta - st * sa) / det;
+      const Eigen::Vector3d icept = (sa - slope * st) / sw;
+      return (icept + slope * (t_s - t_ref)).normalized();
+    }
+    return (sa / sw).normalized();
+  }
+
+ private:
+  static constexpr std::size_t kHistory = 5;  // accepted rows kept
+  struct Entry {
+    double t_s;
+    Eigen::Vector3d axis;
+  };
+  std::vector<Entry> entries_;
+};
+
+// What became of a row.
+struct RowOutcome {
+  RowStatus status;
+  CylinderSolutionStatus solution;
+};
+
+// True when a point lies outside the image.
+bool OutsideImage(const CylinderFramePoints& f, const camera::CameraModel& cam) {
+  bool outside = false;
+  for (const auto& p : f.px) {
+    outside = outside || p->x() < -0.5 || p->y() < -0.5 || p->x() > cam.width_px - 0.5 || p->y() > cam.height_px - 0.5;
+  }
+  return outside;
+}
+
+// Solves the rows of one run in time order (the choice between two solutions uses the rows before).
+class CylinderRowSolver {
+ public:
+  CylinderRowSolver(const camera::CameraModel& cam, const CylinderTarget& target, const CylinderRunOptions& options,
+                    const CylinderFrameReader* frames, CylinderRunResult* result)
+      : cam_(cam), target_(target), options_(options), frames_(frames), result_(result), solve_(options.solve) {
+    solve_.max_miss_rad = options.max_miss_px / cam.fx();
+    tau_ = geo::DegToRad(options.ambiguity_deg);
+    px_var_ = options.pixel_sigma_px * options.pixel_sigma_px;
+    const double ang = options.angle_sigma_arcsec / geo::kArcsecPerRad;
+    ang_var_ = ang * ang;
+  }
+
+  // A row with its three points in the image and a theodolite boresight.
+  RowOutcome Solve(const CylinderFramePoints& f, const geo::AzEl& boresight, CylinderRow* row) {
+    const RowStatus ok_status = f.status;  // ok, or predicted / reacquired from the points file
+    CylinderInputs x;
+    x << boresight.az_rad, boresight.el_rad, f.px[0]->x(), f.px[0]->y(), f.px[1]->x(), f.px[1]->y(), f.px[2]->x(), f.px[2]->y(),
+        target_.length_m, target_.diameter_m;
+    const CylinderRays rays = RaysFromInputs(cam_, x);
+    const double bc = AxisAngle(rays.tail1, rays.tail2);
+    if (!(bc > 0.0) || (*f.px[1] - *f.px[2]).norm() < 1e-9) return {RowStatus::kInvalid, CylinderSolutionStatus::kDegenerate};
+    const Eigen::Vector3d mid = (rays.tail1 + rays.tail2).normalized();
+    if (AxisAngle(rays.nose, mid) <= 0.5 * bc) {
+      TailChase(f.t_s, mid, row);
+      return {ok_status, CylinderSolutionStatus::kTailChase};
+    }
+    row->asymmetry_px = std::abs(AxisAngle(rays.nose, rays.tail1) - AxisAngle(rays.nose, rays.tail2)) * cam_.fx();
+    // Inconsistent: beyond the absolute limit and beyond a quarter of the tail diameter's image (a mislabelled
+    // or foreign point is off by about the diameter or more; reading noise by much less).
+    if (*row->asymmetry_px > std::max(options_.max_asymmetry_px, 0.25 * bc * cam_.fx())) {
+      return {RowStatus::kInvalid, CylinderSolutionStatus::kInconsistent};
+    }
+    std::vector<CylinderSolution> sols = Candidates(rays);
+    if (sols.empty()) return {RowStatus::kInvalid, CylinderSolutionStatus::kNoSolution};
+    const std::vector<std::optional<CylinderImageFitResult>> fits = FitImage(f, boresight, &sols);
+    std::size_t primary = 0;
+    CylinderSolutionStatus sol_status = Choose(sols, history_.Predict(f.t_s, options_.continuity_gap_s), row, &primary);
+    const CylinderSolution& p = sols[primary];
+    if (!p.exact) sol_status = CylinderSolutionStatus::kNearMiss;
+    row->yaw_rad = p.yaw_rad;
+    row->pitch_rad = p.pitch_rad;
+    row->range_m = p.range_m;
+    row->edge_tilt_rad = p.edge_tilt_rad;
+    row->axis_enu = p.axis_enu;
+    SetSigmaAndFit(x, p, fits[primary], row);
+    if (row->fit) ++result_->rows_by_fit[static_cast<std::size_t>(*row->fit)];
+    history_.Add(f.t_s, *row->axis_enu);
+    return {ok_status, sol_status};
+  }
+
+ private:
+  // Tail chase: the nose image lies within the tail rim's; the axis is along the line of sight.
+  void TailChase(double t_s, const Eigen::Vector3d& mid, CylinderRow* row) {
+    const geo::AzEl los = geo::AzElFromEnu(mid);
+    row->yaw_rad = los.az_rad;
+    row->pitch_rad = los.el_rad;
+    row->axis_enu = mid;
+    const double bound = std::atan2(0.5 * target_.diameter_m, target_.length_m);
+    row->sigma_yaw_rad = bound / std::max(std::cos(los.el_rad), 1e-9);
+    row->sigma_pitch_rad = bound;
+    history_.Add(t_s, mid);
+  }
+
+  // The three-point solutions, at most two: the two most nearly edge-on, in nose-range order.
+  std::vector<CylinderSolution> Candidates(const CylinderRays& rays) {
+    const CylinderSolveResult sr = SolveCylinder(rays, target_, solve_);
+    result_->solver_evaluations += sr.function_evaluations;
+    std::vector<CylinderSolution> sols = sr.solutions;
+    if (sols.size() > 2) {
+      std::sort(sols.begin(), sols.end(),
+                [](const CylinderSolution& p, const CylinderSolution& q) { return p.edge_tilt_rad < q.edge_tilt_rad; });
+      sols.resize(2);
+      std::sort(sols.begin(), sols.end(),
+                [](const CylinderSolution& p, const CylinderSolution& q) { return p.range_m(0) < q.range_m(0); });
+    }
+    return sols;
+  }
+
+  // Image fit of each solution (near the side-on double root the frame has two minima close to the two
+  // three-point solutions, of equal cost: each is refined, and continuity chooses as without the fit).
+  // A fit that did not fail replaces its solution.
+  std::vector<std::optional<CylinderImageFitResult>> FitImage(const CylinderFramePoints& f, const geo::AzEl& boresight,
+                                                              std::vector<CylinderSolution>* sols) {
+    std::vector<std::optional<CylinderImageFitResult>> fits(sols->size());
+    if (!frames_ || !f.frame) return fits;
+    const cv::Mat& image = (*frames_)(*f.frame);
+    for (std::size_t k = 0; k < sols->size(); ++k) {
+      CylinderSolution& c = (*sols)[k];
+      const auto t0 = std::chrono::steady_clock::now();
+      const CylinderImageFitResult g = FitCylinderImage(image, cam_, boresight.az_rad, boresight.el_rad, target_,
+                                                        c.tail_centre_enu, c.yaw_rad, c.pitch_rad, options_.image_fit);
+      result_->fit_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+      result_->fit_evaluations += g.evaluations;
+      fits[k] = g;
+      if (g.status == CylinderImageFitStatus::kFailed) continue;
+      c.yaw_rad = g.yaw_rad;
+      c.pitch_rad = g.pitch_rad;
+      c.axis_enu = g.axis_enu;
+      c.tail_centre_enu = g.tail_centre_enu;
+      c.nose_enu = g.tail_centre_enu + target_.length_m * g.axis_enu;
+      const Eigen::Vector3d n = g.axis_enu.cross(g.tail_centre_enu).normalized();
+      c.range_m = Eigen::Vector3d(c.nose_enu.norm(), (g.tail_centre_enu + 0.5 * target_.diameter_m * n).norm(),
+                                  (g.tail_centre_enu - 0.5 * target_.diameter_m * n).norm());
+    }
+    return fits;
+  }
+
+  // The primary of one or two solutions, by continuity with the predicted axis (SPEC.md §3), and the
+  // alternative's angles in the row.
+  CylinderSolutionStatus Choose(const std::vector<CylinderSolution>& sols, const std::optional<Eigen::Vector3d>& predicted,
+                                CylinderRow* row, std::size_t* primary) const {
+    *primary = 0;
+    if (sols.size() != 2) return CylinderSolutionStatus::kUnique;
+    CylinderSolutionStatus sol_status;
+    const double sep = AxisAngle(sols[0].axis_enu, sols[1].axis_enu);
+    row->separation_rad = sep;
+    if (predicted) {
+      const double d0 = AxisAngle(sols[0].axis_enu, *predicted), d1 = AxisAngle(sols[1].axis_enu, *predicted);
+      *primary = d1 < d0 ? 1 : 0;
+      if (sep < tau_) {
+        sol_status = CylinderSolutionStatus::kSideOn;
+      } else if (std::abs(d0 - d1) < tau_) {
+        sol_status = CylinderSolutionStatus::kAmbiguous;
+      } else {
+        sol_status = CylinderSolutionStatus::kContinuity;
+      }
+    } else {
+      *primary = 0;  // SPEC.md §3: no history → the nose-nearer
+      sol_status = sep < tau_ ? CylinderSolutionStatus::kSideOn : CylinderSolutionStatus::kAmbiguous;
+    }
+    const CylinderSolution& alt = sols[1 - *primary];
+    row->alt_yaw_rad = alt.yaw_rad;
+    row->alt_pitch_rad = alt.pitch_rad;
+    return sol_status;
+  }
+
+  // σ: the image fit's covariance when it succeeded, else the three-point Jacobian's propagation; and the
+  // fit's figures.
+  void SetSigmaAndFit(const CylinderInputs& x, const CylinderSolution& p, const std::optional<CylinderImageFitResult>& fit,
+                      CylinderRow* row) const {
+    const bool fitted = fit && fit->status != CylinderImageFitStatus::kFailed;
+    CylinderJacobianMatrix J;
+    if (!fitted && CylinderJacobian(cam_, x, p.range_m, &J)) {
+      auto sigma = [&](int k) {
+        double v = 0.0;
+        for (int i = 2; i < 8; ++i) v += J(k, i) * J(k, i) * px_var_;
+        v += (J(k, 0) * J(k, 0) + J(k, 1) * J(k, 1)) * ang_var_;
+        return std::sqrt(v);
+      };
+      row->sigma_yaw_rad = sigma(0);
+      row->sigma_pitch_rad = sigma(1);
+    }
+    if (fit) {
+      const CylinderImageFitResult& g = *fit;
+      row->fit = g.status;
+      if (fitted) {
+        row->sigma_yaw_rad = g.sigma_yaw_rad;
+        row->sigma_pitch_rad = g.sigma_pitch_rad;
+        row->fit_rms_dn = g.rms_dn;
+        row->fit_psf_px = g.psf_sigma_px;
+        row->fit_cone_m = g.nose_cone_length_m;
+        row->fit_iterations = g.iterations;
+      }
+    }
+  }
+
+  const camera::CameraModel& cam_;
+  const CylinderTarget& target_;
+  const CylinderRunOptions& options_;
+  const CylinderFrameReader* frames_;
+  CylinderRunResult* result_;
+  CylinderSolveOptions solve_;
+  double tau_ = 0.0, px_var_ = 0.0, ang_var_ = 0.0;
+  AxisHistory history_;
+};
+
+}  // namespace
+
 CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::TurretLog& theodolite,
                               const camera::CameraModel& cam, const target::CylinderShape& target,
                               const CylinderRunOptions& options, const CylinderFrameReader* frames) {
@@ -189,33 +430,13 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
       locate::BoresightSource::FromLog(theodolite, options.theodolite_method, options.theodolite_max_gap_s);
   result.theodolite_duplicate_times = theo.duplicate_times();
 
-  CylinderSolveOptions solve = options.solve;
-  solve.max_miss_rad = options.max_miss_px / cam.fx();
-  const double tau = geo::DegToRad(options.ambiguity_deg);
-  const double px_var = options.pixel_sigma_px * options.pixel_sigma_px;
-  const double ang = options.angle_sigma_arcsec / geo::kArcsecPerRad;
-  const double ang_var = ang * ang;
-
-  struct History {
-    double t_s;
-    Eigen::Vector3d axis;
-  };
-  constexpr std::size_t kHistory = 5;
-  std::vector<History> history;  // accepted rows, the last kHistory kept
+  CylinderRowSolver solver(cam, target, options, frames, &result);
   std::size_t complete_frames = 0, covered_frames = 0;
-
   result.rows.reserve(points.frames.size());
   for (const CylinderFramePoints& f : points.frames) {
     CylinderRow row;
     row.frame = f.frame;
     row.t_s = f.t_s;
-    auto finish = [&](RowStatus st, CylinderSolutionStatus sol) {
-      row.status = st;
-      row.solution = sol;
-      ++result.rows_by_status[static_cast<std::size_t>(row.status)];
-      ++result.rows_by_solution[static_cast<std::size_t>(row.solution)];
-      result.rows.push_back(row);
-    };
     const bool complete = f.px[0] && f.px[1] && f.px[2];
     const std::optional<geo::AzEl> boresight = theo.At(f.t_s);
     const bool covered = boresight.has_value();
@@ -223,182 +444,23 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
       row.boresight_az_rad = boresight->az_rad;
       row.boresight_el_rad = boresight->el_rad;
     }
-    if (!complete) {
-      finish(RowStatus::kLost, CylinderSolutionStatus::kMissingPoints);
-      continue;
-    }
-    ++complete_frames;
-    bool outside = false;
-    for (const auto& p : f.px) {
-      outside = outside || p->x() < -0.5 || p->y() < -0.5 || p->x() > cam.width_px - 0.5 || p->y() > cam.height_px - 0.5;
-    }
-    if (outside) {
-      finish(RowStatus::kInvalid, CylinderSolutionStatus::kOutsideImage);
-      continue;
-    }
-    if (!covered) {
-      finish(RowStatus::kInvalid, CylinderSolutionStatus::kNoTheodolite);
-      continue;
-    }
-    ++covered_frames;
-    const RowStatus ok_status = f.status;  // ok, or predicted / reacquired from the points file
-    CylinderInputs x;
-    x << boresight->az_rad, boresight->el_rad, f.px[0]->x(), f.px[0]->y(), f.px[1]->x(), f.px[1]->y(), f.px[2]->x(), f.px[2]->y(),
-        target.length_m, target.diameter_m;
-    const CylinderRays rays = RaysFromInputs(cam, x);
-    const double bc = AxisAngle(rays.tail1, rays.tail2);
-    if (!(bc > 0.0) || (*f.px[1] - *f.px[2]).norm() < 1e-9) {
-      finish(RowStatus::kInvalid, CylinderSolutionStatus::kDegenerate);
-      continue;
-    }
-    const Eigen::Vector3d mid = (rays.tail1 + rays.tail2).normalized();
-    if (AxisAngle(rays.nose, mid) <= 0.5 * bc) {
-      // Tail chase: the nose image lies within the tail rim's; the axis is along the line of sight.
-      const geo::AzEl los = geo::AzElFromEnu(mid);
-      row.yaw_rad = los.az_rad;
-      row.pitch_rad = los.el_rad;
-      row.axis_enu = mid;
-      const double bound = std::atan2(0.5 * target.diameter_m, target.length_m);
-      row.sigma_yaw_rad = bound / std::max(std::cos(los.el_rad), 1e-9);
-      row.sigma_pitch_rad = bound;
-      history.push_back({f.t_s, mid});
-      if (history.size() > kHistory) history.erase(history.begin());
-      finish(ok_status, CylinderSolutionStatus::kTailChase);
-      continue;
-    }
-    row.asymmetry_px = std::abs(AxisAngle(rays.nose, rays.tail1) - AxisAngle(rays.nose, rays.tail2)) * cam.fx();
-    // Inconsistent: beyond the absolute limit and beyond a quarter of the tail diameter's image (a mislabelled
-    // or foreign point is off by about the diameter or more; reading noise by much less).
-    if (*row.asymmetry_px > std::max(options.max_asymmetry_px, 0.25 * bc * cam.fx())) {
-      finish(RowStatus::kInvalid, CylinderSolutionStatus::kInconsistent);
-      continue;
-    }
-    const CylinderSolveResult sr = SolveCylinder(rays, target, solve);
-    result.solver_evaluations += sr.function_evaluations;
-    std::vector<CylinderSolution> sols = sr.solutions;
-    if (sols.size() > 2) {
-      // Keep the two most nearly edge-on, in nose-range order.
-      std::sort(sols.begin(), sols.end(),
-                [](const CylinderSolution& p, const CylinderSolution& q) { return p.edge_tilt_rad < q.edge_tilt_rad; });
-      sols.resize(2);
-      std::sort(sols.begin(), sols.end(),
-                [](const CylinderSolution& p, const CylinderSolution& q) { return p.range_m(0) < q.range_m(0); });
-    }
-    if (sols.empty()) {
-      finish(RowStatus::kInvalid, CylinderSolutionStatus::kNoSolution);
-      continue;
-    }
-    // Image fit of each solution (near the side-on double root the frame has two minima close to the two
-    // three-point solutions, of equal cost: each is refined, and continuity chooses as without the fit).
-    std::vector<std::optional<CylinderImageFitResult>> fits(sols.size());
-    if (frames && f.frame) {
-      const cv::Mat& image = (*frames)(*f.frame);
-      for (std::size_t k = 0; k < sols.size(); ++k) {
-        CylinderSolution& c = sols[k];
-        const auto t0 = std::chrono::steady_clock::now();
-        const CylinderImageFitResult g = FitCylinderImage(image, cam, boresight->az_rad, boresight->el_rad, target,
-                                                          c.tail_centre_enu, c.yaw_rad, c.pitch_rad, options.image_fit);
-        result.fit_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-        result.fit_evaluations += g.evaluations;
-        fits[k] = g;
-        if (g.status == CylinderImageFitStatus::kFailed) continue;
-        c.yaw_rad = g.yaw_rad;
-        c.pitch_rad = g.pitch_rad;
-        c.axis_enu = g.axis_enu;
-        c.tail_centre_enu = g.tail_centre_enu;
-        c.nose_enu = g.tail_centre_enu + target.length_m * g.axis_enu;
-        const Eigen::Vector3d n = g.axis_enu.cross(g.tail_centre_enu).normalized();
-        c.range_m = Eigen::Vector3d(c.nose_enu.norm(), (g.tail_centre_enu + 0.5 * target.diameter_m * n).norm(),
-                                    (g.tail_centre_enu - 0.5 * target.diameter_m * n).norm());
-      }
-    }
-    // History within the continuity gap → predicted axis.
-    while (!history.empty() && f.t_s - history.back().t_s > options.continuity_gap_s) history.clear();
-    std::optional<Eigen::Vector3d> predicted;
-    if (history.size() >= 2) {
-      // Straight-line least-squares fit of the axis components over the history (up to kHistory rows), so
-      // that one noisy row does not throw the prediction (two-point extrapolation doubles the noise).
-      const double t_ref = history.back().t_s;
-      double sw = 0, st = 0, stt = 0;
-      Eigen::Vector3d sa = Eigen::Vector3d::Zero(), sta = Eigen::Vector3d::Zero();
-      for (const History& h : history) {
-        const double t = h.t_s - t_ref;
-        sw += 1;
-        st += t;
-        stt += t * t;
-        sa += h.axis;
-        sta += t * h.axis;
-      }
-      const double det = sw * stt - st * st;
-      if (det > 1e-12 * std::max(1.0, stt * sw)) {
-        const Eigen::Vector3d slope = (sw * sta - st * sa) / det;
-        const Eigen::Vector3d icept = (sa - slope * st) / sw;
-        predicted = (icept + slope * (f.t_s - t_ref)).normalized();
+    RowOutcome out{RowStatus::kLost, CylinderSolutionStatus::kMissingPoints};
+    if (complete) {
+      ++complete_frames;
+      if (OutsideImage(f, cam)) {
+        out = {RowStatus::kInvalid, CylinderSolutionStatus::kOutsideImage};
+      } else if (!covered) {
+        out = {RowStatus::kInvalid, CylinderSolutionStatus::kNoTheodolite};
       } else {
-        predicted = (sa / sw).normalized();
-      }
-    } else if (history.size() == 1) {
-      predicted = history.back().axis;
-    }
-    std::size_t primary = 0;
-    CylinderSolutionStatus sol_status = CylinderSolutionStatus::kUnique;
-    if (sols.size() == 2) {
-      const double sep = AxisAngle(sols[0].axis_enu, sols[1].axis_enu);
-      row.separation_rad = sep;
-      if (predicted) {
-        const double d0 = AxisAngle(sols[0].axis_enu, *predicted), d1 = AxisAngle(sols[1].axis_enu, *predicted);
-        primary = d1 < d0 ? 1 : 0;
-        if (sep < tau) {
-          sol_status = CylinderSolutionStatus::kSideOn;
-        } else if (std::abs(d0 - d1) < tau) {
-          sol_status = CylinderSolutionStatus::kAmbiguous;
-        } else {
-          sol_status = CylinderSolutionStatus::kContinuity;
-        }
-      } else {
-        primary = 0;  // SPEC.md §3: no history → the nose-nearer
-        sol_status = sep < tau ? CylinderSolutionStatus::kSideOn : CylinderSolutionStatus::kAmbiguous;
-      }
-      const CylinderSolution& alt = sols[1 - primary];
-      row.alt_yaw_rad = alt.yaw_rad;
-      row.alt_pitch_rad = alt.pitch_rad;
-    }
-    const CylinderSolution& p = sols[primary];
-    if (!p.exact) sol_status = CylinderSolutionStatus::kNearMiss;
-    row.yaw_rad = p.yaw_rad;
-    row.pitch_rad = p.pitch_rad;
-    row.range_m = p.range_m;
-    row.edge_tilt_rad = p.edge_tilt_rad;
-    row.axis_enu = p.axis_enu;
-    // σ: the image fit's covariance when it succeeded, else the three-point Jacobian's propagation.
-    const bool fitted = fits[primary] && fits[primary]->status != CylinderImageFitStatus::kFailed;
-    CylinderJacobianMatrix J;
-    if (!fitted && CylinderJacobian(cam, x, p.range_m, &J)) {
-      auto sigma = [&](int k) {
-        double v = 0.0;
-        for (int i = 2; i < 8; ++i) v += J(k, i) * J(k, i) * px_var;
-        v += (J(k, 0) * J(k, 0) + J(k, 1) * J(k, 1)) * ang_var;
-        return std::sqrt(v);
-      };
-      row.sigma_yaw_rad = sigma(0);
-      row.sigma_pitch_rad = sigma(1);
-    }
-    if (fits[primary]) {
-      const CylinderImageFitResult& g = *fits[primary];
-      row.fit = g.status;
-      if (fitted) {
-        row.sigma_yaw_rad = g.sigma_yaw_rad;
-        row.sigma_pitch_rad = g.sigma_pitch_rad;
-        row.fit_rms_dn = g.rms_dn;
-        row.fit_psf_px = g.psf_sigma_px;
-        row.fit_cone_m = g.nose_cone_length_m;
-        row.fit_iterations = g.iterations;
+        ++covered_frames;
+        out = solver.Solve(f, *boresight, &row);
       }
     }
-    if (row.fit) ++result.rows_by_fit[static_cast<std::size_t>(*row.fit)];
-    history.push_back({f.t_s, *row.axis_enu});
-    if (history.size() > kHistory) history.erase(history.begin());
-    finish(ok_status, sol_status);
+    row.status = out.status;
+    row.solution = out.solution;
+    ++result.rows_by_status[static_cast<std::size_t>(row.status)];
+    ++result.rows_by_solution[static_cast<std::size_t>(row.solution)];
+    result.rows.push_back(row);
   }
 
   if (complete_frames == 0) {

@@ -205,18 +205,44 @@ Line FitLine(const std::vector<double>& x, const std::vector<double>& y) {
   return L;
 }
 
-}  // namespace
+// ---- ExtractSilhouette in stages: 1 detect the region, 2 its coverage α, 3 initial axis, 4 side lines
+// and axis from the profiles, 5 tail (and side lines again from the edges), 6 nose.
 
-SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions& opt) {
-  SilhouetteResult res;
-  CV_Assert(frame.type() == CV_8UC1 || frame.type() == CV_16UC1);
+// Stage 1: the largest region that differs from the sky plane fitted on the border band.
+struct Detection {
+  cv::Mat img;  // the frame as CV_32F
+  Plane sky;
+  double sigma = 0;  // sky noise (DN)
+  cv::Mat labels;    // connected components of the detection mask
+  int label = -1;    // the region's label
+  cv::Rect box;      // its bounding box
+};
+
+// Stage 2: the region's neighbourhood and its coverage.
+struct Coverage {
+  cv::Rect roi;           // in the frame
+  cv::Mat region, grown;  // the region, and it grown by 3 σ_psf + 3 px, in the roi
+  cv::Mat alpha;          // coverage α = (I − sky)/(B − sky) in the roi
+};
+
+// Stages 3–4: the axis frame, the region's extent along it and the body's side lines.
+struct Body {
+  Frame2 f;
+  double umin = 0, umax = 0, vmax = 0;  // extent of the region in the axis frame
+  Line e1, e2;                          // side lines v = a + b u
+  double width = 0, u_first = 0, u_last = 0, u_cone = 0;
+  Profile p;
+};
+
+// Stage 1. False when no region is found (res.status stays as it is) or it touches the border.
+bool DetectRegion(const cv::Mat& frame, const SilhouetteOptions& opt, Detection* d, SilhouetteResult* res) {
   const int W = frame.cols, H = frame.rows;
   const int bw = std::min({opt.border_px, W / 4, H / 4});
-  if (bw < 1) return res;
-  cv::Mat img;
+  if (bw < 1) return false;
+  cv::Mat& img = d->img;
   frame.convertTo(img, CV_32F);
 
-  // 1. Sky plane on the border band, detection.
+  // Sky plane on the border band, detection.
   std::vector<Eigen::Vector3d> samples;
   const int stride = std::max(1, (W + H) / 1500);
   for (int y = 0; y < H; y += stride) {
@@ -227,10 +253,10 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
       samples.emplace_back(x, y, row[x]);
     }
   }
-  Plane sky;
-  double sigma = 0;
-  if (!FitPlane(samples, &sky, &sigma)) return res;
-  res.sky_sigma_dn = sigma;
+  Plane& sky = d->sky;
+  double& sigma = d->sigma;
+  if (!FitPlane(samples, &sky, &sigma)) return false;
+  res->sky_sigma_dn = sigma;
   cv::Mat mask(H, W, CV_8UC1);
   const double thr = opt.k_detect * sigma;
   for (int y = 0; y < H; ++y) {
@@ -239,8 +265,8 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
     const double base = sky.a + sky.c * y;
     for (int x = 0; x < W; ++x) m[x] = std::abs(row[x] - (base + sky.b * x)) > thr ? 255 : 0;
   }
-  cv::Mat labels, stats, centroids;
-  const int nl = cv::connectedComponentsWithStats(mask, labels, stats, centroids, 8, CV_32S);
+  cv::Mat stats, centroids;
+  const int nl = cv::connectedComponentsWithStats(mask, d->labels, stats, centroids, 8, CV_32S);
   int best = -1, best_area = 0;
   for (int l = 1; l < nl; ++l) {
     const int a = stats.at<int>(l, cv::CC_STAT_AREA);
@@ -249,54 +275,35 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
       best = l;
     }
   }
-  if (best < 0 || best_area < opt.min_area_px) return res;
-  res.region_area_px = best_area;
-  const cv::Rect box(stats.at<int>(best, cv::CC_STAT_LEFT), stats.at<int>(best, cv::CC_STAT_TOP),
-                     stats.at<int>(best, cv::CC_STAT_WIDTH), stats.at<int>(best, cv::CC_STAT_HEIGHT));
+  if (best < 0 || best_area < opt.min_area_px) return false;
+  res->region_area_px = best_area;
+  d->label = best;
+  d->box = cv::Rect(stats.at<int>(best, cv::CC_STAT_LEFT), stats.at<int>(best, cv::CC_STAT_TOP),
+                    stats.at<int>(best, cv::CC_STAT_WIDTH), stats.at<int>(best, cv::CC_STAT_HEIGHT));
+  const cv::Rect& box = d->box;
   if (box.x == 0 || box.y == 0 || box.x + box.width == W || box.y + box.height == H) {
-    res.status = SilhouetteStatus::kTouchesBorder;
-    return res;
+    res->status = SilhouetteStatus::kTouchesBorder;
+    return false;
   }
+  return true;
+}
 
-  // 2. Local sky on a ring around the region, coverage α.
-  const int grow = static_cast<int>(std::ceil(3.0 * opt.psf_sigma_px)) + 3;
-  const int margin = grow + 8;
-  cv::Rect roi(box.x - margin, box.y - margin, box.width + 2 * margin, box.height + 2 * margin);
-  roi &= cv::Rect(0, 0, W, H);
-  cv::Mat region = (labels(roi) == best);
-  cv::Mat grown;
-  cv::dilate(region, grown,
-             cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * grow + 1, 2 * grow + 1)));
-  samples.clear();
-  for (int y = 0; y < roi.height; ++y) {
-    const float* row = img.ptr<float>(roi.y + y);
-    const std::uint8_t* g = grown.ptr<std::uint8_t>(y);
-    for (int x = 0; x < roi.width; ++x)
-      if (!g[x]) samples.emplace_back(roi.x + x, roi.y + y, row[roi.x + x]);
-  }
-  Plane local;
-  double local_sigma = 0;
-  if (!FitPlane(samples, &local, &local_sigma)) local = sky;
-  // Body level B: median of the frame over the region's interior (the region eroded by 3 σ_psf + 2 px, so
-  // that no edge pixel and no selection by value biases it; for very thin regions the stronger half of the
-  // region by |I − sky|). α = (I − sky)/(B − sky) per pixel: the target has one radiance, the sky a gradient.
-  std::vector<double> inside, level;
-  for (int y = 0; y < roi.height; ++y) {
-    const float* row = img.ptr<float>(roi.y + y);
-    const std::uint8_t* reg = region.ptr<std::uint8_t>(y);
-    for (int x = 0; x < roi.width; ++x)
-      if (reg[x]) inside.push_back(row[roi.x + x] - local.At(roi.x + x, roi.y + y));
-  }
-  const double sign = numeric::UpperMedian(inside) >= 0 ? 1.0 : -1.0;
+// Body level B: median of the frame over the region's interior (the region eroded by 3 σ_psf + 2 px, so
+// that no edge pixel and no selection by value biases it; for very thin regions the stronger half of the
+// region by |I − sky|). `sign`: +1 for a target brighter than the sky.
+double BodyLevel(const cv::Mat& img, const Coverage& c, const std::vector<double>& inside, double sign,
+                 const SilhouetteOptions& opt) {
+  const cv::Rect& roi = c.roi;
+  std::vector<double> level;
   {
     const int er = static_cast<int>(std::ceil(3.0 * opt.psf_sigma_px)) + 2;
     cv::Mat core;
-    cv::erode(region, core, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * er + 1, 2 * er + 1)));
+    cv::erode(c.region, core, cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * er + 1, 2 * er + 1)));
     for (int y = 0; y < roi.height; ++y) {
       const float* row = img.ptr<float>(roi.y + y);
-      const std::uint8_t* c = core.ptr<std::uint8_t>(y);
+      const std::uint8_t* cr = core.ptr<std::uint8_t>(y);
       for (int x = 0; x < roi.width; ++x)
-        if (c[x]) level.push_back(row[roi.x + x]);
+        if (cr[x]) level.push_back(row[roi.x + x]);
     }
   }
   if (level.size() < 20) {
@@ -307,33 +314,73 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
     std::size_t i = 0;
     for (int y = 0; y < roi.height; ++y) {
       const float* row = img.ptr<float>(roi.y + y);
-      const std::uint8_t* reg = region.ptr<std::uint8_t>(y);
+      const std::uint8_t* reg = c.region.ptr<std::uint8_t>(y);
       for (int x = 0; x < roi.width; ++x)
         if (reg[x] && mag[i++] >= med) level.push_back(row[roi.x + x]);
     }
   }
-  const double body = numeric::UpperMedian(level);
-  cv::Mat alpha(roi.size(), CV_32FC1);
+  return numeric::UpperMedian(level);
+}
+
+// Stage 2: local sky on a ring around the region, coverage α. False when the contrast is too low or of
+// the wrong sign.
+bool CoverageOf(const Detection& d, const SilhouetteOptions& opt, Coverage* c, SilhouetteResult* res) {
+  const cv::Mat& img = d.img;
+  const int W = img.cols, H = img.rows;
+  const cv::Rect& box = d.box;
+  const int grow = static_cast<int>(std::ceil(3.0 * opt.psf_sigma_px)) + 3;
+  const int margin = grow + 8;
+  cv::Rect& roi = c->roi;
+  roi = cv::Rect(box.x - margin, box.y - margin, box.width + 2 * margin, box.height + 2 * margin);
+  roi &= cv::Rect(0, 0, W, H);
+  c->region = (d.labels(roi) == d.label);
+  cv::dilate(c->region, c->grown,
+             cv::getStructuringElement(cv::MORPH_ELLIPSE, cv::Size(2 * grow + 1, 2 * grow + 1)));
+  std::vector<Eigen::Vector3d> samples;
+  for (int y = 0; y < roi.height; ++y) {
+    const float* row = img.ptr<float>(roi.y + y);
+    const std::uint8_t* g = c->grown.ptr<std::uint8_t>(y);
+    for (int x = 0; x < roi.width; ++x)
+      if (!g[x]) samples.emplace_back(roi.x + x, roi.y + y, row[roi.x + x]);
+  }
+  Plane local;
+  double local_sigma = 0;
+  if (!FitPlane(samples, &local, &local_sigma)) local = d.sky;
+  // α = (I − sky)/(B − sky) per pixel: the target has one radiance, the sky a gradient.
+  std::vector<double> inside;
+  for (int y = 0; y < roi.height; ++y) {
+    const float* row = img.ptr<float>(roi.y + y);
+    const std::uint8_t* reg = c->region.ptr<std::uint8_t>(y);
+    for (int x = 0; x < roi.width; ++x)
+      if (reg[x]) inside.push_back(row[roi.x + x] - local.At(roi.x + x, roi.y + y));
+  }
+  const double sign = numeric::UpperMedian(inside) >= 0 ? 1.0 : -1.0;
+  const double body = BodyLevel(img, *c, inside, sign, opt);
+  c->alpha.create(roi.size(), CV_32FC1);
   double contrast_sum = 0;
   for (int y = 0; y < roi.height; ++y) {
     const float* row = img.ptr<float>(roi.y + y);
-    float* a = alpha.ptr<float>(y);
+    float* a = c->alpha.ptr<float>(y);
     for (int x = 0; x < roi.width; ++x) {
       const double sk = local.At(roi.x + x, roi.y + y);
-      const double c = body - sk;
-      a[x] = std::abs(c) > 1e-9 ? static_cast<float>((row[roi.x + x] - sk) / c) : 0.0f;
-      contrast_sum += c;
+      const double cc = body - sk;
+      a[x] = std::abs(cc) > 1e-9 ? static_cast<float>((row[roi.x + x] - sk) / cc) : 0.0f;
+      contrast_sum += cc;
     }
   }
   const double contrast = contrast_sum / std::max(1, roi.area());
-  res.contrast_dn = contrast;
-  if (!(std::abs(contrast) > 3.0 * sigma) || (contrast > 0) != (sign > 0)) return res;
+  res->contrast_dn = contrast;
+  return std::abs(contrast) > 3.0 * d.sigma && (contrast > 0) == (sign > 0);
+}
 
-  // 3. Initial axis from the moments of the region's coverage.
+// Stage 3: initial axis from the moments of the region's coverage, and the region's extent along and
+// across it. False when the coverage has no weight.
+bool InitialAxis(const Coverage& c, Body* body) {
+  const cv::Rect& roi = c.roi;
   double m0 = 0, mx = 0, my = 0;
   for (int y = 0; y < roi.height; ++y) {
-    const float* a = alpha.ptr<float>(y);
-    const std::uint8_t* g = grown.ptr<std::uint8_t>(y);
+    const float* a = c.alpha.ptr<float>(y);
+    const std::uint8_t* g = c.grown.ptr<std::uint8_t>(y);
     for (int x = 0; x < roi.width; ++x) {
       if (!g[x]) continue;
       const double w = std::clamp(static_cast<double>(a[x]), 0.0, 1.5);
@@ -342,13 +389,13 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
       my += w * y;
     }
   }
-  if (!(m0 > 0)) return res;
+  if (!(m0 > 0)) return false;
   mx /= m0;
   my /= m0;
   double cxx = 0, cxy = 0, cyy = 0;
   for (int y = 0; y < roi.height; ++y) {
-    const float* a = alpha.ptr<float>(y);
-    const std::uint8_t* g = grown.ptr<std::uint8_t>(y);
+    const float* a = c.alpha.ptr<float>(y);
+    const std::uint8_t* g = c.grown.ptr<std::uint8_t>(y);
     for (int x = 0; x < roi.width; ++x) {
       if (!g[x]) continue;
       const double w = std::clamp(static_cast<double>(a[x]), 0.0, 1.5);
@@ -358,13 +405,13 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
     }
   }
   const double theta = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);
-  Frame2 f;
+  Frame2& f = body->f;
   f.o = Eigen::Vector2d(mx, my);
   f.d = Eigen::Vector2d(std::cos(theta), std::sin(theta));
   f.n = Eigen::Vector2d(f.d.y(), -f.d.x());
   double umin = 1e300, umax = -1e300, vmax = 0;
   for (int y = 0; y < roi.height; ++y) {
-    const std::uint8_t* reg = region.ptr<std::uint8_t>(y);
+    const std::uint8_t* reg = c.region.ptr<std::uint8_t>(y);
     for (int x = 0; x < roi.width; ++x) {
       if (!reg[x]) continue;
       const Eigen::Vector2d q = Eigen::Vector2d(x, y) - f.o;
@@ -373,13 +420,91 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
       vmax = std::max(vmax, std::abs(q.dot(f.n)));
     }
   }
-  const double mrg = 3.0 * opt.psf_sigma_px + 2.0;
-  const double V = vmax + mrg + 3.0;
+  body->umin = umin;
+  body->umax = umax;
+  body->vmax = vmax;
+  return true;
+}
 
-  // 4. Profiles; nose end; side lines; refine the axis.
-  Line e1, e2;
-  double width = 0, u_first = 0, u_last = 0, u_cone = 0;
-  Profile p;
+// Indexes of the first and last profile samples where S reaches half of `smax`.
+void HalfMaxExtent(const Profile& p, double smax, std::size_t* i0, std::size_t* i1) {
+  *i0 = 0;
+  *i1 = p.S.size() - 1;
+  while (*i0 < p.S.size() && p.S[*i0] < 0.5 * smax) ++*i0;
+  while (*i1 > *i0 && p.S[*i1] < 0.5 * smax) --*i1;
+}
+
+// Stage 4, one pass on the profile body->p: landmarks, body width, cone start and the side lines over
+// the body. False (with the status) when the region is too small or the lines do not fit.
+bool SideLinesFromProfile(const SilhouetteOptions& opt, double mrg, std::size_t i0, std::size_t i1, Body* body,
+                          SilhouetteResult* res) {
+  const Profile& p = body->p;
+  // Landmarks robust to noise: u where S first / last reaches half its maximum. The tail extreme is at
+  // most half a width before u_first (b ≤ w); the nose tip lies beyond u_last.
+  const double u_first = body->u_first = p.u[i0];
+  const double u_last = body->u_last = p.u[i1];
+  // Body width: median over 25–55 % of [u_first, u_last] from the tail.
+  std::vector<double> mid;
+  for (std::size_t i = 0; i < p.u.size(); ++i) {
+    const double t = (p.u[i] - u_first) / std::max(u_last - u_first, 1e-9);
+    if (t >= 0.25 && t <= 0.55) mid.push_back(p.S[i]);
+  }
+  const double width = body->width = numeric::UpperMedian(mid);
+  if (!(width >= opt.min_width_px)) {
+    res->status = SilhouetteStatus::kTooSmall;
+    return false;
+  }
+  // Body region: from past the tail ellipse (b ≤ width/2) to before the cone (S < 0.97 width).
+  const double body_start = u_first + 0.5 * width + mrg;
+  std::size_t ib = 0;
+  while (ib < p.u.size() && p.u[ib] < body_start) ++ib;
+  // Cone start: the running median of S (over 10 px) first falls below W − max(3 % W, 4 σ_S), σ_S the
+  // profile-to-profile scatter of S (MAD); noise alone does not end the body early.
+  const std::size_t half_win = 10;
+  std::vector<double> smooth(p.S.size()), scatter;
+  for (std::size_t i = 0; i < p.S.size(); ++i) {
+    const std::size_t a = i > half_win ? i - half_win : 0, z = std::min(p.S.size() - 1, i + half_win);
+    smooth[i] = numeric::UpperMedian(std::vector<double>(p.S.begin() + static_cast<std::ptrdiff_t>(a),
+                                           p.S.begin() + static_cast<std::ptrdiff_t>(z) + 1));
+  }
+  for (std::size_t i = 0; i < p.u.size(); ++i) {
+    const double t = (p.u[i] - u_first) / std::max(u_last - u_first, 1e-9);
+    if (t >= 0.25 && t <= 0.55) scatter.push_back(std::abs(p.S[i] - smooth[i]));
+  }
+  const double sigma_s = 1.4826 * numeric::UpperMedian(scatter);
+  const double drop = std::max(0.03 * width, 4.0 * sigma_s);
+  std::size_t ic = ib;
+  while (ic < p.u.size() && smooth[ic] >= width - drop) ++ic;
+  body->u_cone = ic < p.u.size() ? p.u[ic] : u_last;
+  const double body_end = body->u_cone - mrg;
+  std::vector<double> bu, b1, b2;
+  for (std::size_t i = ib; i < p.u.size() && p.u[i] <= body_end; ++i) {
+    bu.push_back(p.u[i]);
+    b1.push_back(p.C[i] + 0.5 * p.S[i]);
+    b2.push_back(p.C[i] - 0.5 * p.S[i]);
+  }
+  if (bu.size() < 8) {
+    res->status = SilhouetteStatus::kTooSmall;
+    return false;
+  }
+  body->e1 = FitLine(bu, b1);
+  body->e2 = FitLine(bu, b2);
+  if (body->e1.n < 3 || body->e2.n < 3) {
+    res->status = SilhouetteStatus::kBadFit;
+    return false;
+  }
+  res->side_rms_px = std::sqrt(0.5 * (body->e1.rms * body->e1.rms + body->e2.rms * body->e2.rms));
+  return true;
+}
+
+// Stage 4: profiles; nose end; side lines; the axis refined twice on the mid-line of the side lines.
+// False (with the status) when the region is too small or does not fit a body.
+bool RefineAxis(const cv::Mat& alpha, const SilhouetteOptions& opt, double mrg, Body* body, SilhouetteResult* res) {
+  Frame2& f = body->f;
+  double& umin = body->umin;
+  double& umax = body->umax;
+  const double V = body->vmax + mrg + 3.0;
+  Profile& p = body->p;
   bool oriented = false;
   const double local_margin = 3.0 * opt.psf_sigma_px + 3.0;
   auto profile = [&]() {
@@ -389,13 +514,12 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
   for (int iter = 0; iter < 3; ++iter) {
     p = profile();
     const double smax = *std::max_element(p.S.begin(), p.S.end());
-    if (!(smax > 0)) return res;
-    std::size_t i0 = 0, i1 = p.S.size() - 1;
-    while (i0 < p.S.size() && p.S[i0] < 0.5 * smax) ++i0;
-    while (i1 > i0 && p.S[i1] < 0.5 * smax) --i1;
+    if (!(smax > 0)) return false;
+    std::size_t i0 = 0, i1 = 0;
+    HalfMaxExtent(p, smax, &i0, &i1);
     if (i1 <= i0 + 4) {
-      res.status = SilhouetteStatus::kTooSmall;
-      return res;
+      res->status = SilhouetteStatus::kTooSmall;
+      return false;
     }
     if (!oriented) {
       // Nose end = the narrower end (mean width over the outer 12 % of the extent).
@@ -412,71 +536,14 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
         umin = -umin;
         umax = -umax;
         p = profile();
-        i0 = 0;
-        i1 = p.S.size() - 1;
-        while (i0 < p.S.size() && p.S[i0] < 0.5 * smax) ++i0;
-        while (i1 > i0 && p.S[i1] < 0.5 * smax) --i1;
+        HalfMaxExtent(p, smax, &i0, &i1);
       }
       oriented = true;
     }
-    // Landmarks robust to noise: u where S first / last reaches half its maximum. The tail extreme is at
-    // most half a width before u_first (b ≤ w); the nose tip lies beyond u_last.
-    u_first = p.u[i0];
-    u_last = p.u[i1];
-    // Body width: median over 25–55 % of [u_first, u_last] from the tail.
-    std::vector<double> mid;
-    for (std::size_t i = 0; i < p.u.size(); ++i) {
-      const double t = (p.u[i] - u_first) / std::max(u_last - u_first, 1e-9);
-      if (t >= 0.25 && t <= 0.55) mid.push_back(p.S[i]);
-    }
-    width = numeric::UpperMedian(mid);
-    if (!(width >= opt.min_width_px)) {
-      res.status = SilhouetteStatus::kTooSmall;
-      return res;
-    }
-    // Body region: from past the tail ellipse (b ≤ width/2) to before the cone (S < 0.97 width).
-    const double body_start = u_first + 0.5 * width + mrg;
-    std::size_t ib = 0;
-    while (ib < p.u.size() && p.u[ib] < body_start) ++ib;
-    // Cone start: the running median of S (over 10 px) first falls below W − max(3 % W, 4 σ_S), σ_S the
-    // profile-to-profile scatter of S (MAD); noise alone does not end the body early.
-    const std::size_t half_win = 10;
-    std::vector<double> smooth(p.S.size()), scatter;
-    for (std::size_t i = 0; i < p.S.size(); ++i) {
-      const std::size_t a = i > half_win ? i - half_win : 0, z = std::min(p.S.size() - 1, i + half_win);
-      smooth[i] = numeric::UpperMedian(std::vector<double>(p.S.begin() + static_cast<std::ptrdiff_t>(a),
-                                                           p.S.begin() + static_cast<std::ptrdiff_t>(z) + 1));
-    }
-    for (std::size_t i = 0; i < p.u.size(); ++i) {
-      const double t = (p.u[i] - u_first) / std::max(u_last - u_first, 1e-9);
-      if (t >= 0.25 && t <= 0.55) scatter.push_back(std::abs(p.S[i] - smooth[i]));
-    }
-    const double sigma_s = 1.4826 * numeric::UpperMedian(scatter);
-    const double drop = std::max(0.03 * width, 4.0 * sigma_s);
-    std::size_t ic = ib;
-    while (ic < p.u.size() && smooth[ic] >= width - drop) ++ic;
-    u_cone = ic < p.u.size() ? p.u[ic] : u_last;
-    const double body_end = u_cone - mrg;
-    std::vector<double> bu, b1, b2;
-    for (std::size_t i = ib; i < p.u.size() && p.u[i] <= body_end; ++i) {
-      bu.push_back(p.u[i]);
-      b1.push_back(p.C[i] + 0.5 * p.S[i]);
-      b2.push_back(p.C[i] - 0.5 * p.S[i]);
-    }
-    if (bu.size() < 8) {
-      res.status = SilhouetteStatus::kTooSmall;
-      return res;
-    }
-    e1 = FitLine(bu, b1);
-    e2 = FitLine(bu, b2);
-    if (e1.n < 3 || e2.n < 3) {
-      res.status = SilhouetteStatus::kBadFit;
-      return res;
-    }
-    res.side_rms_px = std::sqrt(0.5 * (e1.rms * e1.rms + e2.rms * e2.rms));
+    if (!SideLinesFromProfile(opt, mrg, i0, i1, body, res)) return false;
     if (iter == 2) break;
     // Mid-line v = a + b u → new origin and direction.
-    const double am = 0.5 * (e1.a + e2.a), bm = 0.5 * (e1.b + e2.b);
+    const double am = 0.5 * (body->e1.a + body->e2.a), bm = 0.5 * (body->e1.b + body->e2.b);
     const Eigen::Vector2d o2 = f.At(0.0, am);
     const Eigen::Vector2d d2 = (f.d + bm * f.n).normalized();
     const double shift = (o2 - f.o).dot(d2);  // keep u ranges consistent
@@ -486,62 +553,108 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
     umin -= shift;
     umax -= shift;
   }
-  if (res.side_rms_px > std::max(0.5, 0.1 * width)) {
-    res.status = SilhouetteStatus::kBadFit;
-    return res;
+  if (res->side_rms_px > std::max(0.5, 0.1 * body->width)) {
+    res->status = SilhouetteStatus::kBadFit;
+    return false;
+  }
+  return true;
+}
+
+// Stage 5. Tail. Body plateau A(v): mean α at offset v from the centre line over the body (blurred near the
+// edges). Along lines of constant v (|v| ≤ min(0.8 w, w − 3 s), A ≥ 0.5): rough edge e0 = first drop below
+// A/2 walking out of the body; then e = e0 + h − ∫_{e0−h}^{e0+h} α du / A(v), h = 3 σ_psf + 2 (a short
+// window keeps the integrated sky noise small). Each such edge is the outline averaged over the effective
+// blur across the lines (PSF, pixel area and resampling, variance s²): e_meas(v) = e(v) + (s²/2) e''(v). s²
+// is measured on the body's own side edges: for a blurred step, ∫ t (H(−t) − A(w + t)) dt = −s²/2. Fit e(v)
+// = u0 − b [g(v) + (s²/2) g''(v)], g = sqrt(1 − (v/w)²), linear in (u0, b), b ≥ 0.
+class TailFit {
+ public:
+  TailFit(const cv::Mat& alpha, const SilhouetteOptions& opt, double mrg, Body* body)
+      : alpha_(alpha), f_(body->f), body_(body), mrg_(mrg) {
+    body_u0_ = body->u_first + 0.5 * body->width + mrg;
+    body_u1_ = std::max(body_u0_ + 1.0, body->u_cone - mrg);
+    h_ = 3.0 * opt.psf_sigma_px + 2.0;
+    blur2_ = MeasureBlur2();
+    s_edge_ = std::max(0.3, std::sqrt(blur2_));
+    n_edge_ = static_cast<int>(std::ceil(2.0 * h_ / kHu));
   }
 
-  // 5. Tail. Body plateau A(v): mean α at offset v from the centre line over the body (blurred near the
-  // edges). Along lines of constant v (|v| ≤ min(0.8 w, w − 3 s), A ≥ 0.5): rough edge e0 = first drop below
-  // A/2 walking out of the body; then e = e0 + h − ∫_{e0−h}^{e0+h} α du / A(v), h = 3 σ_psf + 2 (a short
-  // window keeps the integrated sky noise small). Each such edge is the outline averaged over the effective
-  // blur across the lines (PSF, pixel area and resampling, variance s²): e_meas(v) = e(v) + (s²/2) e''(v). s²
-  // is measured on the body's own side edges: for a blurred step, ∫ t (H(−t) − A(w + t)) dt = −s²/2. Fit e(v)
-  // = u0 − b [g(v) + (s²/2) g''(v)], g = sqrt(1 − (v/w)²), linear in (u0, b), b ≥ 0.
-  auto half_width = [&](double u) { return 0.5 * ((e1.a + e1.b * u) - (e2.a + e2.b * u)); };
-  auto centre = [&](double u) { return 0.5 * ((e1.a + e1.b * u) + (e2.a + e2.b * u)); };
-  const double body_u0 = u_first + 0.5 * width + mrg, body_u1 = std::max(body_u0 + 1.0, u_cone - mrg);
-  const double h = 3.0 * opt.psf_sigma_px + 2.0;
-  constexpr double hu = 0.25;
+  // Side lines from the edges, the tail fitted on them, and both again from nearer the tail (see below).
+  // False when too few lines cross the tail.
+  bool Run(SilhouetteResult* res) {
+    res->edge_blur_px = std::sqrt(blur2_);
+    SideLinesFromEdges(body_u0_);
+    if (!FitTail(false)) return false;
+    // The side lines are straight from the tail rim (u0) on; until the tail was located they started past the
+    // widest possible ellipse (half a width). Refit them from 3 s past u0 — a shorter extrapolation to u0 —
+    // and the tail on them. On a flat tail ellipse (b < 0.2 w: within ≈ 12° of side-on) the tail edges are
+    // located by the matched filter too: its noise is ≈ 0.6× the window integral's, and the curvature offset
+    // (s²/2) e'' the fit models holds for it only while the outline is flat (on rounder ellipses it biased the
+    // points by up to 0.09 px on noise-free images, against 0.013 px for the integral).
+    const double near = u0_ + 3.0 * std::sqrt(blur2_) + 1.0;
+    const bool refit_sides = near < body_u0_ - 2.0, matched = b_ < 0.2 * HalfWidth(u0_);
+    if (refit_sides) SideLinesFromEdges(near);
+    if ((refit_sides || matched) && !FitTail(matched)) return false;
+    res->tail_b_px = b_;
+    return true;
+  }
+
+  double u0() const { return u0_; }
+  double blur2() const { return blur2_; }
+  double HalfWidth(double u) const {
+    const Line& e1 = body_->e1;
+    const Line& e2 = body_->e2;
+    return 0.5 * ((e1.a + e1.b * u) - (e2.a + e2.b * u));
+  }
+
+ private:
+  static constexpr double kHu = 0.25;  // step along the lines across an edge (px)
+
+  double Centre(double u) const {
+    const Line& e1 = body_->e1;
+    const Line& e2 = body_->e2;
+    return 0.5 * ((e1.a + e1.b * u) + (e2.a + e2.b * u));
+  }
+
   // Mean α across the body at offset v from the centre line (averaged along the body).
-  auto plateau = [&](double v) {
+  double Plateau(double v) const {
     double A = 0;
     int na = 0;
-    for (double u = body_u0; u <= body_u1; u += kStep) {
-      const Eigen::Vector2d q = f.At(u, centre(u) + v);
-      A += Bilinear(alpha, q.x(), q.y());
+    for (double u = body_u0_; u <= body_u1_; u += kStep) {
+      const Eigen::Vector2d q = f_.At(u, Centre(u) + v);
+      A += Bilinear(alpha_, q.x(), q.y());
       ++na;
     }
     return A / std::max(na, 1);
-  };
-  double blur2 = 0.0;
-  {
-    const double wb = half_width(0.5 * (body_u0 + body_u1));
+  }
+
+  // s² of the side edges: each side ∫ t (H(−t) − A) dt = −s²/2; two sides: −s².
+  double MeasureBlur2() const {
+    const double wb = HalfWidth(0.5 * (body_u0_ + body_u1_));
     double m = 0;
     for (int side = -1; side <= 1; side += 2) {
-      for (double t = -h; t <= h + 1e-9; t += hu) {
-        const double a = plateau(side * (wb + t));
-        m += t * ((t < 0 ? 1.0 : 0.0) - a) * hu;
+      for (double t = -h_; t <= h_ + 1e-9; t += kHu) {
+        const double a = Plateau(side * (wb + t));
+        m += t * ((t < 0 ? 1.0 : 0.0) - a) * kHu;
       }
     }
-    blur2 = std::max(0.0, -m);  // each side: ∫ t (H(−t) − A) dt = −s²/2; two sides: −s²
+    return std::max(0.0, -m);
   }
-  res.edge_blur_px = std::sqrt(blur2);
+
   // Matched-filter edge location: a few Gauss–Newton steps of the blurred-step model α(x) = A Φ(±(e − x)/s)
   // over the window [e − h, e + h] of a line sampled by `at(x)` (sign +1: target at x < e). It weights each
   // sample by the model's slope there, so the samples far from the edge, which carry only noise, no longer
   // count as they do in a window integral (≈ 0.6× its noise). Unbiased for any symmetric edge spread (the
   // residual of a wrong width of the spread is odd about e, its weight even). Starts from a window-integral
   // estimate.
-  const double s_edge = std::max(0.3, std::sqrt(blur2));
-  const int n_edge = static_cast<int>(std::ceil(2.0 * h / hu));
-  auto matched_edge = [&](const auto& at, double e, double A, double sign) {
+  template <typename At>
+  double MatchedEdge(const At& at, double e, double A, double sign) const {
     for (int it = 0; it < 3; ++it) {
       double num = 0, den = 0;
-      for (int i = 0; i <= n_edge; ++i) {
-        const double x = e - h + i * hu;
-        const double t = sign * (e - x) / s_edge;
-        const double g = A * std::exp(-0.5 * t * t) / (std::sqrt(2.0 * M_PI) * s_edge) * sign;
+      for (int i = 0; i <= n_edge_; ++i) {
+        const double x = e - h_ + i * kHu;
+        const double t = sign * (e - x) / s_edge_;
+        const double g = A * std::exp(-0.5 * t * t) / (std::sqrt(2.0 * M_PI) * s_edge_) * sign;
         num += g * (at(x) - A * 0.5 * std::erfc(-t / std::sqrt(2.0)));
         den += g * g;
       }
@@ -551,74 +664,78 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
       if (std::abs(step) < 1e-4) break;
     }
     return e;
-  };
+  }
+
   // Window-integral edge location on the same window, from a rough edge x_e: ∫ α over [x_e − h, x_e − h +
   // n·hu] (trapezoid) is the covered length times A, so e = window start + ∫/A (sign +1: target at x < e) or
-  // window end − ∫/A (sign −1). Exact for a blurred straight step; the start of matched_edge.
-  auto window_edge = [&](const auto& at, double x_e, double A, double sign) {
+  // window end − ∫/A (sign −1). Exact for a blurred straight step; the start of MatchedEdge.
+  template <typename At>
+  double WindowEdge(const At& at, double x_e, double A, double sign) const {
     double integral = 0;
-    for (int i = 0; i <= n_edge; ++i)
-      integral += ((i == 0 || i == n_edge) ? 0.5 : 1.0) * at(x_e - h + i * hu);
-    integral *= hu;
-    return sign > 0 ? x_e - h + integral / A : x_e - h + n_edge * hu - integral / A;
-  };
+    for (int i = 0; i <= n_edge_; ++i)
+      integral += ((i == 0 || i == n_edge_) ? 0.5 : 1.0) * at(x_e - h_ + i * kHu);
+    integral *= kHu;
+    return sign > 0 ? x_e - h_ + integral / A : x_e - h_ + n_edge_ * kHu - integral / A;
+  }
+
   // 5a. Side lines again from the edges alone. A profile's S integrates the whole interior too, whose noise
   // carries no width information (≈ 2× the variance of the edge windows on a 28-px body) and whose mean
-  // error (the body level B) scales with the width. Each edge: window_edge then matched_edge across it, with
+  // error (the body level B) scales with the width. Each edge: WindowEdge then MatchedEdge across it, with
   // A_± = the plateau just inside that edge (a shaded body has a different level on either side). The lines
   // are fitted over [from_u, body_u1].
-  auto side_lines_from_edges = [&](double from_u) {
-    const double wb = half_width(0.5 * (body_u0 + body_u1));
-    const double A_hi = plateau(wb - h), A_lo = plateau(-(wb - h));
-    if (A_hi >= 0.5 && A_lo >= 0.5 && wb >= 2.0 * h) {  // narrower: the windows span the profile anyway
-      std::vector<double> bu, b1, b2;
-      for (double u = from_u; u <= body_u1; u += kStep) {
-        const double v_hi = e1.a + e1.b * u, v_lo = e2.a + e2.b * u;
-        bu.push_back(u);
-        auto across = [&](double v) {
-          const Eigen::Vector2d q = f.At(u, v);
-          return Bilinear(alpha, q.x(), q.y());
-        };
-        b1.push_back(matched_edge(across, window_edge(across, v_hi, A_hi, 1.0), A_hi, 1.0));
-        b2.push_back(matched_edge(across, window_edge(across, v_lo, A_lo, -1.0), A_lo, -1.0));
-      }
-      const Line f1 = FitLine(bu, b1), f2 = FitLine(bu, b2);
-      if (f1.n >= 3 && f2.n >= 3) {
-        e1 = f1;
-        e2 = f2;
-      }
+  void SideLinesFromEdges(double from_u) {
+    const double wb = HalfWidth(0.5 * (body_u0_ + body_u1_));
+    const double A_hi = Plateau(wb - h_), A_lo = Plateau(-(wb - h_));
+    if (!(A_hi >= 0.5 && A_lo >= 0.5 && wb >= 2.0 * h_)) return;  // narrower: the windows span the profile anyway
+    std::vector<double> bu, b1, b2;
+    for (double u = from_u; u <= body_u1_; u += kStep) {
+      const double v_hi = body_->e1.a + body_->e1.b * u, v_lo = body_->e2.a + body_->e2.b * u;
+      bu.push_back(u);
+      auto across = [&](double v) {
+        const Eigen::Vector2d q = f_.At(u, v);
+        return Bilinear(alpha_, q.x(), q.y());
+      };
+      b1.push_back(MatchedEdge(across, WindowEdge(across, v_hi, A_hi, 1.0), A_hi, 1.0));
+      b2.push_back(MatchedEdge(across, WindowEdge(across, v_lo, A_lo, -1.0), A_lo, -1.0));
     }
-  };
-  double u0 = u_first, b = 0;
-  auto fit_tail = [&](bool matched) {
-    u0 = u_first;
-    b = 0;
+    const Line f1 = FitLine(bu, b1), f2 = FitLine(bu, b2);
+    if (f1.n >= 3 && f2.n >= 3) {
+      body_->e1 = f1;
+      body_->e2 = f2;
+    }
+  }
+
+  // The tail (u0, b) from the edges along lines of constant v; `matched`: MatchedEdge after WindowEdge.
+  bool FitTail(bool matched) {
+    const double u_first = body_->u_first;
+    u0_ = u_first;
+    b_ = 0;
     for (int iter = 0; iter < 2; ++iter) {
-      const double w = half_width(u0);
-      const double c = centre(u0);
+      const double w = HalfWidth(u0_);
+      const double c = Centre(u0_);
       double s11 = 0, s12 = 0, s22 = 0, r1 = 0, r2 = 0;
       int count = 0;
       // Lines closer to a side edge than 3 s see that edge's blur too (the curvature model then fails).
-      const double vmax = std::min(0.8 * w, w - 3.0 * std::sqrt(blur2));
+      const double vmax = std::min(0.8 * w, w - 3.0 * std::sqrt(blur2_));
       for (double v = -vmax; v <= vmax + 1e-9; v += kStep) {
-        const double A = plateau(v);
+        const double A = Plateau(v);
         if (!(A >= 0.5)) continue;
         auto alpha_at = [&](double u) {
-          const Eigen::Vector2d q = f.At(u, c + v);
-          return Bilinear(alpha, q.x(), q.y());
+          const Eigen::Vector2d q = f_.At(u, c + v);
+          return Bilinear(alpha_, q.x(), q.y());
         };
         double e0 = std::nan("");
-        for (double u = u_first + w + mrg; u >= u_first - w - mrg - 2.0; u -= hu) {
+        for (double u = u_first + w + mrg_; u >= u_first - w - mrg_ - 2.0; u -= kHu) {
           if (alpha_at(u) < 0.5 * A) {
-            e0 = u + 0.5 * hu;
+            e0 = u + 0.5 * kHu;
             break;
           }
         }
         if (!std::isfinite(e0)) continue;
-        double e = window_edge(alpha_at, e0, A, -1.0);        // target at u > e
-        if (matched) e = matched_edge(alpha_at, e, A, -1.0);  // target at u > e
+        double e = WindowEdge(alpha_at, e0, A, -1.0);        // target at u > e
+        if (matched) e = MatchedEdge(alpha_at, e, A, -1.0);  // target at u > e
         const double q = std::max(1e-3, 1.0 - (v / w) * (v / w));
-        const double g = -(std::sqrt(q) - 0.5 * blur2 / (w * w * q * std::sqrt(q)));  // −(g + (s²/2) g'')
+        const double g = -(std::sqrt(q) - 0.5 * blur2_ / (w * w * q * std::sqrt(q)));  // −(g + (s²/2) g'')
         s11 += 1;
         s12 += g;
         s22 += g * g;
@@ -628,76 +745,93 @@ SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions
       }
       if (count < 3) return false;
       const double det = s11 * s22 - s12 * s12;
-      b = std::abs(det) > 1e-12 ? (s11 * r2 - s12 * r1) / det : 0.0;
-      if (b < 0.0) b = 0.0;
-      u0 = (r1 - b * s12) / s11;
+      b_ = std::abs(det) > 1e-12 ? (s11 * r2 - s12 * r1) / det : 0.0;
+      if (b_ < 0.0) b_ = 0.0;
+      u0_ = (r1 - b_ * s12) / s11;
     }
     return true;
-  };
-  side_lines_from_edges(body_u0);
-  if (!fit_tail(false)) {
-    res.status = SilhouetteStatus::kTooSmall;
-    return res;
   }
-  // The side lines are straight from the tail rim (u0) on; until the tail was located they started past the
-  // widest possible ellipse (half a width). Refit them from 3 s past u0 — a shorter extrapolation to u0 —
-  // and the tail on them. On a flat tail ellipse (b < 0.2 w: within ≈ 12° of side-on) the tail edges are
-  // located by the matched filter too: its noise is ≈ 0.6× the window integral's, and the curvature offset
-  // (s²/2) e'' the fit models holds for it only while the outline is flat (on rounder ellipses it biased the
-  // points by up to 0.09 px on noise-free images, against 0.013 px for the integral).
-  const double near = u0 + 3.0 * std::sqrt(blur2) + 1.0;
-  const bool refit_sides = near < body_u0 - 2.0, matched = b < 0.2 * half_width(u0);
-  if (refit_sides) side_lines_from_edges(near);
-  if ((refit_sides || matched) && !fit_tail(matched)) {
-    res.status = SilhouetteStatus::kTooSmall;
-    return res;
-  }
-  res.tail_b_px = b;
 
-  // 6. Nose: straight S(u) and C(u) over the cone. A first fit over 0.15 W ≤ S ≤ 0.7 W gives the cone's
-  // slope k = dS/du; the final fit takes the whole straight part, S from max(0.08 W, 3 s |k|) (the blur
-  // rounds S only within 3 s of the tip) to min(0.9 W, W − 3 s |k|) (and of the cone base): a 1.5× longer
-  // lever cuts the tip's along-axis error by ≈ 40 % (noise) and 60 % (sampling), docs/benchmarks.md, issue 4.
-  auto fit_cone = [&](double s_lo, double s_hi, Line* ls, Line* lc) {
-    std::vector<double> cu, cs, cc;
-    for (std::size_t i = 0; i < p.u.size(); ++i) {
-      if (p.u[i] < u_cone) continue;
-      if (p.S[i] >= s_lo && p.S[i] <= s_hi) {
-        cu.push_back(p.u[i]);
-        cs.push_back(p.S[i]);
-        cc.push_back(p.C[i]);
-      }
+  const cv::Mat& alpha_;
+  const Frame2& f_;
+  Body* body_;
+  double mrg_;
+  double body_u0_ = 0, body_u1_ = 0, h_ = 0, blur2_ = 0, s_edge_ = 0;
+  int n_edge_ = 0;
+  double u0_ = 0, b_ = 0;
+};
+
+// Stage 6, nose: straight S(u) and C(u) over the cone (u ≥ u_cone, s_lo ≤ S ≤ s_hi). True when S narrows.
+bool FitCone(const Body& body, double s_lo, double s_hi, Line* ls, Line* lc) {
+  const Profile& p = body.p;
+  std::vector<double> cu, cs, cc;
+  for (std::size_t i = 0; i < p.u.size(); ++i) {
+    if (p.u[i] < body.u_cone) continue;
+    if (p.S[i] >= s_lo && p.S[i] <= s_hi) {
+      cu.push_back(p.u[i]);
+      cs.push_back(p.S[i]);
+      cc.push_back(p.C[i]);
     }
-    *ls = FitLine(cu, cs);
-    *lc = FitLine(cu, cc);
-    return ls->n >= 3 && ls->b < 0.0;
-  };
-  Line ls, lc;
-  if (!fit_cone(0.15 * width, 0.7 * width, &ls, &lc)) {
-    res.status = SilhouetteStatus::kBadFit;
+  }
+  *ls = FitLine(cu, cs);
+  *lc = FitLine(cu, cc);
+  return ls->n >= 3 && ls->b < 0.0;
+}
+
+// Stage 6. A first fit over 0.15 W ≤ S ≤ 0.7 W gives the cone's slope k = dS/du; the final fit takes the
+// whole straight part, S from max(0.08 W, 3 s |k|) (the blur rounds S only within 3 s of the tip) to
+// min(0.9 W, W − 3 s |k|) (and of the cone base): a 1.5× longer lever cuts the tip's along-axis error by
+// ≈ 40 % (noise) and 60 % (sampling), docs/benchmarks.md, issue 4. False (kBadFit) without a cone.
+bool FitNose(const Body& body, double blur2, Line* ls, Line* lc, SilhouetteResult* res) {
+  const double width = body.width;
+  if (!FitCone(body, 0.15 * width, 0.7 * width, ls, lc)) {
+    res->status = SilhouetteStatus::kBadFit;
+    return false;
+  }
+  const double blur_s = 3.0 * std::abs(ls->b) * std::sqrt(blur2);
+  const double s_lo = std::max(0.08 * width, blur_s), s_hi = std::min(0.9 * width, width - blur_s);
+  Line ls2, lc2;
+  if (s_hi > s_lo + 0.2 * width && FitCone(body, s_lo, s_hi, &ls2, &lc2)) {
+    *ls = ls2;
+    *lc = lc2;
+  }
+  return true;
+}
+
+}  // namespace
+
+SilhouetteResult ExtractSilhouette(const cv::Mat& frame, const SilhouetteOptions& opt) {
+  SilhouetteResult res;
+  CV_Assert(frame.type() == CV_8UC1 || frame.type() == CV_16UC1);
+  Detection det;
+  if (!DetectRegion(frame, opt, &det, &res)) return res;
+  Coverage cov;
+  if (!CoverageOf(det, opt, &cov, &res)) return res;
+  Body body;
+  if (!InitialAxis(cov, &body)) return res;
+  const double mrg = 3.0 * opt.psf_sigma_px + 2.0;
+  if (!RefineAxis(cov.alpha, opt, mrg, &body, &res)) return res;
+  TailFit tail(cov.alpha, opt, mrg, &body);
+  if (!tail.Run(&res)) {
+    res.status = SilhouetteStatus::kTooSmall;
     return res;
   }
-  {
-    const double blur_s = 3.0 * std::abs(ls.b) * std::sqrt(blur2);
-    const double s_lo = std::max(0.08 * width, blur_s), s_hi = std::min(0.9 * width, width - blur_s);
-    Line ls2, lc2;
-    if (s_hi > s_lo + 0.2 * width && fit_cone(s_lo, s_hi, &ls2, &lc2)) {
-      ls = ls2;
-      lc = lc2;
-    }
-  }
+  const double u0 = tail.u0();
+  Line ls, lc;
+  if (!FitNose(body, tail.blur2(), &ls, &lc, &res)) return res;
   const double u_tip = -ls.a / ls.b;
   const double v_tip = lc.a + lc.b * u_tip;
-  res.width_px = 2.0 * half_width(u0);
+  res.width_px = 2.0 * tail.HalfWidth(u0);
   res.length_px = u_tip - u0;
   if (res.length_px < opt.min_length_ratio * res.width_px) {
     res.status = SilhouetteStatus::kTooSmall;
     return res;
   }
-  const Eigen::Vector2d off(roi.x, roi.y);
+  const Eigen::Vector2d off(cov.roi.x, cov.roi.y);
+  const Frame2& f = body.f;
   res.px[0] = f.At(u_tip, v_tip) + off;
-  res.px[1] = f.At(u0, e1.a + e1.b * u0) + off;
-  res.px[2] = f.At(u0, e2.a + e2.b * u0) + off;
+  res.px[1] = f.At(u0, body.e1.a + body.e1.b * u0) + off;
+  res.px[2] = f.At(u0, body.e2.a + body.e2.b * u0) + off;
   res.status = SilhouetteStatus::kOk;
   return res;
 }

@@ -568,9 +568,11 @@ class Forward {
   bool q_adapted_ = false, r_adapted_ = false;
 };
 
-}  // namespace
+// ---- RunAukf in stages: check the input, choose the noise, run the forward filter (with the causal
+// refits), collect its figures, smooth (RTS over the stored nodes, or from a second forward pass).
 
-AukfResult RunAukf(const Series& series, const AukfOptions& options) {
+// The options and the series fit together: usage errors (exit 2) and data errors (exit 3).
+void CheckAukfInput(const Series& series, const AukfOptions& options) {
   std::string why;
   if (!options.Check(&why)) throw UsageError(why);
   const int m = static_cast<int>(series.columns.size());
@@ -584,38 +586,40 @@ AukfResult RunAukf(const Series& series, const AukfOptions& options) {
   const std::size_t N = series.rows();
   if (N < 3) throw DataError(series.source, 0, 0, "needs at least 3 samples, has " + std::to_string(N));
   if (!(m * 3 + options.kappa > 0)) throw UsageError("--kappa: n + kappa must be > 0");
-  const int n = 3 * m;
-  const std::size_t mu = static_cast<std::size_t>(m);
-  const Eigen::MatrixXd& Z = series.values;
+}
 
-  AukfResult res;
-  res.m = m;
-  res.n = n;
-  res.samples = N;
-  res.interval_s = MedianInterval(series.t_s, N);
-  const double T = res.interval_s;
-  for (int c = 0; c < m; ++c) {
+// Every column has at least 2 values.
+void CheckColumnValues(const Series& series) {
+  const Eigen::MatrixXd& Z = series.values;
+  for (int c = 0; c < static_cast<int>(series.columns.size()); ++c) {
     std::size_t values = 0;
-    for (std::size_t k = 0; k < N; ++k) values += std::isfinite(Z(static_cast<Eigen::Index>(k), c)) ? 1 : 0;
+    for (std::size_t k = 0; k < series.rows(); ++k) values += std::isfinite(Z(static_cast<Eigen::Index>(k), c)) ? 1 : 0;
     if (values < 2) {
       throw DataError(series.source, 0, 0, "column '" + series.columns[static_cast<std::size_t>(c)] + "' has fewer than 2 values");
     }
   }
+}
 
-  // Noise per column: given, or fitted (on the whole file, or on the rows up to each refit).
-  res.meas_sigma_estimated = options.meas_sigma.empty();
-  res.q_estimated = options.q.empty();
-  const bool estimated = res.meas_sigma_estimated || res.q_estimated;
-  const bool causal = estimated && options.noise_fit == NoiseFit::kCausal;
-  NoiseFitOut noise;
-  noise.sigma.assign(mu, 0.0);
-  noise.q.assign(mu, 0.0);
-  noise.known.assign(mu, false);
-  noise.ml.assign(mu, NoiseMlFit{});
-  noise.ml_used.assign(mu, false);
-  if (estimated) {
+// The noise in use per column (provisional until its first fit in causal mode) and its interval.
+struct NoiseInUse {
+  std::vector<double> sigma, q;
+  double T = 0.0;
+};
+
+// Noise per column: given, or fitted (on the whole file, or on the rows up to each refit). Fills *noise
+// with the whole-file fit (not causal); throws when a column cannot be estimated even on the whole file.
+NoiseInUse InitialNoise(const Series& series, const AukfOptions& options, const AukfResult& res, bool causal,
+                        NoiseFitOut* noise) {
+  const std::size_t mu = series.columns.size();
+  const double T = res.interval_s;
+  noise->sigma.assign(mu, 0.0);
+  noise->q.assign(mu, 0.0);
+  noise->known.assign(mu, false);
+  noise->ml.assign(mu, NoiseMlFit{});
+  noise->ml_used.assign(mu, false);
+  if (res.meas_sigma_estimated || res.q_estimated) {
     // A column that cannot be estimated even on the whole file is an error (no 4 consecutive values).
-    for (int c = 0; c < m; ++c) {
+    for (int c = 0; c < static_cast<int>(mu); ++c) {
       double sg = 0, qq = 0;
       if (res.meas_sigma_estimated && !EstimateColumnNoise(series, c, T, &sg, &qq)) {
         throw DataError(series.source, 0, 0,
@@ -624,37 +628,275 @@ AukfResult RunAukf(const Series& series, const AukfOptions& options) {
       }
     }
   }
-  // The noise in use per column (provisional until its first fit in causal mode).
-  std::vector<double> sigma_use(mu), q_use(mu);
-  double T_use = T;
+  NoiseInUse use;
+  use.sigma.resize(mu);
+  use.q.resize(mu);
+  use.T = T;
   if (causal) {
     // Provisional noise: the given values, or σ_p with q_p = σ_p²/T⁵ (the means do not depend on the scale).
     constexpr double kProvisionalSigma = 1e-3;  // file units or radians; only its ratio to q matters
-    T_use = series.t_s[1] - series.t_s[0];
+    use.T = series.t_s[1] - series.t_s[0];
     for (std::size_t c = 0; c < mu; ++c) {
-      sigma_use[c] = res.meas_sigma_estimated ? kProvisionalSigma : options.meas_sigma[options.meas_sigma.size() == 1 ? 0 : c];
-      q_use[c] = res.q_estimated ? sigma_use[c] * sigma_use[c] / std::pow(T_use, 5) : options.q[options.q.size() == 1 ? 0 : c];
+      use.sigma[c] = res.meas_sigma_estimated ? kProvisionalSigma : options.meas_sigma[options.meas_sigma.size() == 1 ? 0 : c];
+      use.q[c] = res.q_estimated ? use.sigma[c] * use.sigma[c] / std::pow(use.T, 5) : options.q[options.q.size() == 1 ? 0 : c];
     }
   } else {
-    FitNoise(series, N, options, res.meas_sigma_estimated, res.q_estimated, false, &noise);
-    sigma_use = noise.sigma;
-    q_use = noise.q;
+    FitNoise(series, series.rows(), options, res.meas_sigma_estimated, res.q_estimated, false, noise);
+    use.sigma = noise->sigma;
+    use.q = noise->q;
   }
-  res.noise_known_row.assign(mu, causal ? N : 0);
+  return use;
+}
+
+// The model of the series' columns (white jerk per column, angle rows wrapped).
+void InitModel(const Series& series, const AukfOptions& options, Model* model) {
+  const int m = static_cast<int>(series.columns.size());
+  const int n = 3 * m;
+  model->m = m;
+  model->n = n;
+  model->kappa = options.kappa;
+  model->w = ukf::MakeWeights(n, options.kappa);
+  model->is_angle = series.is_angle;
+  model->block_diagonal = options.adapt.mode == AdaptMode::kNone && !options.joint_transform;
+  model->scale.resize(n);
+  for (int c = 0; c < m; ++c) {
+    if (series.is_angle[static_cast<std::size_t>(c)]) model->angles.Add(3 * c);
+  }
+}
+
+// Per-interval noise for the smoother: adapted Q, or the q of a causal refit schedule.
+struct IntervalNoise {
+  bool store_q = false;               // adapted Q per interval
+  bool store_model_q = false;         // the model's q per interval
+  std::vector<double> q_store;        // packed Q_rate per sample interval
+  std::vector<char> q_store_used;     // 1 if the interval used an adapted Q
+  std::vector<double> model_q_store;  // m per sample interval
+};
+
+// The forward pass over every row: the filtered nodes (sample 0, then mid-interval and sample for each
+// interval) into the result, with the noise refits of the causal schedule.
+class ForwardPass {
+ public:
+  ForwardPass(const Series& series, const AukfOptions& options, bool causal, bool keep_cov, Model* model,
+              Forward* fwd, NoiseFitOut* noise, NoiseInUse* use, IntervalNoise* intervals, AukfResult* res)
+      : series_(series), options_(options), causal_(causal), keep_cov_(keep_cov), model_(model), fwd_(fwd),
+        noise_(noise), use_(use), intervals_(intervals), res_(res) {}
+
+  void Run() {
+    const std::size_t N = series_.rows();
+    MaybeRefit(1);
+    Store(series_.t_s[0], false, 0, fwd_->x(), fwd_->P());
+    for (std::size_t k = 1; k < N; ++k) {
+      if (intervals_->store_q) {
+        intervals_->q_store_used.push_back(fwd_->q_adapted() ? 1 : 0);
+        if (fwd_->q_adapted()) Pack(fwd_->Q_rate(), &intervals_->q_store);
+      }
+      if (intervals_->store_model_q) {
+        intervals_->model_q_store.insert(intervals_->model_q_store.end(), model_->q.begin(), model_->q.end());
+      }
+      fwd_->Step(k, &cnt_);
+      Store(series_.t_s[k - 1] + options_.lead * (series_.t_s[k] - series_.t_s[k - 1]), true, k - 1, fwd_->x_mid(),
+            fwd_->P_mid());
+      MaybeRefit(k + 1);
+      Store(series_.t_s[k], false, k, fwd_->x(), fwd_->P());
+    }
+  }
+  const Counters& counters() const { return cnt_; }
+
+ private:
+  AukfStatus RowStatus(std::size_t k) const {
+    for (int c = 0; c < res_->m; ++c) {
+      if (std::isfinite(series_.values(static_cast<Eigen::Index>(k), c))) return AukfStatus::kOk;
+    }
+    return AukfStatus::kPredicted;
+  }
+
+  void Store(double t, bool mid, std::size_t sample, const StateVec& xs, const StateMat& Ps) {
+    const Eigen::Index j = static_cast<Eigen::Index>(res_->t_s.size());
+    res_->t_s.push_back(t);
+    res_->is_mid.push_back(mid);
+    res_->sample.push_back(static_cast<int>(sample));
+    res_->status.push_back(mid ? AukfStatus::kOk : RowStatus(sample));
+    res_->x_filter.col(j) = xs;
+    res_->sd_filter.col(j) = Ps.diagonal().cwiseMax(0.0).cwiseSqrt();
+    if (keep_cov_) Pack(Ps, &res_->cov_filter);
+  }
+
+  // After the update of row k − 1 (rows 0..k−1 in): refit on those rows when the schedule says so.
+  void MaybeRefit(std::size_t rows) {
+    if (!causal_ || !options_.causal.IsRefit(rows)) return;
+    FitNoise(series_, rows, options_, res_->meas_sigma_estimated, res_->q_estimated, true, noise_);
+    bool any = false;
+    for (std::size_t c = 0; c < series_.columns.size(); ++c) {
+      if (!noise_->known[c]) continue;
+      any = true;
+      use_->sigma[c] = noise_->sigma[c];
+      use_->q[c] = noise_->q[c];
+      res_->noise_known_row[c] = std::min(res_->noise_known_row[c], rows - 1);
+    }
+    if (!any) return;
+    use_->T = noise_->interval_s;
+    fwd_->SetNoise(use_->sigma, use_->q, use_->T);
+    AukfResult::NoiseRefit rf;
+    rf.rows = rows;
+    rf.restarted = rows <= static_cast<std::size_t>(options_.causal.restart_until);
+    rf.meas_sigma = use_->sigma;
+    rf.q = use_->q;
+    if (rf.restarted) {
+      // Re-run the filter over the rows so far with the new noise (no output; repairs are counted).
+      Counters replay;
+      fwd_->Start();
+      for (std::size_t k = 1; k < rows; ++k) fwd_->Step(k, &replay);
+      cnt_.p_repairs += replay.p_repairs;
+      cnt_.q_repairs += replay.q_repairs;
+      cnt_.r_repairs += replay.r_repairs;
+    }
+    res_->noise_refits.push_back(std::move(rf));
+  }
+
+  const Series& series_;
+  const AukfOptions& options_;
+  const bool causal_, keep_cov_;
+  Model* model_;
+  Forward* fwd_;
+  NoiseFitOut* noise_;
+  NoiseInUse* use_;
+  IntervalNoise* intervals_;
+  AukfResult* res_;
+  Counters cnt_;
+};
+
+// The forward pass's counters, noise and final R and Q into the result.
+void CollectForward(const Counters& cnt, const Forward& fwd, const NoiseFitOut& noise, const NoiseInUse& use,
+                    const AukfOptions& options, const Model& model, AukfResult* res) {
+  res->first_row = fwd.first_row();
+  res->updates = cnt.updates;
+  res->partial_updates = cnt.partial_updates;
+  res->skipped_updates = cnt.skipped_updates;
+  res->adapt_steps = cnt.adapt_steps;
+  res->adapt_skipped = cnt.adapt_skipped;
+  res->q_repairs = cnt.q_repairs;
+  res->r_repairs = cnt.r_repairs;
+  res->p_repairs = cnt.p_repairs;
+  res->nis_sum = cnt.nis_sum;
+  res->nis_dof = cnt.nis_dof;
+  res->meas_sigma = use.sigma;
+  res->q = use.q;
+  const bool estimated = res->meas_sigma_estimated || res->q_estimated;
+  if (estimated && options.noise_estimator == NoiseEstimator::kMaxLikelihood) {
+    res->noise_fit = noise.ml;
+    res->noise_fit_used = noise.ml_used;
+  }
+  const double T = res->interval_s;
+  res->final_R = fwd.R();
+  res->final_Q_adapted = fwd.q_adapted();
+  if (fwd.q_adapted()) {
+    res->final_Q = fwd.Q_rate() * T;
+  } else {
+    res->final_Q = StateMat::Zero(res->n, res->n);
+    model.AddQ(T, nullptr, &res->final_Q);
+  }
+}
+
+// Rauch–Tung–Striebel over the stored filter nodes (cov_filter kept), backwards from the last node.
+void RtsSmooth(const AukfOptions& options, const IntervalNoise& intervals, Model* model, AukfResult* res) {
+  const int m = res->m;
+  const int n = res->n;
+  const std::size_t mu = static_cast<std::size_t>(m);
+  const std::size_t J = res->t_s.size();
+  const std::size_t packed = static_cast<std::size_t>(n * (n + 1) / 2);
+  res->x_smooth.resize(n, static_cast<Eigen::Index>(J));
+  res->sd_smooth.resize(n, static_cast<Eigen::Index>(J));
+  StateVec xs = res->x_filter.col(static_cast<Eigen::Index>(J - 1));
+  StateMat Ps;
+  Unpack(res->cov_filter.data() + (J - 1) * packed, n, &Ps);
+  res->x_smooth.col(static_cast<Eigen::Index>(J - 1)) = xs;
+  res->sd_smooth.col(static_cast<Eigen::Index>(J - 1)) = Ps.diagonal().cwiseMax(0.0).cwiseSqrt();
+  std::size_t smoother_repairs = 0;
+  std::vector<std::size_t> q_offset;  // packed offset of each interval's adapted Q
+  if (intervals.store_q) {
+    std::size_t off = 0;
+    for (char u : intervals.q_store_used) {
+      q_offset.push_back(off);
+      if (u) off += packed;
+    }
+  }
+  StateMat Qr_k;
+  for (std::size_t jj = J - 1; jj-- > 0;) {
+    const StateVec xf = res->x_filter.col(static_cast<Eigen::Index>(jj));
+    StateMat Pf;
+    Unpack(res->cov_filter.data() + jj * packed, n, &Pf);
+    const double s = res->t_s[jj + 1] - res->t_s[jj];
+    const std::size_t interval = jj / 2;  // nodes 2i (sample i) and 2i+1 (mid) lie in interval i → i+1
+    const StateMat* Qr = nullptr;
+    if (intervals.store_q && intervals.q_store_used[interval]) {
+      Unpack(intervals.q_store.data() + q_offset[interval], n, &Qr_k);
+      Qr = &Qr_k;
+    }
+    if (intervals.store_model_q) {
+      std::copy_n(intervals.model_q_store.begin() + static_cast<std::ptrdiff_t>(interval * mu), mu, model->q.begin());
+    }
+    StateVec xp;
+    StateMat Pp;
+    StateMat C;
+    model->Predict(xf, &Pf, s, Qr, &xp, &Pp, &smoother_repairs, &C);
+    Eigen::LLT<StateMat> llt(Pp);
+    if (llt.info() != Eigen::Success) {
+      ukf::RepairSpd(&Pp, model->scale, model->p_floor);
+      ++smoother_repairs;
+      llt.compute(Pp);
+    }
+    StateMat G = llt.solve(C.transpose()).transpose();
+    // A column that starts at node jj + 1 was not predicted from node jj: nothing flows back to it.
+    for (int c = 0; c < m; ++c) {
+      const std::size_t f = res->first_row[static_cast<std::size_t>(c)];
+      if (f > 0 && jj + 1 == 2 * f) G.middleRows(3 * c, 3).setZero();
+    }
+    StateVec diff = xs - xp;
+    ukf::WrapAngles(model->angles, &diff);
+    StateVec xs_new = xf + G * diff;
+    ukf::WrapAngles(model->angles, &xs_new);
+    StateMat Ps_new = Pf + G * (Ps - Pp) * G.transpose();
+    ukf::Symmetrise(&Ps_new);
+    xs = xs_new;
+    Ps = Ps_new;
+    res->x_smooth.col(static_cast<Eigen::Index>(jj)) = xs;
+    res->sd_smooth.col(static_cast<Eigen::Index>(jj)) = Ps.diagonal().cwiseMax(0.0).cwiseSqrt();
+  }
+  res->p_repairs += smoother_repairs;
+  if (!options.keep_covariance) {
+    res->cov_filter.clear();
+    res->cov_filter.shrink_to_fit();
+  }
+}
+
+}  // namespace
+
+AukfResult RunAukf(const Series& series, const AukfOptions& options) {
+  CheckAukfInput(series, options);
+  const int m = static_cast<int>(series.columns.size());
+  const int n = 3 * m;
+  const std::size_t N = series.rows();
+
+  AukfResult res;
+  res.m = m;
+  res.n = n;
+  res.samples = N;
+  res.interval_s = MedianInterval(series.t_s, N);
+  CheckColumnValues(series);
+
+  res.meas_sigma_estimated = options.meas_sigma.empty();
+  res.q_estimated = options.q.empty();
+  const bool estimated = res.meas_sigma_estimated || res.q_estimated;
+  const bool causal = estimated && options.noise_fit == NoiseFit::kCausal;
+  NoiseFitOut noise;
+  NoiseInUse use = InitialNoise(series, options, res, causal, &noise);
+  res.noise_known_row.assign(static_cast<std::size_t>(m), causal ? N : 0);
 
   Model model;
-  model.m = m;
-  model.n = n;
-  model.kappa = options.kappa;
-  model.w = ukf::MakeWeights(n, options.kappa);
-  model.is_angle = series.is_angle;
-  model.block_diagonal = options.adapt.mode == AdaptMode::kNone && !options.joint_transform;
-  model.scale.resize(n);
-  for (int c = 0; c < m; ++c) {
-    if (series.is_angle[static_cast<std::size_t>(c)]) model.angles.Add(3 * c);
-  }
+  InitModel(series, options, &model);
   Forward fwd(series, options, &model);
-  fwd.SetNoise(sigma_use, q_use, T_use);
+  fwd.SetNoise(use.sigma, use.q, use.T);
   fwd.Start();
 
   const std::size_t J = 2 * N - 1;
@@ -662,105 +904,16 @@ AukfResult RunAukf(const Series& series, const AukfOptions& options) {
   const bool keep_cov = options.keep_covariance || smooth_here;
   const std::size_t packed = static_cast<std::size_t>(n * (n + 1) / 2);
   if (keep_cov) res.cov_filter.reserve(J * packed);
-  // Per-interval noise for the smoother: adapted Q, or the q of a causal refit schedule.
-  const bool store_q = smooth_here && AdaptsQ(options.adapt.mode);
-  const bool store_model_q = smooth_here && causal;
-  std::vector<double> q_store;        // packed Q_rate per sample interval
-  std::vector<char> q_store_used;     // 1 if the interval used an adapted Q
-  std::vector<double> model_q_store;  // m per sample interval
+  IntervalNoise intervals;
+  intervals.store_q = smooth_here && AdaptsQ(options.adapt.mode);
+  intervals.store_model_q = smooth_here && causal;
   res.t_s.reserve(J);
   res.x_filter.resize(n, static_cast<Eigen::Index>(J));
   res.sd_filter.resize(n, static_cast<Eigen::Index>(J));
 
-  auto row_status = [&](std::size_t k) {
-    for (int c = 0; c < m; ++c) {
-      if (std::isfinite(Z(static_cast<Eigen::Index>(k), c))) return AukfStatus::kOk;
-    }
-    return AukfStatus::kPredicted;
-  };
-  auto store = [&](double t, bool mid, std::size_t sample, const StateVec& xs, const StateMat& Ps) {
-    const Eigen::Index j = static_cast<Eigen::Index>(res.t_s.size());
-    res.t_s.push_back(t);
-    res.is_mid.push_back(mid);
-    res.sample.push_back(static_cast<int>(sample));
-    res.status.push_back(mid ? AukfStatus::kOk : row_status(sample));
-    res.x_filter.col(j) = xs;
-    res.sd_filter.col(j) = Ps.diagonal().cwiseMax(0.0).cwiseSqrt();
-    if (keep_cov) Pack(Ps, &res.cov_filter);
-  };
-  Counters cnt;
-  // After the update of row k − 1 (rows 0..k−1 in): refit on those rows when the schedule says so.
-  auto maybe_refit = [&](std::size_t rows) {
-    if (!causal || !options.causal.IsRefit(rows)) return;
-    FitNoise(series, rows, options, res.meas_sigma_estimated, res.q_estimated, true, &noise);
-    bool any = false;
-    for (std::size_t c = 0; c < mu; ++c) {
-      if (!noise.known[c]) continue;
-      any = true;
-      sigma_use[c] = noise.sigma[c];
-      q_use[c] = noise.q[c];
-      res.noise_known_row[c] = std::min(res.noise_known_row[c], rows - 1);
-    }
-    if (!any) return;
-    T_use = noise.interval_s;
-    fwd.SetNoise(sigma_use, q_use, T_use);
-    AukfResult::NoiseRefit rf;
-    rf.rows = rows;
-    rf.restarted = rows <= static_cast<std::size_t>(options.causal.restart_until);
-    rf.meas_sigma = sigma_use;
-    rf.q = q_use;
-    if (rf.restarted) {
-      // Re-run the filter over the rows so far with the new noise (no output; repairs are counted).
-      Counters replay;
-      fwd.Start();
-      for (std::size_t k = 1; k < rows; ++k) fwd.Step(k, &replay);
-      cnt.p_repairs += replay.p_repairs;
-      cnt.q_repairs += replay.q_repairs;
-      cnt.r_repairs += replay.r_repairs;
-    }
-    res.noise_refits.push_back(std::move(rf));
-  };
-
-  maybe_refit(1);
-  store(series.t_s[0], false, 0, fwd.x(), fwd.P());
-  for (std::size_t k = 1; k < N; ++k) {
-    if (store_q) {
-      q_store_used.push_back(fwd.q_adapted() ? 1 : 0);
-      if (fwd.q_adapted()) Pack(fwd.Q_rate(), &q_store);
-    }
-    if (store_model_q) model_q_store.insert(model_q_store.end(), model.q.begin(), model.q.end());
-    fwd.Step(k, &cnt);
-    store(series.t_s[k - 1] + options.lead * (series.t_s[k] - series.t_s[k - 1]), true, k - 1, fwd.x_mid(),
-          fwd.P_mid());
-    maybe_refit(k + 1);
-    store(series.t_s[k], false, k, fwd.x(), fwd.P());
-  }
-  res.first_row = fwd.first_row();
-
-  res.updates = cnt.updates;
-  res.partial_updates = cnt.partial_updates;
-  res.skipped_updates = cnt.skipped_updates;
-  res.adapt_steps = cnt.adapt_steps;
-  res.adapt_skipped = cnt.adapt_skipped;
-  res.q_repairs = cnt.q_repairs;
-  res.r_repairs = cnt.r_repairs;
-  res.p_repairs = cnt.p_repairs;
-  res.nis_sum = cnt.nis_sum;
-  res.nis_dof = cnt.nis_dof;
-  res.meas_sigma = sigma_use;
-  res.q = q_use;
-  if (estimated && options.noise_estimator == NoiseEstimator::kMaxLikelihood) {
-    res.noise_fit = noise.ml;
-    res.noise_fit_used = noise.ml_used;
-  }
-  res.final_R = fwd.R();
-  res.final_Q_adapted = fwd.q_adapted();
-  if (fwd.q_adapted()) {
-    res.final_Q = fwd.Q_rate() * T;
-  } else {
-    res.final_Q = StateMat::Zero(n, n);
-    model.AddQ(T, nullptr, &res.final_Q);
-  }
+  ForwardPass pass(series, options, causal, keep_cov, &model, &fwd, &noise, &use, &intervals, &res);
+  pass.Run();
+  CollectForward(pass.counters(), fwd, noise, use, options, model, &res);
 
   if (options.smooth && !smooth_here) {
     // Smoothed rows from a forward pass with the other noise fit (they may use every sample).
@@ -775,223 +928,8 @@ AukfResult RunAukf(const Series& series, const AukfOptions& options) {
     res.p_repairs += r.p_repairs;
     return res;
   }
-  if (smooth_here) {
-    res.x_smooth.resize(n, static_cast<Eigen::Index>(J));
-    res.sd_smooth.resize(n, static_cast<Eigen::Index>(J));
-    StateVec xs = res.x_filter.col(static_cast<Eigen::Index>(J - 1));
-    StateMat Ps;
-    Unpack(res.cov_filter.data() + (J - 1) * packed, n, &Ps);
-    res.x_smooth.col(static_cast<Eigen::Index>(J - 1)) = xs;
-    res.sd_smooth.col(static_cast<Eigen::Index>(J - 1)) = Ps.diagonal().cwiseMax(0.0).cwiseSqrt();
-    std::size_t smoother_repairs = 0;
-    std::vector<std::size_t> q_offset;  // packed offset of each interval's adapted Q
-    if (store_q) {
-      std::size_t off = 0;
-      for (char u : q_store_used) {
-        q_offset.push_back(off);
-        if (u) off += packed;
-      }
-    }
-    StateMat Qr_k;
-    for (std::size_t jj = J - 1; jj-- > 0;) {
-      const StateVec xf = res.x_filter.col(static_cast<Eigen::Index>(jj));
-      StateMat Pf;
-      Unpack(res.cov_filter.data() + jj * packed, n, &Pf);
-      const double s = res.t_s[jj + 1] - res.t_s[jj];
-      const std::size_t interval = jj / 2;  // nodes 2i (sample i) and 2i+1 (mid) lie in interval i → i+1
-      const StateMat* Qr = nullptr;
-      if (store_q && q_store_used[interval]) {
-        Unpack(q_store.data() + q_offset[interval], n, &Qr_k);
-        Qr = &Qr_k;
-      }
-      if (store_model_q) std::copy_n(model_q_store.begin() + static_cast<std::ptrdiff_t>(interval * mu), mu, model.q.begin());
-      StateVec xp;
-      StateMat Pp;
-      StateMat C;
-      model.Predict(xf, &Pf, s, Qr, &xp, &Pp, &smoother_repairs, &C);
-      Eigen::LLT<StateMat> llt(Pp);
-      if (llt.info() != Eigen::Success) {
-        ukf::RepairSpd(&Pp, model.scale, model.p_floor);
-        ++smoother_repairs;
-        llt.compute(Pp);
-      }
-      StateMat G = llt.solve(C.transpose()).transpose();
-      // A column that starts at node jj + 1 was not predicted from node jj: nothing flows back to it.
-      for (int c = 0; c < m; ++c) {
-        const std::size_t f = res.first_row[static_cast<std::size_t>(c)];
-        if (f > 0 && jj + 1 == 2 * f) G.middleRows(3 * c, 3).setZero();
-      }
-      StateVec diff = xs - xp;
-      ukf::WrapAngles(model.angles, &diff);
-      StateVec xs_new = xf + G * diff;
-      ukf::WrapAngles(model.angles, &xs_new);
-      StateMat Ps_new = Pf + G * (Ps - Pp) * G.transpose();
-      ukf::Symmetrise(&Ps_new);
-      xs = xs_new;
-      Ps = Ps_new;
-      res.x_smooth.col(static_cast<Eigen::Index>(jj)) = xs;
-      res.sd_smooth.col(static_cast<Eigen::Index>(jj)) = Ps.diagonal().cwiseMax(0.0).cwiseSqrt();
-    }
-    res.p_repairs += smoother_repairs;
-    if (!options.keep_covariance) {
-      res.cov_filter.clear();
-      res.cov_filter.shrink_to_fit();
-    }
-  }
+  if (smooth_here) RtsSmooth(options, intervals, &model, &res);
   return res;
-}
-
-io::CsvWriter AukfCsv(const Series& series, const AukfResult& result, const AukfOutputOptions& out) {
-  const int m = result.m;
-  std::vector<std::string> header = {"t_s", "kind"};
-  for (const auto& c : series.columns) header.push_back(c);
-  header.push_back("status");
-  if (out.derivatives) {
-    for (const auto& c : series.columns) {
-      header.push_back(DerivedColumnName(c, 1));
-      header.push_back(DerivedColumnName(c, 2));
-    }
-  }
-  if (out.sigmas) {
-    for (const auto& c : series.columns) header.push_back(DerivedColumnName(c, 0, true));
-  }
-  // Output range of each angle column, shared with `singer` (AngleColumnIs360): [0, 360) for
-  // azimuth/yaw-like names or when some input value exceeds 180°, else (−180, 180].
-  std::vector<bool> wrap360(static_cast<std::size_t>(m), false);
-  for (int c = 0; c < m; ++c) {
-    if (!series.is_angle[static_cast<std::size_t>(c)]) continue;
-    std::vector<double> v(series.values.col(c).data(), series.values.col(c).data() + series.values.rows());
-    wrap360[static_cast<std::size_t>(c)] = AngleColumnIs360(series.columns[static_cast<std::size_t>(c)], v);
-  }
-  io::CsvWriter w(header);
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-  // Empty fields: a column before its first value; its 1σ in the forward pass before its noise is known.
-  auto write_row = [&](std::size_t j, const char* kind, const Eigen::MatrixXd& X, const Eigen::MatrixXd& SD,
-                       bool forward) {
-    const Eigen::Index jc = static_cast<Eigen::Index>(j);
-    w.Add(result.t_s[j], out.decimals).Add(kind);
-    for (int c = 0; c < m; ++c) {
-      double v = X(3 * c, jc);
-      if (series.is_angle[static_cast<std::size_t>(c)]) {
-        v = geo::RadToDeg(v);
-        v = wrap360[static_cast<std::size_t>(c)] ? geo::WrapDeg360(v) : geo::WrapDeg180(v);
-      }
-      w.Add(result.HasValue(j, c) ? v : kNaN, out.decimals);
-    }
-    w.Add(result.status[j] == AukfStatus::kOk ? "ok" : "predicted");
-    if (out.derivatives) {
-      for (int c = 0; c < m; ++c) {
-        const double f = series.is_angle[static_cast<std::size_t>(c)] ? geo::RadToDeg(1.0) : 1.0;
-        const bool have = result.HasValue(j, c);
-        w.Add(have ? f * X(3 * c + 1, jc) : kNaN, out.decimals).Add(have ? f * X(3 * c + 2, jc) : kNaN, out.decimals);
-      }
-    }
-    if (out.sigmas) {
-      for (int c = 0; c < m; ++c) {
-        const double f = series.is_angle[static_cast<std::size_t>(c)] ? geo::RadToDeg(1.0) : 1.0;
-        const bool have = forward ? result.HasSigma(j, c) : result.HasValue(j, c);
-        w.Add(have ? f * SD(3 * c, jc) : kNaN, out.decimals);
-      }
-    }
-    w.EndRow();
-  };
-  const bool smoothed = result.x_smooth.cols() == static_cast<Eigen::Index>(result.t_s.size());
-  for (std::size_t j = 0; j < result.t_s.size(); ++j) {
-    write_row(j, result.is_mid[j] ? "prediction" : "estimate", result.x_filter, result.sd_filter, true);
-    if (smoothed) write_row(j, "smoothed", result.x_smooth, result.sd_smooth, false);
-  }
-  return w;
-}
-
-io::Json AukfReportJson(const Series& series, const AukfOptions& options, const AukfResult& result) {
-  auto matrix = [](const auto& A) {
-    io::Json rows = io::Json::array();
-    for (Eigen::Index i = 0; i < A.rows(); ++i) {
-      io::Json row = io::Json::array();
-      for (Eigen::Index j = 0; j < A.cols(); ++j) row.push_back(A(i, j));
-      rows.push_back(row);
-    }
-    return rows;
-  };
-  io::Json cols = io::Json::array();
-  for (int c = 0; c < result.m; ++c) {
-    const std::size_t cu = static_cast<std::size_t>(c);
-    const bool angle = series.is_angle[cu];
-    const double f = angle ? geo::RadToDeg(1.0) : 1.0;
-    io::Json col = {{"name", series.columns[cu]},
-                    {"angle", angle},
-                    {"meas_sigma", f * result.meas_sigma[cu]},
-                    {"q", f * f * result.q[cu]},
-                    {"unit", angle ? "deg" : "file unit"}};
-    if (cu < result.noise_fit.size() && result.noise_fit[cu].evaluations > 0) {
-      const NoiseMlFit& fit = result.noise_fit[cu];
-      col["noise_ml"] = {{"used", static_cast<bool>(result.noise_fit_used[cu])},
-                         {"nll_per_innovation", fit.nll},
-                         {"innovations", fit.innovations},
-                         {"evaluations", fit.evaluations},
-                         {"on_search_bound", fit.on_bound}};
-    }
-    cols.push_back(col);
-  }
-  io::Json j;
-  j["options"] = {{"lead", options.lead},
-                  {"kappa", options.kappa},
-                  {"adapt", AdaptModeName(options.adapt.mode)},
-                  {"memory", options.adapt.memory == AdaptMemory::kWindow ? "window" : "fading"},
-                  {"window", options.adapt.window},
-                  {"fading", options.adapt.fading},
-                  {"r_floor", options.adapt.r_floor},
-                  {"q_floor", options.adapt.q_floor},
-                  {"r_ceiling", options.adapt.r_ceiling},
-                  {"q_ceiling", options.adapt.q_ceiling},
-                  {"smooth", options.smooth},
-                  {"meas_sigma_estimated", result.meas_sigma_estimated},
-                  {"q_estimated", result.q_estimated},
-                  {"noise_estimate", NoiseEstimatorName(options.noise_estimator)},
-                  {"noise_fit", NoiseFitName(options.noise_fit)},
-                  {"smooth_noise_fit", NoiseFitName(options.smooth_noise_fit)},
-                  {"process_model", "white jerk, Q(tau) = q [[tau^5/20, tau^4/8, tau^3/6], [tau^4/8, tau^3/3, "
-                                    "tau^2/2], [tau^3/6, tau^2/2, tau]] per column"},
-                  {"columns", cols}};
-  j["counts"] = {{"samples", result.samples},
-                 {"nodes", result.t_s.size()},
-                 {"updates", result.updates},
-                 {"partial_updates", result.partial_updates},
-                 {"skipped_updates", result.skipped_updates},
-                 {"adapt_steps", result.adapt_steps},
-                 {"adapt_skipped_partial_rows", result.adapt_skipped},
-                 {"repairs_q", result.q_repairs},
-                 {"repairs_r", result.r_repairs},
-                 {"repairs_p", result.p_repairs}};
-  // σ and q per column in file units.
-  auto noise_json = [&](const std::vector<double>& sigma, const std::vector<double>& q) {
-    io::Json sg = io::Json::array(), qq = io::Json::array();
-    for (int c = 0; c < result.m; ++c) {
-      const double f = series.is_angle[static_cast<std::size_t>(c)] ? geo::RadToDeg(1.0) : 1.0;
-      sg.push_back(f * sigma[static_cast<std::size_t>(c)]);
-      qq.push_back(f * f * q[static_cast<std::size_t>(c)]);
-    }
-    return io::Json{{"meas_sigma", sg}, {"q", qq}};
-  };
-  io::Json refits = io::Json::array();
-  for (const auto& rf : result.noise_refits) {
-    io::Json e = noise_json(rf.meas_sigma, rf.q);
-    e["rows"] = rf.rows;
-    e["restarted"] = rf.restarted;
-    refits.push_back(e);
-  }
-  j["noise_refits"] = refits;
-  if (!result.smooth_meas_sigma.empty()) j["smooth_noise"] = noise_json(result.smooth_meas_sigma, result.smooth_q);
-  j["interval_s"] = result.interval_s;
-  j["nis_mean"] = result.NisMean();
-  j["nis_mean_per_dof"] = result.nis_dof ? result.nis_sum / static_cast<double>(result.nis_dof) : 0.0;
-  j["final_R"] = matrix(result.final_R);
-  j["final_Q"] = matrix(result.final_Q);
-  j["final_Q_adapted"] = result.final_Q_adapted;
-  j["final_noise_units"] =
-      "SI and radians; state order [p, p', p''] per column in --columns order; final_Q is the process noise of "
-      "one median interval interval_s";
-  return j;
 }
 
 }  // namespace rk::filter
