@@ -18,7 +18,6 @@ namespace {
 
 using sim::PnpGeometry;
 using sim::PnpProblem;
-using testing::kJacobianRel;
 using testing::kNoiseFreeRad;
 using testing::kRoundoff;
 using testing::Normalised;

@@ -17,12 +17,9 @@ namespace {
 
 using sim::PnpGeometry;
 using sim::PnpProblem;
-using testing::kJacobianRel;
 using testing::kNoiseFreeRad;
-using testing::kRoundoff;
 using testing::Normalised;
 using testing::Problem;
-using testing::Rays;
 
 TEST(PnpSolver, NoiseFreeIsExactForEveryGeometry) {
   PnpSolver solver;

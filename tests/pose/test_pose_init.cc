@@ -18,9 +18,6 @@ namespace {
 
 using sim::PnpGeometry;
 using sim::PnpProblem;
-using testing::kJacobianRel;
-using testing::kNoiseFreeRad;
-using testing::kRoundoff;
 using testing::Normalised;
 using testing::Problem;
 using testing::Rays;
@@ -50,19 +47,6 @@ TEST(WeakPerspectiveInit, NearTruthAtLongRangeAndMirrorIsTheOtherPlanarSolution)
     ASSERT_TRUE(h.ok);
     EXPECT_LT(RotationAngle(h.R_cam_body[0], pb.R_cam_body), 1e-7) << k;  // exact without noise
   }
-}
-
-// Residuals of the reprojection polish (same definition as reproj_refine.h), for numerical
-// derivatives.
-Eigen::VectorXd Residuals(const std::vector<Eigen::Vector2d>& xn, const std::vector<Eigen::Vector3d>& p, double fx,
-                          double fy, const Eigen::Matrix3d& R, const Eigen::Vector3d& t) {
-  Eigen::VectorXd r(2 * xn.size());
-  for (std::size_t i = 0; i < xn.size(); ++i) {
-    const Eigen::Vector3d X = R * p[i] + t;
-    r(2 * i) = fx * (X.x() / X.z() - xn[i].x());
-    r(2 * i + 1) = fy * (X.y() / X.z() - xn[i].y());
-  }
-  return r;
 }
 
 }  // namespace

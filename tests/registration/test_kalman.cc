@@ -11,7 +11,6 @@ namespace rk::registration {
 namespace {
 
 using testing::ExpectConsistent;
-using testing::kSparseSigmaFactor;
 using testing::kSteps;
 using testing::ReadSimulated;
 using testing::Scenario;

@@ -12,7 +12,6 @@
 
 namespace rk::run {
 namespace {
-using testing::kBeaconManifest;
 using testing::ManifestError;
 using testing::WithSteps;
 
