@@ -10,6 +10,7 @@
 
 #include "geo/angles.h"
 #include "pose/oi.h"
+#include "pose/pnp.h"
 #include "pose_test_util.h"
 #include "sim/attitude_problems.h"
 

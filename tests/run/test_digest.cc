@@ -7,7 +7,9 @@
 #include <string>
 #include <vector>
 
+#include "io/error.h"
 #include "run/digest.h"
+#include "run/sha256.h"
 #include "run_test_util.h"
 
 namespace rk::run {

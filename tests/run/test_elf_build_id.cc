@@ -6,9 +6,12 @@
 
 #include "run/elf_build_id.h"
 #include "run/process.h"
+#include "run_test_util.h"
 
 namespace rk::run {
 namespace {
+using testing::TempDir;
+using testing::Write;
 
 TEST(ElfBuildId, MatchesReadelf) {
   const std::string self = SelfDir() + "/test_run";

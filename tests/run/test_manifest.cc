@@ -7,6 +7,7 @@
 #include "io/error.h"
 #include "manifest_examples.h"
 #include "run/manifest.h"
+#include "run/plan.h"
 
 namespace rk::run {
 namespace {
