@@ -9,18 +9,16 @@
 
 #include "analysis/budget.h"
 #include "analysis/budget_locate.h"
+#include "analyze_commands.h"
 #include "attitude/cylinder_budget.h"
 #include "camera/camera_model.h"
 #include "io/error.h"
 #include "io/file_util.h"
 #include "io/json_util.h"
 #include "sim/theodolite_scene.h"
-#include "subcommand.h"
 
 namespace rk::app {
 namespace {
-
-const char* const kBudgetTool = "rk-analyze";
 
 struct BudgetArgs {
   std::string budget_path, out_path, method = "p3p";
@@ -95,20 +93,21 @@ Command AddBudgetCommand(CLI::App& parent) {
             std::string why;
             if (!opt.Check(&why)) throw UsageError(why);
             const analysis::BudgetResult r = analysis::RunBudget(*model, sources, opt);
-            io::Json out = cli::MakeReport(kBudgetTool, ctx.argc, ctx.argv);
+            io::Json out = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
             cli::AddReportInput(&out, "budget", a->budget_path);
             out["subcommand"] = "budget";
             out["solver"] = a->method;
             out.update(analysis::BudgetResultToJson(*model, sources, opt, r));
             if (r.failed > 0) {
-              cli::Warn(kBudgetTool, ctx.common,
+              cli::Warn(ctx.tool, ctx.common,
                         std::to_string(r.failed) + " of " + std::to_string(r.samples) +
                             " Monte Carlo draws had no solution and were left out");
             }
             if (!r.outputs.empty() && !std::isfinite(r.outputs[0].sigma_jacobian)) {
-              cli::Warn(kBudgetTool, ctx.common,
-                        "the Jacobian is singular at the nominal point (side-on view: a double root); only Monte "
-                        "Carlo sigmas are given");
+              cli::Warn(
+                  ctx.tool, ctx.common,
+                  "the Jacobian is singular at the nominal point (side-on view: a double root); only Monte "
+                  "Carlo sigmas are given");
             }
             io::WriteJson(a->out_path, out);
             if (!ctx.common.report_path.empty() && ctx.common.report_path != a->out_path)
@@ -124,7 +123,5 @@ Command AddBudgetCommand(CLI::App& parent) {
             return 0;
           }};
 }
-
-RK_REGISTER_SUBCOMMAND(2, AddBudgetCommand);
 
 }  // namespace rk::app

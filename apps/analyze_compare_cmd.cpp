@@ -6,15 +6,13 @@
 #include <string>
 
 #include "analysis/compare.h"
+#include "analyze_commands.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "subcommand.h"
 
 namespace rk::app {
 namespace {
-
-const char* const kCompareTool = "rk-analyze";
 
 struct CompareArgs {
   std::string est_path, ref_path, columns_arg, out_path, errors_path, interp = "linear";
@@ -113,7 +111,7 @@ Command AddCompareCommand(CLI::App& parent) {
         const rk::analysis::CompareResult result = rk::analysis::Compare(estimate, reference, opt);
         for (const auto& cc : result.columns) {
           if (!cc.stats) {
-            rk::cli::Warn(kCompareTool, common,
+            rk::cli::Warn(ctx.tool, common,
                           "column " + cc.column + ": no comparable row (estimate empty " +
                               std::to_string(cc.skipped_estimate_empty) + ", reference outside " +
                               std::to_string(cc.skipped_reference_outside) + ", reference gap " +
@@ -122,7 +120,7 @@ Command AddCompareCommand(CLI::App& parent) {
           }
         }
 
-        rk::io::Json report = rk::cli::MakeReport(kCompareTool, argc, argv);
+        rk::io::Json report = rk::cli::MakeReport(ctx.tool, argc, argv);
         rk::cli::AddReportInput(&report, "estimate", est_path);
         rk::cli::AddReportInput(&report, "reference", ref_path);
         report["options"] = {
@@ -153,7 +151,5 @@ Command AddCompareCommand(CLI::App& parent) {
         return 0;
       }};
 }
-
-RK_REGISTER_SUBCOMMAND(1, AddCompareCommand);
 
 }  // namespace rk::app

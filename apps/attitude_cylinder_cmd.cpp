@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "attitude/cylinder_run.h"
+#include "attitude_commands.h"
 #include "camera/camera_model.h"
 #include "geo/angles.h"
 #include "io/csv.h"
@@ -13,12 +14,9 @@
 #include "io/file_util.h"
 #include "locate/inputs.h"
 #include "video/frame_source.h"
-#include "subcommand.h"
 
 namespace rk::app {
 namespace {
-
-const char* const kCylinderTool = "rk-attitude";
 
 struct CylinderArgs {
   std::string points_path, theodolite_path, camera_path, target_path, out_path;
@@ -141,21 +139,24 @@ Command AddCylinderCommand(CLI::App& parent) {
             using S = attitude::CylinderSolutionStatus;
             const auto n = [&](S s) { return res.rows_by_solution[static_cast<std::size_t>(s)]; };
             if (n(S::kAmbiguous) > 0) {
-              cli::Warn(kCylinderTool, ctx.common,
-                        std::to_string(n(S::kAmbiguous)) +
-                            " frame(s) ambiguous: two solutions that no history separates; primary = nose-nearer "
-                            "(SPEC.md 3), the other in alt_yaw_deg/alt_pitch_deg");
+              cli::Warn(
+                  ctx.tool, ctx.common,
+                  std::to_string(n(S::kAmbiguous)) +
+                      " frame(s) ambiguous: two solutions that no history separates; primary = nose-nearer "
+                      "(SPEC.md 3), the other in alt_yaw_deg/alt_pitch_deg");
             }
             const std::size_t invalid = res.rows_by_status[static_cast<std::size_t>(RowStatus::kInvalid)];
             if (invalid > 0) {
-              cli::Warn(kCylinderTool, ctx.common,
-                        std::to_string(invalid) + " frame(s) invalid (no_theodolite " + std::to_string(n(S::kNoTheodolite)) +
-                            ", outside_image " + std::to_string(n(S::kOutsideImage)) + ", inconsistent " +
-                            std::to_string(n(S::kInconsistent)) + ", degenerate " + std::to_string(n(S::kDegenerate)) +
-                            ", no_solution " + std::to_string(n(S::kNoSolution)) + ")");
+              cli::Warn(ctx.tool, ctx.common,
+                        std::to_string(invalid) + " frame(s) invalid (no_theodolite " +
+                            std::to_string(n(S::kNoTheodolite)) + ", outside_image " +
+                            std::to_string(n(S::kOutsideImage)) + ", inconsistent " +
+                            std::to_string(n(S::kInconsistent)) + ", degenerate " +
+                            std::to_string(n(S::kDegenerate)) + ", no_solution " +
+                            std::to_string(n(S::kNoSolution)) + ")");
             }
             if (!ctx.common.report_path.empty()) {
-              io::Json rep = cli::MakeReport(kCylinderTool, ctx.argc, ctx.argv);
+              io::Json rep = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
               cli::AddReportInput(&rep, "points", a->points_path);
               cli::AddReportInput(&rep, "theodolite", a->theodolite_path);
               cli::AddReportInput(&rep, "camera", a->camera_path);
@@ -183,7 +184,5 @@ Command AddCylinderCommand(CLI::App& parent) {
             return 0;
           }};
 }
-
-RK_REGISTER_SUBCOMMAND(1, AddCylinderCommand);
 
 }  // namespace rk::app

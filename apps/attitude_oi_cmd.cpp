@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "attitude_commands.h"
 #include "camera/camera_model.h"
 #include "geo/angles.h"
 #include "io/cli.h"
@@ -17,12 +18,9 @@
 #include "locate/inputs.h"
 #include "pose/image_points.h"
 #include "pose/station_pose.h"
-#include "subcommand.h"
 
 namespace rk::app {
 namespace {
-
-constexpr const char* kOiTool = "rk-attitude";
 
 struct OiArgs {
   std::string points, camera, target, turret, boresight, output;
@@ -103,25 +101,27 @@ int RunOi(const OiArgs& a, const Context& ctx) {
   const pose::AttitudeOiResult res = pose::RunAttitudeOi(points, model, camera, boresight, opt);
   const std::size_t n = res.rows.size();
   if (res.turret_not_covered > 0 && !fixed) {
-    cli::Warn(kOiTool, ctx.common,
-              std::to_string(res.turret_not_covered) + " of " + std::to_string(n) + " frame times are not covered by " +
-                  a.turret + " (rows with enough points written as invalid)");
+    cli::Warn(ctx.tool, ctx.common,
+              std::to_string(res.turret_not_covered) + " of " + std::to_string(n) +
+                  " frame times are not covered by " + a.turret +
+                  " (rows with enough points written as invalid)");
   }
   if (res.ambiguous > 0) {
-    cli::Warn(kOiTool, ctx.common,
+    cli::Warn(ctx.tool, ctx.common,
               std::to_string(res.ambiguous) + " of " + std::to_string(n) +
                   " frames have two poses that fit equally well (column ambiguous; the other is in alt_*)");
   }
   const double c2 = res.MeanChi2PerDof();
   if (std::isfinite(c2) && c2 > 4.0) {
-    cli::Warn(kOiTool, ctx.common,
+    cli::Warn(ctx.tool, ctx.common,
               "mean chi-square per degree of freedom is " + std::to_string(c2) +
-                  ": the pixel noise is larger than --sigma-px / sigma_px says, so the sigma_* columns are too small");
+                  ": the pixel noise is larger than --sigma-px / sigma_px says, so the sigma_* columns are "
+                  "too small");
   }
   pose::PoseCsv(res).Write(a.output);
 
   if (!ctx.common.report_path.empty()) {
-    io::Json r = cli::MakeReport(kOiTool, ctx.argc, ctx.argv);
+    io::Json r = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     r["subcommand"] = "oi";
     cli::AddReportInput(&r, "points", a.points);
     cli::AddReportInput(&r, "camera", a.camera);
@@ -221,7 +221,5 @@ Command AddOiCommand(CLI::App& parent) {
             return RunOi(*a, ctx);
           }};
 }
-
-RK_REGISTER_SUBCOMMAND(2, AddOiCommand);
 
 }  // namespace rk::app

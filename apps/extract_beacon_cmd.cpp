@@ -7,15 +7,13 @@
 #include <vector>
 
 #include "extract/beacon_run.h"
+#include "extract_commands.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "subcommand.h"
 
 namespace rk::app {
 namespace {
-
-const char* const kBeaconTool = "rk-extract";
 
 struct BeaconArgs {
   extract::BeaconTrackOptions opt;
@@ -140,7 +138,7 @@ Command AddBeaconCommand(CLI::App& parent) {
             if (!opt.Check(&why)) throw rk::UsageError(why);
             if (a->decode_only) {
               const rk::extract::DecodeResult r = rk::extract::DecodeOnly(videos);
-              std::cerr << kBeaconTool << ": decoded " << r.frames << " frames in " << r.wall_s << " s ("
+              std::cerr << ctx.tool << ": decoded " << r.frames << " frames in " << r.wall_s << " s ("
                         << (r.frames ? 1e3 * r.wall_s / static_cast<double>(r.frames) : 0.0)
                         << " ms/frame)\n";
               return 0;
@@ -159,14 +157,14 @@ Command AddBeaconCommand(CLI::App& parent) {
             const bool progress = rk::cli::ShowProgress(common);
             const rk::extract::BeaconRunResult res =
                 rk::extract::RunBeacon(videos, clock, opt, [&](std::int64_t n) {
-                  if (progress) std::cerr << "\r" << kBeaconTool << ": " << n << " frames" << std::flush;
+                  if (progress) std::cerr << "\r" << ctx.tool << ": " << n << " frames" << std::flush;
                 });
             if (progress) std::cerr << "\r";
             rk::extract::BeaconTrackCsv(res.rows, res.bit_depth).Write(out_path);
 
             const auto& s = res.summary;
             if (!common.report_path.empty()) {
-              rk::io::Json rep = rk::cli::MakeReport(kBeaconTool, argc, argv);
+              rk::io::Json rep = rk::cli::MakeReport(ctx.tool, argc, argv);
               for (std::size_t i = 0; i < videos.size(); ++i)
                 rk::cli::AddReportInput(&rep, "video_" + std::to_string(i), videos[i]);
               if (!frames_path.empty()) rk::cli::AddReportInput(&rep, "frames", frames_path);
@@ -224,14 +222,12 @@ Command AddBeaconCommand(CLI::App& parent) {
               rk::cli::WriteReport(common.report_path, rep);
             }
             if (progress) {
-              std::cerr << kBeaconTool << ": " << res.frames << " frames: " << s.ok << " ok, " << s.reacquired
+              std::cerr << ctx.tool << ": " << res.frames << " frames: " << s.ok << " ok, " << s.reacquired
                         << " reacquired, " << s.lost << " lost, " << s.predicted << " predicted, "
                         << s.invalid << " invalid\n";
             }
             return 0;
           }};
 }
-
-RK_REGISTER_SUBCOMMAND(1, AddBeaconCommand);
 
 }  // namespace rk::app

@@ -9,17 +9,15 @@
 #include <vector>
 
 #include "extract/features_run.h"
+#include "extract_commands.h"
 #include "io/cli.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "subcommand.h"
 #include "target/feature_model.h"
 
 namespace rk::app {
 namespace {
-
-const char* const kFeaturesTool = "rk-extract";
 
 struct FeaturesArgs {
   extract::FeatureTrackOptions opt;
@@ -50,20 +48,22 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
   const extract::FrameClock clock = a.frames_path.empty() ? extract::FrameClock::FromRate(*a.fps, a.t0.value_or(0.0))
                                                           : extract::FrameClock::FromCsv(a.frames_path, a.bad_rows);
   const bool progress = cli::ShowProgress(ctx.common);
-  const extract::FeatureRunResult res = extract::RunFeatures(a.videos, clock, model, opt, [&](std::int64_t n) {
-    if (progress) std::cerr << "\r" << kFeaturesTool << ": " << n << " frames" << std::flush;
-  });
+  const extract::FeatureRunResult res =
+      extract::RunFeatures(a.videos, clock, model, opt, [&](std::int64_t n) {
+        if (progress) std::cerr << "\r" << ctx.tool << ": " << n << " frames" << std::flush;
+      });
   if (progress) std::cerr << "\r";
   const auto& s = res.summary;
   if (s.ambiguous > 0) {
-    cli::Warn(kFeaturesTool, ctx.common,
-              std::to_string(s.ambiguous) + " frames had an ambiguous identification and got no points "
-                                            "(a symmetric marker layout cannot be identified without tracking)");
+    cli::Warn(ctx.tool, ctx.common,
+              std::to_string(s.ambiguous) +
+                  " frames had an ambiguous identification and got no points "
+                  "(a symmetric marker layout cannot be identified without tracking)");
   }
   extract::FeaturePointsCsv(res.rows, model).Write(a.out_path);
 
   if (!ctx.common.report_path.empty()) {
-    io::Json rep = cli::MakeReport(kFeaturesTool, ctx.argc, ctx.argv);
+    io::Json rep = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     for (std::size_t i = 0; i < a.videos.size(); ++i) cli::AddReportInput(&rep, "video_" + std::to_string(i), a.videos[i]);
     cli::AddReportInput(&rep, "target", a.target_path);
     if (!a.frames_path.empty()) cli::AddReportInput(&rep, "frames", a.frames_path);
@@ -104,7 +104,7 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
     cli::WriteReport(ctx.common.report_path, rep);
   }
   if (progress) {
-    std::cerr << kFeaturesTool << ": " << res.frames << " frames, " << s.frames_with_4 << " with >= 4 markers, "
+    std::cerr << ctx.tool << ": " << res.frames << " frames, " << s.frames_with_4 << " with >= 4 markers, "
               << s.acquisitions_ok << " identifications\n";
   }
   return 0;
@@ -164,7 +164,5 @@ Command AddFeaturesCommand(CLI::App& parent) {
       ->capture_default_str();
   return {s, [a](const Context& ctx) { return RunFeaturesCmd(*a, ctx); }};
 }
-
-RK_REGISTER_SUBCOMMAND(2, AddFeaturesCommand);
 
 }  // namespace rk::app

@@ -7,15 +7,13 @@
 #include <vector>
 
 #include "extract/silhouette_run.h"
+#include "extract_commands.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "subcommand.h"
 
 namespace rk::app {
 namespace {
-
-const char* const kSilhouetteTool = "rk-extract";
 
 struct SilhouetteArgs {
   extract::SilhouetteOptions opt;
@@ -67,23 +65,25 @@ Command AddSilhouetteCommand(CLI::App& parent) {
                                                   ? extract::FrameClock::FromRate(*a->fps, a->t0.value_or(0.0))
                                                   : extract::FrameClock::FromCsv(a->frames_path, a->bad_rows);
             const bool progress = cli::ShowProgress(ctx.common);
-            const extract::SilhouetteRunResult res = extract::RunSilhouette(a->videos, clock, a->opt, [&](std::int64_t n) {
-              if (progress) std::cerr << "\r" << kSilhouetteTool << ": " << n << " frames" << std::flush;
-            });
+            const extract::SilhouetteRunResult res =
+                extract::RunSilhouette(a->videos, clock, a->opt, [&](std::int64_t n) {
+                  if (progress) std::cerr << "\r" << ctx.tool << ": " << n << " frames" << std::flush;
+                });
             if (progress) std::cerr << "\r";
             extract::SilhouettePointsCsv(res.rows).Write(a->out_path);
             using S = extract::SilhouetteStatus;
             const auto n = [&](S s) { return res.by_status[static_cast<std::size_t>(s)]; };
             const std::int64_t bad = res.frames - n(S::kOk);
             if (bad > 0) {
-              cli::Warn(kSilhouetteTool, ctx.common,
-                        std::to_string(bad) + " of " + std::to_string(res.frames) + " frames without points (not_found " +
-                            std::to_string(n(S::kNotFound)) + ", touches_border " + std::to_string(n(S::kTouchesBorder)) +
-                            ", too_small " + std::to_string(n(S::kTooSmall)) + ", bad_fit " +
-                            std::to_string(n(S::kBadFit)) + ")");
+              cli::Warn(ctx.tool, ctx.common,
+                        std::to_string(bad) + " of " + std::to_string(res.frames) +
+                            " frames without points (not_found " + std::to_string(n(S::kNotFound)) +
+                            ", touches_border " + std::to_string(n(S::kTouchesBorder)) + ", too_small " +
+                            std::to_string(n(S::kTooSmall)) + ", bad_fit " + std::to_string(n(S::kBadFit)) +
+                            ")");
             }
             if (!ctx.common.report_path.empty()) {
-              io::Json rep = cli::MakeReport(kSilhouetteTool, ctx.argc, ctx.argv);
+              io::Json rep = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
               for (std::size_t i = 0; i < a->videos.size(); ++i)
                 cli::AddReportInput(&rep, "video_" + std::to_string(i), a->videos[i]);
               if (!a->frames_path.empty()) cli::AddReportInput(&rep, "frames", a->frames_path);
@@ -104,7 +104,5 @@ Command AddSilhouetteCommand(CLI::App& parent) {
             return 0;
           }};
 }
-
-RK_REGISTER_SUBCOMMAND(3, AddSilhouetteCommand);
 
 }  // namespace rk::app

@@ -2,6 +2,7 @@
 // robust loss), starting from a Bernoulli pass. Thin CLI over lib/registration/batch.h.
 #include <memory>
 
+#include "register_commands.h"
 #include "register_options.h"
 #include "registration/batch.h"
 
@@ -64,7 +65,5 @@ Command AddBatchCommand(CLI::App& app) {
   };
   return cmd;
 }
-
-RK_REGISTER_SUBCOMMAND(3, AddBatchCommand);
 
 }  // namespace rk::app

@@ -2,6 +2,7 @@
 // partition (seed 002, unknown association, clutter). Thin CLI over lib/registration/bernoulli.h.
 #include <memory>
 
+#include "register_commands.h"
 #include "register_options.h"
 #include "registration/bernoulli.h"
 
@@ -47,7 +48,5 @@ Command AddBernoulliCommand(CLI::App& app) {
   };
   return cmd;
 }
-
-RK_REGISTER_SUBCOMMAND(1, AddBernoulliCommand);
 
 }  // namespace rk::app

@@ -2,6 +2,7 @@
 // track_id in the plots). Thin CLI over lib/registration/kalman.h.
 #include <memory>
 
+#include "register_commands.h"
 #include "register_options.h"
 #include "registration/kalman.h"
 
@@ -44,7 +45,5 @@ Command AddKfCommand(CLI::App& app) {
   };
   return cmd;
 }
-
-RK_REGISTER_SUBCOMMAND(2, AddKfCommand);
 
 }  // namespace rk::app

@@ -1,9 +1,20 @@
 // rk-sim: synthesize trials with ground truth (SPEC.md §1). Subcommands: apps/sim_<name>_cmd.cpp
 // (beacon: beacon-camera tracking trial of seed 001; posetrack: 6-DOF pose measurements of seed 000).
-#include "subcommand.h"
+#include "sim_commands.h"
 
 int main(int argc, char** argv) {
+  // --help lists the subcommands in this order.
+  // clang-format off
+  static constexpr rk::app::Subcommand kSubcommands[] = {
+      {"beacon", rk::app::AddBeaconCommand},
+      {"posetrack", rk::app::AddPosetrackCommand},
+      {"theodolite", rk::app::AddTheodoliteCommand},
+      {"attitude", rk::app::AddAttitudeCommand},
+      {"radar", rk::app::AddRadarCommand},
+      {"device", rk::app::AddDeviceCommand},
+  };
+  // clang-format on
   return rk::app::RunTool(
       "rk-sim", "rk-sim: synthesize trials with ground truth (video, turret and range logs, truth files)",
-      argc, argv);
+      kSubcommands, argc, argv);
 }

@@ -15,13 +15,11 @@
 #include "io/json_util.h"
 #include "sim/attitude_scenario.h"
 #include "sim/attitude_trial.h"
-#include "subcommand.h"
+#include "sim_commands.h"
 #include "target/feature_model.h"
 
 namespace rk::app {
 namespace {
-
-constexpr const char* kAttitudeTool = "rk-sim";
 
 struct AttitudeCli {
   sim::AttitudeTrialWriteOptions w;
@@ -72,14 +70,14 @@ int RunAttitude(AttitudeCli& c, const Context& ctx) {
   const sim::AttitudeSimulator simulator(o);
   const bool progress = cli::ShowProgress(ctx.common);
   if (progress) {
-    c.w.progress = [](std::size_t done, std::size_t total) {
-      std::cerr << "\r" << kAttitudeTool << ": frame " << done << "/" << total << std::flush;
+    c.w.progress = [&ctx](std::size_t done, std::size_t total) {
+      std::cerr << "\r" << ctx.tool << ": frame " << done << "/" << total << std::flush;
     };
   }
   const sim::AttitudeTrialSummary sum = sim::WriteAttitudeTrial(simulator, c.w);
   if (progress) std::cerr << "\n";
   if (!ctx.common.report_path.empty()) {
-    io::Json r = cli::MakeReport(kAttitudeTool, ctx.argc, ctx.argv);
+    io::Json r = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     r["subcommand"] = "attitude";
     if (!c.camera_path.empty()) cli::AddReportInput(&r, "camera", c.camera_path);
     if (!c.target_path.empty()) cli::AddReportInput(&r, "target", c.target_path);
@@ -161,7 +159,5 @@ Command AddAttitudeCommand(CLI::App& parent) {
   s->add_option("--jitter-arcsec", c->jitter_arcsec, "Turret jitter RMS per axis (arcsec)")->capture_default_str();
   return {s, [c](const Context& ctx) { return RunAttitude(*c, ctx); }};
 }
-
-RK_REGISTER_SUBCOMMAND(4, AddAttitudeCommand);
 
 }  // namespace rk::app

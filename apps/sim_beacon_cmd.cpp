@@ -14,12 +14,10 @@
 #include "io/json_util.h"
 #include "sim/beacon_scenario.h"
 #include "sim/beacon_trial.h"
-#include "subcommand.h"
+#include "sim_commands.h"
 
 namespace rk::app {
 namespace {
-
-constexpr const char* kBeaconTool = "rk-sim";
 
 // Options as given on the command line.
 struct BeaconCli {
@@ -217,16 +215,16 @@ Command AddBeaconCommand(CLI::App& parent) {
             const rk::sim::BeaconSimulator sim(o);
             const bool progress = rk::cli::ShowProgress(common);
             if (progress) {
-              c.w.progress = [](std::size_t done, std::size_t total) {
+              c.w.progress = [&ctx](std::size_t done, std::size_t total) {
                 if (done % 10 == 0 || done == total) {
-                  std::cerr << "\rrk-sim: frame " << done << "/" << total << (done == total ? "\n" : "")
-                            << std::flush;
+                  std::cerr << "\r" << ctx.tool << ": frame " << done << "/" << total
+                            << (done == total ? "\n" : "") << std::flush;
                 }
               };
             }
             const rk::sim::TrialSummary sum = rk::sim::WriteBeaconTrial(sim, c.w);
             if (!common.report_path.empty()) {
-              rk::io::Json r = rk::cli::MakeReport(kBeaconTool, argc, argv);
+              rk::io::Json r = rk::cli::MakeReport(ctx.tool, argc, argv);
               if (!c.camera_path.empty()) rk::cli::AddReportInput(&r, "camera", c.camera_path);
               r["subcommand"] = "beacon";
               r["out"] = c.w.out_dir;
@@ -237,7 +235,5 @@ Command AddBeaconCommand(CLI::App& parent) {
             return 0;
           }};
 }
-
-RK_REGISTER_SUBCOMMAND(1, AddBeaconCommand);
 
 }  // namespace rk::app

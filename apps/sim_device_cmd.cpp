@@ -11,11 +11,11 @@
 
 #include "capture/emulator_dimetix.h"
 #include "capture/emulator_ptu.h"
-#include "io/error.h"
 #include "io/cli.h"
+#include "io/error.h"
 #include "io/file_util.h"
 #include "io/json_util.h"
-#include "subcommand.h"
+#include "sim_commands.h"
 
 namespace rk::app {
 namespace {
@@ -139,7 +139,5 @@ Command AddDeviceCommand(CLI::App& parent) {
             return Serve(&emu, *c, ctx, "ptu");
           }};
 }
-
-RK_REGISTER_SUBCOMMAND(6, AddDeviceCommand);
 
 }  // namespace rk::app

@@ -9,12 +9,10 @@
 #include "io/error.h"
 #include "io/json_util.h"
 #include "sim/posetrack.h"
-#include "subcommand.h"
+#include "sim_commands.h"
 
 namespace rk::app {
 namespace {
-
-constexpr const char* kPosetrackTool = "rk-sim";
 
 // rk-sim posetrack: options as given on the command line (NaN = scenario default).
 struct PosetrackCli {
@@ -53,8 +51,7 @@ void AddPosetrackOptions(CLI::App& app, PosetrackCli* p, CLI::App** sub) {
       ->capture_default_str();
 }
 
-int RunPosetrack(const PosetrackCli& p, const CLI::App& sub, const rk::cli::CommonOptions& common, int argc,
-                 char** argv) {
+int RunPosetrack(const PosetrackCli& p, const CLI::App& sub, const Context& ctx) {
   using rk::geo::DegToRad;
   rk::sim::PoseScenario scenario;
   if (!rk::sim::ParsePoseScenario(p.scenario, &scenario)) {
@@ -82,13 +79,13 @@ int RunPosetrack(const PosetrackCli& p, const CLI::App& sub, const rk::cli::Comm
   if (!p.w.Check(&why)) throw rk::UsageError(why);
   const rk::sim::PoseTrackSimulator sim(o);
   const rk::sim::PoseTrackSummary sum = rk::sim::WritePoseTrack(sim, p.w);
-  if (!common.report_path.empty()) {
-    rk::io::Json r = rk::cli::MakeReport(kPosetrackTool, argc, argv);
+  if (!ctx.common.report_path.empty()) {
+    rk::io::Json r = rk::cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     r["subcommand"] = "posetrack";
     r["out"] = p.w.out_dir;
     r["options"] = rk::sim::PoseTrackOptionsToJson(o);
     r["summary"] = sum.ToJson();
-    rk::cli::WriteReport(common.report_path, r);
+    rk::cli::WriteReport(ctx.common.report_path, r);
   }
   return 0;
 }
@@ -99,10 +96,7 @@ Command AddPosetrackCommand(CLI::App& parent) {
   auto p = std::make_shared<PosetrackCli>();
   CLI::App* sub = nullptr;
   AddPosetrackOptions(parent, p.get(), &sub);
-  return {sub,
-          [p, sub](const Context& ctx) { return RunPosetrack(*p, *sub, ctx.common, ctx.argc, ctx.argv); }};
+  return {sub, [p, sub](const Context& ctx) { return RunPosetrack(*p, *sub, ctx); }};
 }
-
-RK_REGISTER_SUBCOMMAND(2, AddPosetrackCommand);
 
 }  // namespace rk::app

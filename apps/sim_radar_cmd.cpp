@@ -6,11 +6,11 @@
 #include <string>
 
 #include "geo/angles.h"
+#include "io/csv.h"
 #include "io/error.h"
 #include "io/json_util.h"
-#include "io/csv.h"
 #include "sim/radar_scenario.h"
-#include "subcommand.h"
+#include "sim_commands.h"
 
 namespace rk::app {
 namespace {
@@ -106,7 +106,5 @@ Command AddRadarCommand(CLI::App& app) {
   s->add_option("--names", p->names, "The two radar names, as written in the files")->capture_default_str();
   return {s, [p](const Context& ctx) { return RunRadar(*p, ctx); }};
 }
-
-RK_REGISTER_SUBCOMMAND(5, AddRadarCommand);
 
 }  // namespace rk::app

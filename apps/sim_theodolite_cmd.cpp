@@ -10,12 +10,10 @@
 #include "io/error.h"
 #include "io/json_util.h"
 #include "sim/theodolite_trial.h"
-#include "subcommand.h"
+#include "sim_commands.h"
 
 namespace rk::app {
 namespace {
-
-constexpr const char* kTheodoliteTool = "rk-sim";
 
 struct TheodoliteCli {
   sim::TheodoliteSimOptions s;
@@ -113,15 +111,15 @@ Command AddTheodoliteCommand(CLI::App& parent) {
             if (!w.Check(&why)) throw UsageError(why);
             const bool progress = cli::ShowProgress(ctx.common);
             if (progress) {
-              w.progress = [](std::size_t done, std::size_t total) {
-                std::cerr << "\r" << kTheodoliteTool << ": frame " << done << "/" << total << std::flush;
+              w.progress = [&ctx](std::size_t done, std::size_t total) {
+                std::cerr << "\r" << ctx.tool << ": frame " << done << "/" << total << std::flush;
               };
             }
             const sim::TheodoliteSimulator simulator(s);
             const sim::TheodoliteTrialSummary sum = sim::WriteTheodoliteTrial(simulator, w);
             if (progress) std::cerr << "\n";
             if (!ctx.common.report_path.empty()) {
-              io::Json r = cli::MakeReport(kTheodoliteTool, ctx.argc, ctx.argv);
+              io::Json r = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
               r["subcommand"] = "theodolite";
               r["out"] = w.out_dir;
               r["options"] = sim::TheodoliteSimOptionsToJson(s);
@@ -132,7 +130,5 @@ Command AddTheodoliteCommand(CLI::App& parent) {
             return 0;
           }};
 }
-
-RK_REGISTER_SUBCOMMAND(3, AddTheodoliteCommand);
 
 }  // namespace rk::app

@@ -11,7 +11,7 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "subcommand.h"
+#include "smooth_commands.h"
 
 namespace rk::app {
 
@@ -167,7 +167,7 @@ Command AddAukfCommand(CLI::App& app) {
 
     io::Json report;
     if (!ctx.common.report_path.empty()) {
-      report = cli::MakeReport("rk-smooth", ctx.argc, ctx.argv);
+      report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
       cli::AddReportInput(&report, "input", a.input);
       const io::Json body = filter::AukfReportJson(series, opt, result);
       for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
@@ -178,7 +178,7 @@ Command AddAukfCommand(CLI::App& app) {
     csv.Write(a.output);
     if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
     if (result.skipped_updates > 0) {
-      cli::Warn("rk-smooth", ctx.common,
+      cli::Warn(ctx.tool, ctx.common,
                 std::to_string(result.skipped_updates) +
                     " sample rows without any value: no update, status 'predicted'");
     }
@@ -186,7 +186,5 @@ Command AddAukfCommand(CLI::App& app) {
   };
   return cmd;
 }
-
-RK_REGISTER_SUBCOMMAND(1, AddAukfCommand);
 
 }  // namespace rk::app

@@ -13,7 +13,7 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "subcommand.h"
+#include "smooth_commands.h"
 
 namespace rk::app {
 namespace {
@@ -169,7 +169,7 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
 
   io::Json report;
   if (!ctx.common.report_path.empty()) {
-    report = cli::MakeReport("rk-smooth", ctx.argc, ctx.argv);
+    report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     cli::AddReportInput(&report, "input", args.input);
     if (have_at) cli::AddReportInput(&report, "at", args.at);
     report["subcommand"] = "resample";
@@ -253,7 +253,5 @@ Command AddResampleCommand(CLI::App& app) {
                 "predicted/lost/invalid rows are missing)");
   return {sub, [args](const Context& ctx) { return RunResample(*args, ctx); }};
 }
-
-RK_REGISTER_SUBCOMMAND(3, AddResampleCommand);
 
 }  // namespace rk::app

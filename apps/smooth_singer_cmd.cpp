@@ -10,7 +10,7 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "subcommand.h"
+#include "smooth_commands.h"
 
 namespace rk::app {
 namespace {
@@ -123,7 +123,7 @@ int RunSinger(const SingerArgs& args, const Context& ctx) {
 
   io::Json report;
   if (!ctx.common.report_path.empty()) {
-    report = cli::MakeReport("rk-smooth", ctx.argc, ctx.argv);
+    report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     cli::AddReportInput(&report, "input", args.input);
     report["subcommand"] = "singer";
     report["smoothed"] = res.smoothed;
@@ -187,7 +187,5 @@ Command AddSingerCommand(CLI::App& app) {
                 "predicted/lost/invalid rows are not measurements)");
   return {sub, [args](const Context& ctx) { return RunSinger(*args, ctx); }};
 }
-
-RK_REGISTER_SUBCOMMAND(2, AddSingerCommand);
 
 }  // namespace rk::app

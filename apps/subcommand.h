@@ -1,17 +1,20 @@
 // Multi-mode tools (rk-<verb> with CLI11 subcommands, SPEC.md §1): one file per subcommand,
-// apps/<verb>_<name>_cmd.cpp, compiled into rk-<verb> (apps/CMakeLists.txt). Each file defines
+// apps/<verb>_<name>_cmd.cpp, an ordinary translation unit linked into rk-<verb>
+// (apps/CMakeLists.txt). Each file defines
 //   rk::app::Command Add<Name>Command(CLI::App& app)
-// which adds its subcommand to `app` (options parsed into the library's Options struct) and returns
-// the function that runs it after parsing, and registers it with
-//   RK_REGISTER_SUBCOMMAND(order, Add<Name>Command);   // order: position in --help
-// The tool's main is one line: return rk::app::RunTool("rk-<verb>", "description", argc, argv);
+// (declared in apps/<verb>_commands.h) which adds its subcommand to `app` (options parsed into the
+// library's Options struct) and returns the function that runs it after parsing. Messages and reports
+// name the tool by ctx.tool. The tool's main, apps/rk-<verb>.cpp, lists its subcommands in --help order
+// and runs them (as COLMAP's exe/colmap.cc does):
+//   constexpr rk::app::Subcommand kSubcommands[] = {{"name", rk::app::Add<Name>Command}, ...};
+//   return rk::app::RunTool("rk-<verb>", "description", kSubcommands, argc, argv);
 #pragma once
 
 #include <CLI/CLI.hpp>
-#include <algorithm>
 #include <functional>
+#include <span>
+#include <stdexcept>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "io/cli.h"
@@ -33,19 +36,16 @@ struct Command {
 
 using AddCommandFn = Command (*)(CLI::App& app);
 
-// Subcommands of this executable, in registration order (static initialisation).
-inline std::vector<std::pair<int, AddCommandFn>>& Registry() {
-  static std::vector<std::pair<int, AddCommandFn>> registry;
-  return registry;
-}
-
-struct SubcommandRegistrar {
-  SubcommandRegistrar(int order, AddCommandFn add) { Registry().emplace_back(order, add); }
+// One row of a tool's subcommand table: the subcommand's name (as it adds itself) and its Add function.
+struct Subcommand {
+  const char* name;
+  AddCommandFn add;
 };
 
-// The main of a multi-mode tool: common options (--version, --report, --quiet), every registered
-// subcommand (exactly one required), errors mapped to SPEC.md §4 exit codes by cli::Run.
-inline int RunTool(const char* tool, const char* description, int argc, char** argv) {
+// The main of a multi-mode tool: common options (--version, --report, --quiet), the subcommands of
+// the table in its order (exactly one required), errors mapped to SPEC.md §4 exit codes by cli::Run.
+inline int RunTool(const char* tool, const char* description, std::span<const Subcommand> subcommands,
+                   int argc, char** argv) {
   CLI::App app{description, tool};
   Context ctx;
   ctx.tool = tool;
@@ -53,11 +53,14 @@ inline int RunTool(const char* tool, const char* description, int argc, char** a
   ctx.argv = argv;
   cli::AddCommonOptions(app, tool, &ctx.common);
   app.require_subcommand(1);
-  auto entries = Registry();
-  std::stable_sort(entries.begin(), entries.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
   std::vector<Command> commands;
-  for (const auto& e : entries) commands.push_back(e.second(app));
+  for (const Subcommand& s : subcommands) {
+    commands.push_back(s.add(app));
+    if (commands.back().app->get_name() != s.name) {
+      throw std::logic_error(std::string(tool) + ": subcommand table names '" + s.name +
+                             "' but its Add function added '" + commands.back().app->get_name() + "'");
+    }
+  }
   return cli::Run(app, tool, argc, argv, [&]() -> int {
     for (const Command& c : commands) {
       if (c.app->parsed()) return c.run(ctx);
@@ -67,6 +70,3 @@ inline int RunTool(const char* tool, const char* description, int argc, char** a
 }
 
 }  // namespace rk::app
-
-#define RK_REGISTER_SUBCOMMAND(order, add_fn) \
-  static const ::rk::app::SubcommandRegistrar rk_subcommand_registrar_##add_fn(order, add_fn)
