@@ -237,7 +237,7 @@ bool OutsideImage(const CylinderFramePoints& f, const camera::CameraModel& cam) 
 // Solves the rows of one run in time order (the choice between two solutions uses the rows before).
 class CylinderRowSolver {
  public:
-  CylinderRowSolver(const camera::CameraModel& cam, const CylinderTarget& target, const CylinderRunOptions& options,
+  CylinderRowSolver(const camera::CameraModel& cam, const target::CylinderShape& target, const CylinderRunOptions& options,
                     const CylinderFrameReader* frames, CylinderRunResult* result)
       : cam_(cam), target_(target), options_(options), frames_(frames), result_(result), solve_(options.solve) {
     solve_.max_miss_rad = options.max_miss_px / cam.fx();
@@ -402,7 +402,7 @@ class CylinderRowSolver {
   }
 
   const camera::CameraModel& cam_;
-  const CylinderTarget& target_;
+  const target::CylinderShape& target_;
   const CylinderRunOptions& options_;
   const CylinderFrameReader* frames_;
   CylinderRunResult* result_;
