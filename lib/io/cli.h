@@ -38,17 +38,29 @@ void AddOptions(CLI::App* app, O* options, const io::OptionTable<O>& table) {
   for (const auto& s : table.specs()) {
     using Kind = typename io::OptionSpec<O>::Kind;
     switch (s.kind) {
-      case Kind::kReal:
-        app->add_option(s.flag, options->*s.real, s.help)->default_val(options->*s.real);
+      case Kind::kReal: {
+        double& v = s.real(*options);
+        app->add_option(s.names(), v, s.help)->default_val(v);
         break;
-      case Kind::kInteger:
-        app->add_option(s.flag, options->*s.integer, s.help)->default_val(options->*s.integer);
+      }
+      case Kind::kInteger: {
+        int& v = s.integer(*options);
+        app->add_option(s.names(), v, s.help)->default_val(v);
+        break;
+      }
+      case Kind::kCount: {
+        std::uint64_t& v = s.count(*options);
+        app->add_option(s.names(), v, s.help)->default_val(v);
+        break;
+      }
+      case Kind::kFlag:
+        app->add_flag(s.names(), s.flag_value(*options), s.help);
         break;
       case Kind::kChoice: {
         auto set = s.set_choice;
         const std::string flag = s.flag;
         app->add_option_function<std::string>(
-               s.flag,
+               s.names(),
                [options, set, flag](const std::string& v) {
                  if (!set(options, v)) throw CLI::ValidationError(flag, "unknown value '" + v + "'");
                },

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <string>
@@ -50,20 +51,37 @@ std::string ReportKey(const std::string& flag, const std::string& unit);
 
 template <class O>
 struct OptionSpec {
-  enum class Kind { kReal, kInteger, kChoice };
+  enum class Kind { kReal, kInteger, kCount, kFlag, kChoice };
   Kind kind = Kind::kReal;
-  std::string flag;  // "--turret-max-gap"
+  std::string flag;  // "--turret-max-gap"; CLI11 aliases go in `names` ("-k,--keep-going")
   std::string unit;  // "s", "px", "samples per side": in messages; a short unit also in the report key
   std::string help;  // --help text (CLI11 adds the type and the default)
   Bounds bounds;
-  double O::*real = nullptr;
-  int O::*integer = nullptr;
-  std::vector<std::string> choices;                         // kChoice: the names, in --help order
+  // The member, reached through the Options struct (a nested struct's member too, see Sub()).
+  std::function<double&(O&)> real;                // kReal
+  std::function<int&(O&)> integer;                // kInteger
+  std::function<std::uint64_t&(O&)> count;        // kCount: seeds, sizes
+  std::function<bool&(O&)> flag_value;            // kFlag: a switch without a value
+  std::vector<std::string> choices;               // kChoice: the names, in --help order
   std::function<std::string(const O&)> get_choice;          // kChoice: current value's name
   std::function<bool(O*, const std::string&)> set_choice;  // kChoice: false for an unknown name
+  std::string aliases;  // extra CLI11 names, e.g. "-k" (none in the report key or messages)
 
   std::string key() const { return ReportKey(flag, unit); }
-  double number(const O& o) const { return kind == Kind::kReal ? o.*real : static_cast<double>(o.*integer); }
+  std::string names() const { return aliases.empty() ? flag : aliases + "," + flag; }
+  double number(const O& o) const {
+    O& m = const_cast<O&>(o);  // the accessors only read here
+    switch (kind) {
+      case Kind::kReal:
+        return real(m);
+      case Kind::kInteger:
+        return static_cast<double>(integer(m));
+      case Kind::kCount:
+        return static_cast<double>(count(m));
+      default:
+        return 0.0;
+    }
+  }
 };
 
 // The options of one Options struct, in --help order.
@@ -71,27 +89,39 @@ template <class O>
 class OptionTable {
  public:
   OptionTable& Real(std::string flag, double O::*member, std::string unit, Bounds bounds, std::string help) {
-    OptionSpec<O> s;
-    s.kind = OptionSpec<O>::Kind::kReal;
-    s.flag = std::move(flag), s.unit = std::move(unit), s.help = std::move(help), s.bounds = bounds;
-    s.real = member;
-    specs_.push_back(std::move(s));
-    return *this;
+    return Real(std::move(flag), Member(member), std::move(unit), bounds, std::move(help));
+  }
+  OptionTable& Real(std::string flag, std::function<double&(O&)> ref, std::string unit, Bounds bounds,
+                    std::string help) {
+    OptionSpec<O> s = Spec(OptionSpec<O>::Kind::kReal, std::move(flag), std::move(unit), bounds, std::move(help));
+    s.real = std::move(ref);
+    return Add(std::move(s));
   }
   OptionTable& Integer(std::string flag, int O::*member, std::string unit, Bounds bounds, std::string help) {
-    OptionSpec<O> s;
-    s.kind = OptionSpec<O>::Kind::kInteger;
-    s.flag = std::move(flag), s.unit = std::move(unit), s.help = std::move(help), s.bounds = bounds;
-    s.integer = member;
-    specs_.push_back(std::move(s));
-    return *this;
+    return Integer(std::move(flag), Member(member), std::move(unit), bounds, std::move(help));
+  }
+  OptionTable& Integer(std::string flag, std::function<int&(O&)> ref, std::string unit, Bounds bounds,
+                       std::string help) {
+    OptionSpec<O> s = Spec(OptionSpec<O>::Kind::kInteger, std::move(flag), std::move(unit), bounds, std::move(help));
+    s.integer = std::move(ref);
+    return Add(std::move(s));
+  }
+  // A std::uint64_t member (a seed, a count of bytes). Bounds are checked as doubles.
+  OptionTable& Count(std::string flag, std::uint64_t O::*member, std::string unit, Bounds bounds, std::string help) {
+    OptionSpec<O> s = Spec(OptionSpec<O>::Kind::kCount, std::move(flag), std::move(unit), bounds, std::move(help));
+    s.count = Member(member);
+    return Add(std::move(s));
+  }
+  // A switch: present = true. In the report as true/false.
+  OptionTable& Flag(std::string flag, bool O::*member, std::string help) {
+    OptionSpec<O> s = Spec(OptionSpec<O>::Kind::kFlag, std::move(flag), "", Bounds::Any(), std::move(help));
+    s.flag_value = Member(member);
+    return Add(std::move(s));
   }
   // An enumeration member E, with a name for each value: `names` is {{value, "name"}, ...}.
   template <class E>
   OptionTable& Choice(std::string flag, E O::*member, std::vector<std::pair<E, std::string>> names, std::string help) {
-    OptionSpec<O> s;
-    s.kind = OptionSpec<O>::Kind::kChoice;
-    s.flag = std::move(flag), s.help = std::move(help);
+    OptionSpec<O> s = Spec(OptionSpec<O>::Kind::kChoice, std::move(flag), "", Bounds::Any(), std::move(help));
     for (const auto& n : names) s.choices.push_back(n.second);
     s.get_choice = [member, names](const O& o) {
       for (const auto& n : names) {
@@ -108,8 +138,7 @@ class OptionTable {
       }
       return false;
     };
-    specs_.push_back(std::move(s));
-    return *this;
+    return Add(std::move(s));
   }
 
   // The same, with the names given by the enumeration's own name function (one owner of the names).
@@ -121,10 +150,36 @@ class OptionTable {
     return Choice(std::move(flag), member, std::move(names), std::move(help));
   }
 
+  // Every option of `inner`, the table of a nested Options struct `O::*member` (a simulator's trajectory
+  // options inside its scenario options): one table per struct, composed as the structs are.
+  template <class I>
+  OptionTable& Sub(I O::*member, const OptionTable<I>& inner) {
+    for (const auto& is : inner.specs()) {
+      OptionSpec<O> s;
+      s.kind = static_cast<typename OptionSpec<O>::Kind>(is.kind);
+      s.flag = is.flag, s.unit = is.unit, s.help = is.help, s.bounds = is.bounds, s.aliases = is.aliases;
+      s.choices = is.choices;
+      if (is.real) s.real = [member, f = is.real](O& o) -> double& { return f(o.*member); };
+      if (is.integer) s.integer = [member, f = is.integer](O& o) -> int& { return f(o.*member); };
+      if (is.count) s.count = [member, f = is.count](O& o) -> std::uint64_t& { return f(o.*member); };
+      if (is.flag_value) s.flag_value = [member, f = is.flag_value](O& o) -> bool& { return f(o.*member); };
+      if (is.get_choice) s.get_choice = [member, f = is.get_choice](const O& o) { return f(o.*member); };
+      if (is.set_choice) s.set_choice = [member, f = is.set_choice](O* o, const std::string& v) { return f(&(o->*member), v); };
+      Add(std::move(s));
+    }
+    return *this;
+  }
+
+  // Extra CLI11 names for the option added last ("-k" for --keep-going).
+  OptionTable& Alias(std::string aliases) {
+    specs_.back().aliases = std::move(aliases);
+    return *this;
+  }
+
   // False with "--flag must be ... unit" for the first option outside its bounds.
   bool Check(const O& o, std::string* why) const {
     for (const auto& s : specs_) {
-      if (s.kind == OptionSpec<O>::Kind::kChoice || s.bounds.Contains(s.number(o))) continue;
+      if (!Bounded(s) || s.bounds.Contains(s.number(o))) continue;
       if (why) *why = s.flag + " must be " + s.bounds.Describe() + (s.unit.empty() ? "" : " " + s.unit);
       return false;
     }
@@ -134,13 +189,20 @@ class OptionTable {
   // {"report_key": value, ...}: the report's "options" block.
   Json ToJson(const O& o) const {
     Json j = Json::object();
+    O& m = const_cast<O&>(o);  // the accessors only read here
     for (const auto& s : specs_) {
       switch (s.kind) {
         case OptionSpec<O>::Kind::kReal:
-          j[s.key()] = o.*s.real;
+          j[s.key()] = s.real(m);
           break;
         case OptionSpec<O>::Kind::kInteger:
-          j[s.key()] = o.*s.integer;
+          j[s.key()] = s.integer(m);
+          break;
+        case OptionSpec<O>::Kind::kCount:
+          j[s.key()] = s.count(m);
+          break;
+        case OptionSpec<O>::Kind::kFlag:
+          j[s.key()] = s.flag_value(m);
           break;
         case OptionSpec<O>::Kind::kChoice:
           j[s.key()] = s.get_choice(o);
@@ -159,6 +221,26 @@ class OptionTable {
   }
 
  private:
+  template <class T>
+  static std::function<T&(O&)> Member(T O::*member) {
+    return [member](O& o) -> T& { return o.*member; };
+  }
+  static OptionSpec<O> Spec(typename OptionSpec<O>::Kind kind, std::string flag, std::string unit, Bounds bounds,
+                            std::string help) {
+    OptionSpec<O> s;
+    s.kind = kind;
+    s.flag = std::move(flag), s.unit = std::move(unit), s.help = std::move(help), s.bounds = bounds;
+    return s;
+  }
+  static bool Bounded(const OptionSpec<O>& s) {
+    using Kind = typename OptionSpec<O>::Kind;
+    return s.kind == Kind::kReal || s.kind == Kind::kInteger || s.kind == Kind::kCount;
+  }
+  OptionTable& Add(OptionSpec<O> s) {
+    specs_.push_back(std::move(s));
+    return *this;
+  }
+
   std::vector<OptionSpec<O>> specs_;
 };
 

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -105,6 +106,58 @@ TEST(OptionTable, CliRegistrationParsesIntoTheMembers) {
   EXPECT_NE(help.find("--mode TEXT:{fast,exact}=exact"), std::string::npos) << help;
   std::vector<std::string> bad = {"slow", "--mode"};
   EXPECT_THROW(app2.parse(bad), CLI::ValidationError);
+}
+
+// A nested struct's table composes into the outer one (Sub), with switches, 64-bit counts and aliases.
+struct Inner {
+  double speed_mps = 2.0;
+  bool loud = false;
+  static const OptionTable<Inner>& Table() {
+    static const OptionTable<Inner> table = OptionTable<Inner>()
+                                                .Real("--speed", &Inner::speed_mps, "m/s", Bounds::Positive(), "Speed")
+                                                .Flag("--loud", &Inner::loud, "Say more")
+                                                .Alias("-l");
+    return table;
+  }
+};
+
+struct Outer {
+  std::uint64_t seed = 7;
+  Inner inner;
+  static const OptionTable<Outer>& Table() {
+    static const OptionTable<Outer> table =
+        OptionTable<Outer>()
+            .Count("--seed", &Outer::seed, "", Bounds::Any(), "Random seed")
+            .Sub(&Outer::inner, Inner::Table());
+    return table;
+  }
+};
+
+TEST(OptionTable, NestedTablesFlagsCountsAndAliases) {
+  Outer o;
+  CLI::App app{"demo", "demo"};
+  cli::AddOptions(&app, &o, Outer::Table());
+  std::vector<std::string> args = {"-l", "3.5", "--speed", "18446744073709551615", "--seed"};  // reversed
+  app.parse(args);
+  EXPECT_EQ(o.seed, 18446744073709551615ull);
+  EXPECT_EQ(o.inner.speed_mps, 3.5);
+  EXPECT_TRUE(o.inner.loud);
+  const Json j = Outer::Table().ToJson(o);
+  EXPECT_EQ(j.at("seed").get<std::uint64_t>(), 18446744073709551615ull);
+  EXPECT_EQ(j.at("speed").get<double>(), 3.5);
+  EXPECT_EQ(j.at("loud").get<bool>(), true);
+  std::string why;
+  EXPECT_TRUE(Outer::Table().Check(o, &why));
+  o.inner.speed_mps = -1.0;
+  EXPECT_FALSE(Outer::Table().Check(o, &why));
+  EXPECT_EQ(why, "--speed must be > 0 m/s");
+  // Flags take no value; the alias shows in --help.
+  Outer fresh;
+  CLI::App app2{"demo", "demo"};
+  cli::AddOptions(&app2, &fresh, Outer::Table());
+  EXPECT_NE(app2.help().find("-l,--loud"), std::string::npos) << app2.help();
+  std::vector<std::string> bad = {"yes", "--loud"};
+  EXPECT_THROW(app2.parse(bad), CLI::ParseError);
 }
 
 }  // namespace
