@@ -14,7 +14,7 @@
 namespace rk::filter {
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 constexpr double kGapSlack = 1e-9;  // relative, as in track/interp.cc (decimal time stamps)
 
 }  // namespace
@@ -83,11 +83,11 @@ ResampleResult Resample(const Series& series, const std::vector<double>& targets
   {
     std::vector<double> dt;
     for (std::size_t r = 1; r < n; ++r) dt.push_back(series.t_s[r] - series.t_s[r - 1]);
-    res.median_interval_s = dt.empty() ? kNaN : numeric::UpperMedianInPlace(dt);
+    res.median_interval_s = dt.empty() ? kNoValue : numeric::UpperMedianInPlace(dt);
   }
   res.max_gap_s = options.max_gap_s > 0.0 ? options.max_gap_s : kDefaultGapFactor * res.median_interval_s;
-  res.values.assign(nc, std::vector<double>(targets.size(), kNaN));
-  res.sigmas.assign(nc, std::vector<double>(targets.size(), kNaN));
+  res.values.assign(nc, std::vector<double>(targets.size(), kNoValue));
+  res.sigmas.assign(nc, std::vector<double>(targets.size(), kNoValue));
   res.reason.assign(targets.size(), ResampleReason::kNone);
 
   if (options.method == ResampleMethod::kKalman) res.singer = RunSingerSeries(series, options.singer);
@@ -119,7 +119,7 @@ ResampleResult Resample(const Series& series, const std::vector<double>& targets
       }
       for (std::size_t i = 0; i < targets.size(); ++i) {
         const double t = targets[i];
-        double value = kNaN, sigma = kNaN;
+        double value = kNoValue, sigma = kNoValue;
         const bool before = t < tu.front(), after = t > tu.back();
         if (before || after) {
           const double dist = before ? tu.front() - t : t - tu.back();

@@ -11,7 +11,6 @@
 namespace rk::registration {
 namespace {
 
-constexpr double kLog2Pi = 1.8378770664093453;
 // Floor of each extent of the differences' bounding box (m) when κ is estimated: keeps the
 // volume finite when all plots of a radar coincide.
 constexpr double kMinBoxExtentM = 1.0;

@@ -10,7 +10,6 @@
 namespace rk::registration {
 namespace {
 
-constexpr double kLog2Pi = 1.8378770664093453;
 // Eigenvalue floor of a repaired covariance, relative to its largest eigenvalue.
 constexpr double kRepairRelativeFloor = 1e-15;
 constexpr int kTimeDecimals = 9;

@@ -21,6 +21,8 @@
 
 namespace rk::registration {
 
+constexpr double kLog2Pi = 1.8378770664093453;  // ln(2π), in Gaussian log-densities
+
 struct FilterOptions {
   MeasurementNoise noise;
   Linearization linearization = Linearization::kEstimate;

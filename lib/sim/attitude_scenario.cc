@@ -8,17 +8,12 @@
 #include "geo/angles.h"
 #include "io/error.h"
 #include "sim/attitude_render.h"
+#include "sim/sim_common.h"
 
 namespace rk::sim {
 namespace {
 
-constexpr double kSampleMarginS = 0.5;  // turret log extends this far beyond the frames
-constexpr double kServoMarginS = 1.0;
 
-std::mt19937_64 Stream(std::uint64_t seed, std::uint64_t stream, std::uint64_t index = 0) {
-  std::seed_seq seq{seed, stream, index};
-  return std::mt19937_64(seq);
-}
 
 double Ramp(double tau) {
   if (tau <= 0) return 0.0;
@@ -311,12 +306,12 @@ cv::Mat AttitudeSimulator::RenderFrame(std::size_t k) const {
     s.read_noise_dn *= 256.0;
     s.gain_e_per_dn /= 256.0;
   }
-  std::mt19937_64 rng = Stream(opt_.seed, 1000, static_cast<std::uint64_t>(k));
+  std::mt19937_64 rng = RandomStream(opt_.seed, 1000, static_cast<std::uint64_t>(k));
   return Digitise(signal, s, rng);
 }
 
 std::vector<AttitudeTurretSample> AttitudeSimulator::TurretLog() const {
-  std::mt19937_64 rng = Stream(opt_.seed, 4);
+  std::mt19937_64 rng = RandomStream(opt_.seed, 4);
   std::normal_distribution<double> normal(0.0, 1.0);
   const double q = opt_.turret_resolution_rad;
   auto record = [&](double v) {

@@ -15,17 +15,13 @@
 #include "trial/layout.h"
 #include "trial/manifest.h"
 #include "video/frame_sink.h"
+#include "sim/sim_common.h"
 
 namespace rk::sim {
 namespace {
 
-constexpr int kTimeDecimals = 9;
-constexpr int kAngleDecimals = 9;
-constexpr int kMetreDecimals = 6;
-constexpr int kPixelDecimals = 4;
-constexpr const char* kCamera = "att";  // the camera's name in the manifest and its folder
+constexpr const char* kAttitudeCamera = "att";  // the camera's name in the manifest and its folder
 
-double Deg(double rad) { return geo::RadToDeg(rad); }
 
 }  // namespace
 
@@ -65,11 +61,11 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
   if (!opt.Check(&why)) throw UsageError(why);
   const AttitudeSimOptions& so = sim.options();
   TrialFolder dir(opt.out_dir, opt.force);
-  io::MakeDirectories(dir.Path(kCamera));
+  io::MakeDirectories(dir.Path(kAttitudeCamera));
   io::MakeDirectories(dir.Path("truth"));
 
   AttitudeTrialSummary sum;
-  io::WriteJson(dir.Path(trial::CameraFile(kCamera, trial::kCameraModelFile)),
+  io::WriteJson(dir.Path(trial::CameraFile(kAttitudeCamera, trial::kCameraModelFile)),
                 camera::CameraModelToJson(so.camera));
   {
     io::Json pts = io::Json::object();
@@ -96,12 +92,12 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
         .Add(f.p_enu.x(), kMetreDecimals)
         .Add(f.p_enu.y(), kMetreDecimals)
         .Add(f.p_enu.z(), kMetreDecimals)
-        .Add(Deg(f.attitude.yaw_rad), kAngleDecimals)
-        .Add(Deg(f.attitude.pitch_rad), kAngleDecimals)
-        .Add(Deg(f.attitude.roll_rad), kAngleDecimals)
+        .Add(geo::RadToDeg(f.attitude.yaw_rad), kAngleDecimals)
+        .Add(geo::RadToDeg(f.attitude.pitch_rad), kAngleDecimals)
+        .Add(geo::RadToDeg(f.attitude.roll_rad), kAngleDecimals)
         .Add(range, kMetreDecimals)
-        .Add(Deg(f.boresight.az_rad), kAngleDecimals)
-        .Add(Deg(f.boresight.el_rad), kAngleDecimals)
+        .Add(geo::RadToDeg(f.boresight.az_rad), kAngleDecimals)
+        .Add(geo::RadToDeg(f.boresight.el_rad), kAngleDecimals)
         .EndRow();
     for (std::size_t i = 0; i < so.marker_ids.size(); ++i) {
       points_csv.Add(f.frame).Add(f.t_s, kTimeDecimals).Add(so.marker_ids[i]);
@@ -130,26 +126,26 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
     pit_lo = std::min(pit_lo, f.attitude.pitch_rad), pit_hi = std::max(pit_hi, f.attitude.pitch_rad);
   }
   if (!std::isfinite(sum.min_separation_px)) sum.min_separation_px = 0;
-  sum.yaw_span_deg = Deg(yaw_hi - yaw_lo);
-  sum.pitch_span_deg = Deg(pit_hi - pit_lo);
-  sum.roll_span_deg = Deg(rol_hi - rol_lo);
-  frames_csv.Write(dir.Path(trial::CameraFile(kCamera, trial::kFramesFile)));
+  sum.yaw_span_deg = geo::RadToDeg(yaw_hi - yaw_lo);
+  sum.pitch_span_deg = geo::RadToDeg(pit_hi - pit_lo);
+  sum.roll_span_deg = geo::RadToDeg(rol_hi - rol_lo);
+  frames_csv.Write(dir.Path(trial::CameraFile(kAttitudeCamera, trial::kFramesFile)));
   pose_csv.Write(dir.Path("truth/pose.csv"));
   points_csv.Write(dir.Path("truth/points.csv"));
 
   io::CsvWriter turret_csv({"t_s", "az_deg", "el_deg"}), turret_truth({"t_s", "az_deg", "el_deg"});
   for (const AttitudeTurretSample& s : sim.TurretLog()) {
-    turret_csv.Add(s.t_s, kTimeDecimals).Add(Deg(s.az_rad), kAngleDecimals).Add(Deg(s.el_rad), kAngleDecimals).EndRow();
+    turret_csv.Add(s.t_s, kTimeDecimals).Add(geo::RadToDeg(s.az_rad), kAngleDecimals).Add(geo::RadToDeg(s.el_rad), kAngleDecimals).EndRow();
     turret_truth.Add(s.t_s, kTimeDecimals)
-        .Add(Deg(geo::WrapTwoPi(s.true_az_rad)), kAngleDecimals)
-        .Add(Deg(s.true_el_rad), kAngleDecimals)
+        .Add(geo::RadToDeg(geo::WrapTwoPi(s.true_az_rad)), kAngleDecimals)
+        .Add(geo::RadToDeg(s.true_el_rad), kAngleDecimals)
         .EndRow();
     ++sum.turret_rows;
   }
   turret_csv.Write(dir.Path(trial::kTurretFile));
   turret_truth.Write(dir.Path("truth/turret.csv"));
 
-  const std::string video_rel = trial::CameraFile(kCamera, opt.format == "mkv" ? "video.mkv" : "%06d.png");
+  const std::string video_rel = trial::CameraFile(kAttitudeCamera, opt.format == "mkv" ? "video.mkv" : "%06d.png");
   if (opt.video) {
     video::FrameSink sink(dir.Path(video_rel), so.camera.width_px, so.camera.height_px, so.sensor.bit_depth, so.fps);
     for (std::size_t k = 0; k < sim.frame_count(); ++k) {
@@ -166,7 +162,7 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
   // Without video there is nothing for rk-extract to read: the camera is left out of the manifest
   // (SPEC.md §6 wants a non-empty video list), the model and frame times are still written.
   if (opt.video) {
-    trial::CameraEntry att = trial::CameraInItsFolder(kCamera, trial::CameraRole::kFeatures, {video_rel});
+    trial::CameraEntry att = trial::CameraInItsFolder(kAttitudeCamera, trial::CameraRole::kFeatures, {video_rel});
     att.target = trial::kTargetModelFile;
     m.cameras = {att};
   }

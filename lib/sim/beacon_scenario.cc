@@ -7,20 +7,15 @@
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
 #include "io/error.h"
+#include "sim/sim_common.h"
 
 namespace rk::sim {
 namespace {
 
-constexpr double kSampleMarginS = 0.5;  // turret/range logs extend this far beyond the frames
-constexpr double kServoMarginS = 1.0;   // the servo is simulated this far beyond the frames
 constexpr double kGlintSigmaPx = 1.0;
 constexpr double kGlintClearancePx = 30.0;  // glint never nearer than cluster radius + this
 constexpr double kGlintEdgePx = 10.0;       // glints stay this far inside the image
 
-std::mt19937_64 Stream(std::uint64_t seed, std::uint64_t stream, std::uint64_t index = 0) {
-  std::seed_seq seq{seed, stream, index};
-  return std::mt19937_64(seq);
-}
 
 // Reflects x into [lo, hi] (a glint bouncing off the image borders).
 double Fold(double x, double lo, double hi) {
@@ -312,7 +307,7 @@ double BeaconSimulator::CommandTime(double t_s) const {
 
 void BeaconSimulator::PlaceDistractors() {
   if (opt_.distractors == 0 || frames_.empty()) return;
-  std::mt19937_64 rng = Stream(opt_.seed, 3);
+  std::mt19937_64 rng = RandomStream(opt_.seed, 3);
   const double w = opt_.camera.width_px, h = opt_.camera.height_px;
   std::uniform_real_distribution<double> ux(kGlintEdgePx, w - 1 - kGlintEdgePx), uy(kGlintEdgePx, h - 1 - kGlintEdgePx);
   std::uniform_real_distribution<double> speed(3.0, 15.0), dir(0.0, geo::kTwoPi), amp(0.5, 1.5);
@@ -381,12 +376,12 @@ cv::Mat BeaconSimulator::RenderFrame(std::size_t k, std::mt19937_64& rng) const 
 }
 
 cv::Mat BeaconSimulator::RenderFrame(std::size_t k) const {
-  std::mt19937_64 rng = Stream(opt_.seed, 1000, k);
+  std::mt19937_64 rng = RandomStream(opt_.seed, 1000, k);
   return RenderFrame(k, rng);
 }
 
 std::vector<TurretSample> BeaconSimulator::TurretLog() const {
-  std::mt19937_64 rng = Stream(opt_.seed, 4);
+  std::mt19937_64 rng = RandomStream(opt_.seed, 4);
   std::normal_distribution<double> normal(0.0, 1.0);
   const double q = opt_.turret_resolution_rad;
   auto record = [&](double v) {
@@ -409,7 +404,7 @@ std::vector<TurretSample> BeaconSimulator::TurretLog() const {
 }
 
 std::vector<RangeSample> BeaconSimulator::RangeLog() const {
-  std::mt19937_64 rng = Stream(opt_.seed, 5);
+  std::mt19937_64 rng = RandomStream(opt_.seed, 5);
   std::normal_distribution<double> normal(0.0, 1.0);
   std::uniform_real_distribution<double> uniform(0.0, 1.0);
   std::vector<RangeSample> out;

@@ -14,18 +14,14 @@
 #include "trial/layout.h"
 #include "trial/manifest.h"
 #include "video/frame_sink.h"
+#include "sim/sim_common.h"
 
 namespace rk::sim {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr int kTimeDecimals = 9;
-constexpr int kAngleDecimals = 9;
-constexpr int kMetreDecimals = 6;
-constexpr int kPixelDecimals = 4;
-constexpr const char* kCamera = "az";  // the camera's name in the manifest and its folder
+constexpr const char* kBeaconCamera = "az";  // the camera's name in the manifest and its folder
 
-double Deg(double rad) { return geo::RadToDeg(rad); }
 
 }  // namespace
 
@@ -66,12 +62,12 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
   TrialFolder folder(opt.out_dir, opt.force);
   const std::string stem = fs::path(folder.out()).filename().string();
   const fs::path root(folder.Path(""));
-  io::MakeDirectories((root / kCamera).string());
+  io::MakeDirectories((root / kBeaconCamera).string());
   io::MakeDirectories((root / "truth").string());
 
   TrialSummary sum;
   // Camera model and frame times.
-  io::WriteJson((root / trial::CameraFile(kCamera, trial::kCameraModelFile)).string(),
+  io::WriteJson((root / trial::CameraFile(kBeaconCamera, trial::kCameraModelFile)).string(),
                 camera::CameraModelToJson(so.camera));
   io::CsvWriter frames_csv({"frame", "t_s"});
   io::CsvWriter beacon_csv({"frame", "t_s", "x_px", "y_px", "visible", "distractor_min_dist_px"});
@@ -99,32 +95,32 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
     beacon_csv.EndRow();
     target_csv.Add(f.frame)
         .Add(f.t_s, kTimeDecimals)
-        .Add(Deg(f.az_rad), kAngleDecimals)
-        .Add(Deg(f.el_rad), kAngleDecimals)
+        .Add(geo::RadToDeg(f.az_rad), kAngleDecimals)
+        .Add(geo::RadToDeg(f.el_rad), kAngleDecimals)
         .Add(f.range_m, kMetreDecimals)
         .Add(f.p_enu.x(), kMetreDecimals)
         .Add(f.p_enu.y(), kMetreDecimals)
         .Add(f.p_enu.z(), kMetreDecimals)
-        .Add(Deg(f.boresight_az_rad), kAngleDecimals)
-        .Add(Deg(f.boresight_el_rad), kAngleDecimals)
+        .Add(geo::RadToDeg(f.boresight_az_rad), kAngleDecimals)
+        .Add(geo::RadToDeg(f.boresight_el_rad), kAngleDecimals)
         .EndRow();
     ++sum.frames;
     if (f.visible) ++sum.visible_frames;
     sum.min_range_m = std::min(sum.min_range_m, f.range_m);
     sum.max_range_m = std::max(sum.max_range_m, f.range_m);
-    sum.max_elevation_deg = std::max(sum.max_elevation_deg, Deg(f.el_rad));
+    sum.max_elevation_deg = std::max(sum.max_elevation_deg, geo::RadToDeg(f.el_rad));
   }
-  frames_csv.Write((root / trial::CameraFile(kCamera, trial::kFramesFile)).string());
+  frames_csv.Write((root / trial::CameraFile(kBeaconCamera, trial::kFramesFile)).string());
   beacon_csv.Write((root / "truth" / "beacon.csv").string());
   target_csv.Write((root / "truth" / "target.csv").string());
 
   // Turret and range logs (recorded and true).
   io::CsvWriter turret_csv({"t_s", "az_deg", "el_deg"}), turret_truth({"t_s", "az_deg", "el_deg"});
   for (const TurretSample& s : sim.TurretLog()) {
-    turret_csv.Add(s.t_s, kTimeDecimals).Add(Deg(s.az_rad), kAngleDecimals).Add(Deg(s.el_rad), kAngleDecimals).EndRow();
+    turret_csv.Add(s.t_s, kTimeDecimals).Add(geo::RadToDeg(s.az_rad), kAngleDecimals).Add(geo::RadToDeg(s.el_rad), kAngleDecimals).EndRow();
     turret_truth.Add(s.t_s, kTimeDecimals)
-        .Add(Deg(s.true_az_rad), kAngleDecimals)
-        .Add(Deg(s.true_el_rad), kAngleDecimals)
+        .Add(geo::RadToDeg(s.true_az_rad), kAngleDecimals)
+        .Add(geo::RadToDeg(s.true_el_rad), kAngleDecimals)
         .EndRow();
     ++sum.turret_rows;
   }
@@ -147,7 +143,7 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
   range_truth.Write((root / "truth" / "range.csv").string());
 
   // Video.
-  const std::string video_rel = trial::CameraFile(kCamera, opt.format == "mkv" ? "video.mkv" : "%06d.png");
+  const std::string video_rel = trial::CameraFile(kBeaconCamera, opt.format == "mkv" ? "video.mkv" : "%06d.png");
   {
     video::FrameSink sink((root / video_rel).string(), so.camera.width_px, so.camera.height_px, so.sensor.bit_depth,
                           so.fps);
@@ -163,7 +159,7 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
   m.name = opt.name.empty() ? stem : opt.name;
   m.epoch_utc = opt.epoch_utc;
   m.station = {{"lat_deg", opt.station_lat_deg}, {"lon_deg", opt.station_lon_deg}, {"h_m", opt.station_h_m}};
-  m.cameras = {trial::CameraInItsFolder(kCamera, trial::CameraRole::kBeacon, {video_rel})};
+  m.cameras = {trial::CameraInItsFolder(kBeaconCamera, trial::CameraRole::kBeacon, {video_rel})};
   m.turret = trial::kTurretFile;
   m.range = trial::kRangeFile;
   io::Json simj;

@@ -9,12 +9,12 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "sim/trial_folder.h"
+#include "sim/sim_common.h"
 
 namespace rk::sim {
 namespace fs = std::filesystem;
 namespace {
 
-constexpr int kTimeDecimals = 9;
 constexpr int kValueDecimals = 9;  // m and deg: 1 nm / 1e-9° — far below any noise, so truth interpolates exactly
 
 // Head profile (see the header): number of sines per component and their ranges.
@@ -31,11 +31,6 @@ constexpr double kTurntablePitchDeg = 10.0, kTurntableRollDeg = -5.0;
 // Sample grid tolerance: 0–9 s at 20 fps must give 181 samples although 9·20 is computed in floating point.
 constexpr double kGridEps = 1e-9;
 
-std::mt19937_64 Stream(std::uint64_t seed, std::uint64_t stream) {
-  std::seed_seq seq{static_cast<std::uint32_t>(seed & 0xffffffffu), static_cast<std::uint32_t>(seed >> 32),
-                    static_cast<std::uint32_t>(stream)};
-  return std::mt19937_64(seq);
-}
 
 double FileValue(int c, double v) {
   if (!PoseIsAngle(c)) return v;
@@ -140,7 +135,7 @@ PoseTrackSimulator::PoseTrackSimulator(PoseTrackOptions opt) : opt_(std::move(op
     for (int c = 0; c < kPoseDof; ++c) motion_[c].centre = fixed[c];
     motion_[kPoseYaw].slope = opt_.rate_rad_s;
   } else {
-    std::mt19937_64 rng = Stream(opt_.seed, 1);
+    std::mt19937_64 rng = SplitSeedStream(opt_.seed, 1);
     std::uniform_real_distribution<double> u01(0.0, 1.0);
     for (int c = 0; c < kPoseDof; ++c) {
       const double amp = PoseIsAngle(c)
@@ -174,7 +169,7 @@ PoseTrackSimulator::PoseTrackSimulator(PoseTrackOptions opt) : opt_(std::move(op
 
   // Measurements: noise (stream 2) and dropout (stream 3) are drawn for every sample and
   // component whatever the options, so one option does not change the other's draws.
-  std::mt19937_64 noise_rng = Stream(opt_.seed, 2), drop_rng = Stream(opt_.seed, 3);
+  std::mt19937_64 noise_rng = SplitSeedStream(opt_.seed, 2), drop_rng = SplitSeedStream(opt_.seed, 3);
   std::normal_distribution<double> gauss(0.0, 1.0);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   meas_.resize(sample_t_s_.size());

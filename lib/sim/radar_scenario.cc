@@ -13,12 +13,11 @@
 #include "sim/trial_folder.h"
 #include "trial/layout.h"
 #include "trial/manifest.h"
+#include "sim/sim_common.h"
 
 namespace rk::sim {
 namespace {
 
-constexpr int kTimeDecimals = 9;
-constexpr int kAngleDecimals = 9;
 constexpr int kRangeDecimals = 3;
 constexpr int kLatLonDecimals = 10;
 constexpr int kHeightDecimals = 4;
@@ -29,11 +28,6 @@ constexpr double kExtraMinSpeed = 50.0, kExtraMaxSpeed = 400.0;
 constexpr double kNoTargetMinRangeM = 1000.0, kNoTargetMaxRangeM = 300000.0;
 constexpr double kNoTargetMinElRad = -geo::kPi / 6, kNoTargetMaxElRad = geo::kPi / 3;
 
-std::mt19937_64 Stream(std::uint64_t seed, std::uint64_t stream) {
-  std::seed_seq seq{static_cast<std::uint32_t>(seed & 0xffffffffu), static_cast<std::uint32_t>(seed >> 32),
-                    static_cast<std::uint32_t>(stream)};
-  return std::mt19937_64(seq);
-}
 
 // WGS-84 geometry of the common frame.
 struct CommonFrame {
@@ -173,7 +167,7 @@ RadarSimulator::RadarSimulator(RadarSimOptions opt) : opt_(std::move(opt)) {
                                           {1000, 250, 3000, -10, 10000, 0},
                                           {15000, -10, 500, 50, 15000, 0},
                                           {3000, 300, 3600, 400, 20000, 0}};
-  std::mt19937_64 rng_targets = Stream(opt_.seed, 1);
+  std::mt19937_64 rng_targets = SplitSeedStream(opt_.seed, 1);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   for (int i = 0; i < opt_.targets; ++i) {
     RadarTargetSpec t;
@@ -191,9 +185,9 @@ RadarSimulator::RadarSimulator(RadarSimOptions opt) : opt_(std::move(opt)) {
   }
 
   const CommonFrame frame(opt_.origin_lat_deg, opt_.origin_lon_deg, opt_.origin_h_m);
-  std::array<std::mt19937_64, 2> rng_noise{Stream(opt_.seed, 2), Stream(opt_.seed, 3)};
-  std::mt19937_64 rng_detect = Stream(opt_.seed, 4), rng_clutter = Stream(opt_.seed, 5),
-                  rng_shuffle = Stream(opt_.seed, 6), rng_nav = Stream(opt_.seed, 7);
+  std::array<std::mt19937_64, 2> rng_noise{SplitSeedStream(opt_.seed, 2), SplitSeedStream(opt_.seed, 3)};
+  std::mt19937_64 rng_detect = SplitSeedStream(opt_.seed, 4), rng_clutter = SplitSeedStream(opt_.seed, 5),
+                  rng_shuffle = SplitSeedStream(opt_.seed, 6), rng_nav = SplitSeedStream(opt_.seed, 7);
   std::normal_distribution<double> gauss(0.0, 1.0);
   std::poisson_distribution<int> poisson(std::max(opt_.ClutterRate(), 1e-300));
   const bool clutter = opt_.ClutterRate() > 0;

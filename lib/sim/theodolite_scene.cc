@@ -11,14 +11,11 @@
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
 #include "io/error.h"
+#include "sim/sim_common.h"
 
 namespace rk::sim {
 namespace {
 
-std::mt19937_64 Stream(std::uint64_t seed, std::uint64_t stream, std::uint64_t index = 0) {
-  std::seed_seq seq{seed, stream, index};
-  return std::mt19937_64(seq);
-}
 
 std::string Num(double v) {
   std::ostringstream s;
@@ -101,7 +98,7 @@ TheodoliteSimulator::TheodoliteSimulator(TheodoliteSimOptions opt) : opt_(std::m
   pose_ref_ = target::PoseAt(opt_.range_m, DegToRad(opt_.az_deg), DegToRad(opt_.el_deg),
                              DegToRad(opt_.yaw_deg), DegToRad(opt_.pitch_deg), opt_.shape);
   {
-    std::mt19937_64 rng = Stream(opt_.seed, 1);
+    std::mt19937_64 rng = RandomStream(opt_.seed, 1);
     std::uniform_real_distribution<double> phase(0.0, geo::kTwoPi);
     std::normal_distribution<double> normal(0.0, 1.0);
     phase_x_ = phase(rng);
@@ -110,7 +107,7 @@ TheodoliteSimulator::TheodoliteSimulator(TheodoliteSimOptions opt) : opt_(std::m
     bias_az_ = bias * normal(rng);
     bias_el_ = bias * normal(rng);
   }
-  std::mt19937_64 point_rng = Stream(opt_.seed, 3);
+  std::mt19937_64 point_rng = RandomStream(opt_.seed, 3);
   std::normal_distribution<double> normal(0.0, 1.0);
   const camera::CameraModel& cam = opt_.camera;
   const auto n_frames = static_cast<std::int64_t>(std::floor(opt_.duration_s * opt_.fps + 1e-9)) + 1;
@@ -217,7 +214,7 @@ std::vector<TheodoliteSample> TheodoliteSimulator::TheodoliteLog() const {
   const double t_first = opt_.t0_s - 0.5 + opt_.theodolite_offset_s;
   const double t_last = frames_.back().t_s + 0.5;
   const auto n = static_cast<std::int64_t>(std::floor((t_last - t_first) * opt_.theodolite_rate_hz)) + 1;
-  std::mt19937_64 rng = Stream(opt_.seed, 2);
+  std::mt19937_64 rng = RandomStream(opt_.seed, 2);
   std::normal_distribution<double> normal(0.0, 1.0);
   const double noise = opt_.angle_noise_arcsec / geo::kArcsecPerRad;
   const double step = opt_.encoder_step_arcsec / geo::kArcsecPerRad;

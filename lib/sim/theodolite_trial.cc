@@ -15,15 +15,13 @@
 #include "trial/layout.h"
 #include "trial/manifest.h"
 #include "video/frame_sink.h"
+#include "sim/sim_common.h"
 
 namespace rk::sim {
 namespace {
 
-constexpr int kTimeDecimals = 9;
-constexpr int kAngleDecimals = 9;
-constexpr int kMetreDecimals = 6;
-constexpr int kPixelDecimals = 6;
-constexpr const char* kCamera = "theo";  // the camera's name in the manifest and its folder
+constexpr int kSilhouettePixelDecimals = 6;
+constexpr const char* kTheodoliteCamera = "theo";  // the camera's name in the manifest and its folder
 
 std::mt19937_64 FrameStream(std::uint64_t seed, std::int64_t k) {
   std::seed_seq seq{seed, static_cast<std::uint64_t>(1000), static_cast<std::uint64_t>(k)};
@@ -62,7 +60,7 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
   if (!opt.Check(&why)) throw UsageError(why);
   const TheodoliteSimOptions& so = sim.options();
   TrialFolder dir(opt.out_dir, opt.force);
-  io::MakeDirectories(dir.Path(kCamera));
+  io::MakeDirectories(dir.Path(kTheodoliteCamera));
   io::MakeDirectories(dir.Path("truth"));
   using geo::RadToDeg;
 
@@ -72,7 +70,7 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
   sum.bias_az_arcsec = sim.bias_az_rad() * geo::kArcsecPerRad;
   sum.bias_el_arcsec = sim.bias_el_rad() * geo::kArcsecPerRad;
 
-  io::WriteJson(dir.Path(trial::CameraFile(kCamera, trial::kCameraModelFile)),
+  io::WriteJson(dir.Path(trial::CameraFile(kTheodoliteCamera, trial::kCameraModelFile)),
                 camera::CameraModelToJson(so.camera));
   io::WriteJson(dir.Path(trial::kTargetModelFile), {{"length_m", so.shape.length_m},
                                                     {"diameter_m", so.shape.diameter_m},
@@ -90,9 +88,9 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
     for (int i = 0; i < 3; ++i) {
       const Eigen::Vector2d& m = f.measured_px[static_cast<std::size_t>(i)];
       points_csv.Add(f.frame).Add(f.t_s, kTimeDecimals).Add(ids[i]);
-      points_csv.Add(m.x(), so.quantise ? 0 : kPixelDecimals).Add(m.y(), so.quantise ? 0 : kPixelDecimals).EndRow();
+      points_csv.Add(m.x(), so.quantise ? 0 : kSilhouettePixelDecimals).Add(m.y(), so.quantise ? 0 : kSilhouettePixelDecimals).EndRow();
       truth_points.Add(f.frame).Add(f.t_s, kTimeDecimals).Add(ids[i]);
-      truth_points.Add(exact[i]->x(), kPixelDecimals).Add(exact[i]->y(), kPixelDecimals).EndRow();
+      truth_points.Add(exact[i]->x(), kSilhouettePixelDecimals).Add(exact[i]->y(), kSilhouettePixelDecimals).EndRow();
     }
     axis_csv.Add(f.frame).Add(f.t_s, kTimeDecimals);
     axis_csv.Add(RadToDeg(f.pose.yaw_rad), kAngleDecimals).Add(RadToDeg(f.pose.pitch_rad), kAngleDecimals);
@@ -111,7 +109,7 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
     sum.min_image_length_px = std::min(sum.min_image_length_px, f.image_length_px);
     sum.max_image_length_px = std::max(sum.max_image_length_px, f.image_length_px);
   }
-  frames_csv.Write(dir.Path(trial::CameraFile(kCamera, trial::kFramesFile)));
+  frames_csv.Write(dir.Path(trial::CameraFile(kTheodoliteCamera, trial::kFramesFile)));
   points_csv.Write(dir.Path("points.csv"));
   truth_points.Write(dir.Path("truth/points.csv"));
   axis_csv.Write(dir.Path("truth/axis.csv"));
@@ -135,8 +133,8 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
   // Without images there is nothing for rk-extract to read: the camera is left out of the manifest
   // (SPEC.md §6 wants a non-empty video list); rk-attitude cylinder can still run on points.csv.
   if (opt.images != "none") {
-    const std::string video_rel = trial::CameraFile(kCamera, opt.images == "mkv" ? "video.mkv" : "%06d.png");
-    trial::CameraEntry theo = trial::CameraInItsFolder(kCamera, trial::CameraRole::kSilhouette, {video_rel});
+    const std::string video_rel = trial::CameraFile(kTheodoliteCamera, opt.images == "mkv" ? "video.mkv" : "%06d.png");
+    trial::CameraEntry theo = trial::CameraInItsFolder(kTheodoliteCamera, trial::CameraRole::kSilhouette, {video_rel});
     theo.target = trial::kTargetModelFile;
     m.cameras = {theo};
     video::FrameSink sink(dir.Path(video_rel), so.camera.width_px, so.camera.height_px, opt.render.sensor.bit_depth,
