@@ -8,6 +8,7 @@
 
 #include "geo/angles.h"
 #include "io/error.h"
+#include "io/json_util.h"
 #include "numeric/robust_stats.h"
 #include "track/interp.h"
 
@@ -177,6 +178,27 @@ ResampleResult Resample(const Series& series, const std::vector<double>& targets
     res.rows_extrapolated += extrapolated[i];
   }
   return res;
+}
+
+nlohmann::json ResampleResult::ToJson(const Series& series, const ResampleOptions& options) const {
+  io::Json j;
+  j["method"] = ResampleMethodName(options.method);
+  j["max_gap_s"] = max_gap_s;
+  j["margin_s"] = options.margin_s;
+  j["median_interval_s"] = median_interval_s;
+  j["input_rows"] = series.rows();
+  j["rows"] = rows;
+  j["rows_ok"] = rows_ok;
+  j["rows_gap"] = rows_gap;
+  j["rows_outside"] = rows_outside;
+  j["rows_extrapolated"] = rows_extrapolated;
+  j["summary"] = {{"rows_ok", rows_ok}, {"rows_gap", rows_gap}, {"rows_outside", rows_outside}};
+  if (options.method == ResampleMethod::kKalman) {
+    j["maneuver_time_s"] = options.singer.maneuver_time_s;
+    j["columns"] = singer.ColumnsJson(series, false);
+    j["summary"]["nis_mean"] = singer.SummaryJson(series)["nis_mean"];
+  }
+  return j;
 }
 
 }  // namespace rk::filter
