@@ -484,8 +484,9 @@ nlohmann::json SingerSeriesResult::ColumnsJson(const Series& series, bool counts
 }
 
 nlohmann::json SingerSeriesResult::SummaryJson(const Series& series) const {
+  const io::Json columns = ColumnsJson(series, false);
   io::Json nis = io::Json::object();
-  for (const auto& [name, col] : ColumnsJson(series, false).items()) nis[name] = col["nis_mean"];
+  for (const auto& [name, col] : columns.items()) nis[name] = col["nis_mean"];
   return {{"nis_mean", nis}, {"rows_lost", rows_lost}};
 }
 
