@@ -34,7 +34,7 @@ for sid, keys in {"az/extract-beacon": ["mean_ncc", "frames"], "az/locate": ["ra
     for k, v in summary.items():
         assert k in ("rows", "status") or q[k] == v, (sid, k, q.get(k), v)
 assert set(steps["az/smooth"]["quality"]["nis_mean"]) == {"az_deg", "el_deg", "range_m", "e_m", "n_m", "u_m"}
-assert steps["az/extract-beacon"]["quality"]["frames"] == 60 and steps["az/locate"]["quality"]["range_coverage"] > 0.9
+assert steps["az/extract-beacon"]["quality"]["frames"] == 60 and steps["az/locate"]["quality"]["range_coverage"] > 0.5
 print("report ok")
 PY
 head -c 8 "$t/out/plots/az_located.png" | od -c | grep -q 'P   N   G'
