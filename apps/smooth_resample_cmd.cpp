@@ -19,19 +19,17 @@ namespace rk::app {
 namespace {
 
 struct ResampleArgs {
-  std::string input, output, columns, at, method = "kalman";
+  std::string input, output, columns, at;
   double rate_hz = std::numeric_limits<double>::quiet_NaN();
   double t0_s = std::numeric_limits<double>::quiet_NaN();
   double t1_s = std::numeric_limits<double>::quiet_NaN();
-  double max_gap_s = 0.0, margin_s = 0.0;
+  filter::ResampleOptions opt;                  // the table's options (--method, --max-gap, --margin, --maneuver-time)
   std::vector<double> accel_sigma, meas_sigma;  // column units
-  double maneuver_time_s = filter::kDefaultManeuverTimeS;
   bool sigmas = false, ignore_status = false;
   CLI::Option* rate_opt = nullptr;
   CLI::Option* at_opt = nullptr;
   CLI::Option* t0_opt = nullptr;
   CLI::Option* t1_opt = nullptr;
-  CLI::Option* gap_opt = nullptr;
   io::BadRows bad_rows = io::BadRows::kError;
 };
 
@@ -60,14 +58,10 @@ void CheckResampleArgs(const ResampleArgs& args, const Context& ctx, bool have_a
   }
 }
 
-filter::ResampleOptions ResampleOptionsOf(const ResampleArgs& args) {
-  filter::ResampleOptions opt;
-  if (!filter::ParseResampleMethod(args.method, &opt.method))
-    throw UsageError("unknown --method " + args.method);
-  opt.max_gap_s = args.max_gap_s;
-  opt.margin_s = args.margin_s;
-  if (args.gap_opt->count() && !(args.max_gap_s > 0.0)) throw UsageError("--max-gap must be > 0 s");
-  opt.singer.maneuver_time_s = args.maneuver_time_s;
+filter::ResampleOptions ResampleOptionsOf(const ResampleArgs& args, bool max_gap_given) {
+  filter::ResampleOptions opt = args.opt;
+  // 0 is "not given" (2.5 x the median interval); given, it must be > 0.
+  if (max_gap_given && !(opt.max_gap_s > 0.0)) throw UsageError("--max-gap must be > 0 s");
   opt.singer.accel_sigma = args.accel_sigma;
   opt.singer.meas_sigma = args.meas_sigma;
   std::string why;
@@ -167,10 +161,10 @@ io::CsvWriter ResampleCsv(const filter::Series& series, const ResampleTargets& t
   return w;
 }
 
-int RunResample(const ResampleArgs& args, const Context& ctx) {
+int RunResample(const ResampleArgs& args, const CLI::App& sub, const Context& ctx) {
   const bool have_at = args.at_opt->count() > 0, have_rate = args.rate_opt->count() > 0;
   CheckResampleArgs(args, ctx, have_at, have_rate);
-  filter::ResampleOptions opt = ResampleOptionsOf(args);
+  filter::ResampleOptions opt = ResampleOptionsOf(args, sub.count("--max-gap") > 0);
 
   const std::vector<std::string> columns = io::SplitList(args.columns);
   const io::CsvTable table = io::CsvTable::Read(args.input, {args.bad_rows, filter::SeriesRowRule(columns)});
@@ -193,6 +187,7 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
     for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
     report["subcommand"] = "resample";
     report["rows_masked_by_status"] = masked;
+    report["options"] = opt.ToJson();
   }
   w.Write(args.output);
   if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
@@ -221,19 +216,7 @@ Command AddResampleCommand(CLI::App& app) {
   args->t1_opt =
       sub->add_option("--t1", args->t1_s, "With --rate: last target time (s); default last input t_s");
   sub->add_option("-o,--output", args->output, "Output CSV ('-' = stdout)")->required();
-  sub->add_option("--method", args->method, "linear, cubic or kalman (Singer RTS smoother)")
-      ->check(CLI::IsMember({"linear", "cubic", "kalman"}))
-      ->capture_default_str();
-  args->gap_opt = sub->add_option(
-      "--max-gap", args->max_gap_s,
-      "Longest interval (s) between usable samples interpolated across; default 2.5 x the median "
-      "input interval");
-  sub->add_option("--margin", args->margin_s,
-                  "Extrapolation allowed (s) before the first / after the last usable sample; beyond it rows "
-                  "are empty with status invalid, reason outside")
-      ->capture_default_str();
-  sub->add_option("--maneuver-time", args->maneuver_time_s, "kalman: Singer maneuver time constant tau_m (s)")
-      ->capture_default_str();
+  cli::AddOptions(sub, &args->opt, filter::ResampleOptions::Table());
   sub->add_option("--accel-sigma", args->accel_sigma,
                   "kalman: RMS acceleration in column units/s^2, one or one per column; default: chosen by "
                   "maximum likelihood on a grid 1/16..8 x (_m 0.5, _deg 5, _px 50)")
@@ -246,7 +229,7 @@ Command AddResampleCommand(CLI::App& app) {
   sub->add_flag("--ignore-status", args->ignore_status,
                 "Use values whatever the input's status column says (default: non-zero device codes and "
                 "predicted/lost/invalid rows are missing)");
-  return {sub, [args](const Context& ctx) { return RunResample(*args, ctx); }};
+  return {sub, [args, sub](const Context& ctx) { return RunResample(*args, *sub, ctx); }};
 }
 
 }  // namespace rk::app

@@ -18,7 +18,7 @@ namespace {
 struct SingerArgs {
   std::string input, output, columns;
   std::vector<double> accel_sigma, meas_sigma;  // column units (degrees for _deg columns)
-  double maneuver_time_s = filter::kDefaultManeuverTimeS;
+  filter::SingerSeriesOptions opt;              // the table's options (--maneuver-time)
   bool no_smooth = false, derivatives = true, sigmas = false, ignore_status = false;
   io::BadRows bad_rows = io::BadRows::kError;
 };
@@ -38,8 +38,7 @@ void CheckSingerPaths(const SingerArgs& args, const Context& ctx) {
 }
 
 filter::SingerSeriesOptions SingerOptionsOf(const SingerArgs& args) {
-  filter::SingerSeriesOptions opt;
-  opt.maneuver_time_s = args.maneuver_time_s;
+  filter::SingerSeriesOptions opt = args.opt;
   opt.smooth = !args.no_smooth;
   opt.accel_sigma = args.accel_sigma;
   opt.meas_sigma = args.meas_sigma;
@@ -141,6 +140,7 @@ int RunSinger(const SingerArgs& args, const Context& ctx) {
     for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
     report["subcommand"] = "singer";
     report["rows_masked_by_status"] = masked;
+    report["options"] = opt.ToJson();
   }
   w.Write(args.output);
   if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
@@ -161,8 +161,7 @@ Command AddSingerCommand(CLI::App& app) {
   sub->add_option("--columns", args->columns, "Value columns, comma-separated (e.g. range_m,az_deg,el_deg)")
       ->required();
   sub->add_option("-o,--output", args->output, "Output CSV ('-' = stdout)")->required();
-  sub->add_option("--maneuver-time", args->maneuver_time_s, "Singer maneuver time constant tau_m (s), > 0")
-      ->capture_default_str();
+  cli::AddOptions(sub, &args->opt, filter::SingerSeriesOptions::Table());
   sub->add_option("--accel-sigma", args->accel_sigma,
                   "RMS acceleration sigma_m in column units/s^2 (deg/s^2 for _deg), one value or one per "
                   "column; default: chosen per column by maximum likelihood on a grid 1/16..8 x (_m 0.5, "

@@ -46,16 +46,26 @@ std::string ResampleReasonName(ResampleReason r) {
   return "";
 }
 
+const io::OptionTable<ResampleOptions>& ResampleOptions::Table() {
+  static const io::OptionTable<ResampleOptions> table =
+      io::OptionTable<ResampleOptions>()
+          .Choice("--method", &ResampleOptions::method,
+                  {ResampleMethod::kLinear, ResampleMethod::kCubic, ResampleMethod::kKalman}, ResampleMethodName,
+                  "linear, cubic or kalman (Singer RTS smoother)")
+          .Real("--max-gap", &ResampleOptions::max_gap_s, "s", io::Bounds::AtLeast(0.0),
+                "Longest interval (s) between usable samples interpolated across; default 2.5 x the median "
+                "input interval")
+          .Real("--margin", &ResampleOptions::margin_s, "s", io::Bounds::AtLeast(0.0),
+                "Extrapolation allowed (s) before the first / after the last usable sample; beyond it rows "
+                "are empty with status invalid, reason outside")
+          .Real(
+              "--maneuver-time", [](ResampleOptions& o) -> double& { return o.singer.maneuver_time_s; }, "s",
+              io::Bounds::Positive(), "kalman: Singer maneuver time constant tau_m (s)");
+  return table;
+}
+
 bool ResampleOptions::Check(std::string* why) const {
-  if (!(max_gap_s >= 0.0) || !std::isfinite(max_gap_s)) {
-    if (why) *why = "--max-gap must be > 0 s";
-    return false;
-  }
-  if (!(margin_s >= 0.0) || !std::isfinite(margin_s)) {
-    if (why) *why = "--margin must be >= 0 s";
-    return false;
-  }
-  return singer.Check(why);
+  return Table().Check(*this, why) && singer.Check(why);
 }
 
 std::vector<double> TimesAtRate(double t0, double t1, double rate_hz) {

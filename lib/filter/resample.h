@@ -41,7 +41,13 @@ struct ResampleOptions {
   double max_gap_s = 0.0;  // > 0; 0 = default (kDefaultGapFactor × median input interval)
   double margin_s = 0.0;   // ≥ 0: extrapolation allowed beyond the first/last usable sample
   SingerSeriesOptions singer;  // kalman only
+
+  // The options, one line each (docs/architecture.md "Adding an option"): --method, --max-gap, --margin,
+  // --maneuver-time (of `singer`, with the help text of resample).
+  static const io::OptionTable<ResampleOptions>& Table();
+  // Table().Check, then singer's list rules.
   bool Check(std::string* why) const;
+  io::Json ToJson() const { return Table().ToJson(*this); }
 };
 
 enum class ResampleReason { kNone, kGap, kOutside };

@@ -116,12 +116,19 @@ double ForwardPass(const ForwardInput& in, double accel_sigma, SingerTrack* tr, 
 
 }  // namespace
 
+const io::OptionTable<SingerSeriesOptions>& SingerSeriesOptions::Table() {
+  static const io::OptionTable<SingerSeriesOptions> table = io::OptionTable<SingerSeriesOptions>().Real(
+      "--maneuver-time", &SingerSeriesOptions::maneuver_time_s, "s", io::Bounds::Positive(),
+      "Singer maneuver time constant tau_m (s), > 0");
+  return table;
+}
+
 bool SingerSeriesOptions::Check(std::string* why) const {
   auto fail = [&](const std::string& w) {
     if (why) *why = w;
     return false;
   };
-  if (!(maneuver_time_s > 0.0) || !std::isfinite(maneuver_time_s)) return fail("--maneuver-time must be > 0 s");
+  if (!Table().Check(*this, why)) return false;
   for (double s : accel_sigma) {
     if (!(s >= 0.0) || !std::isfinite(s)) return fail("--accel-sigma values must be >= 0");
   }

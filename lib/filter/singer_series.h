@@ -40,6 +40,7 @@
 
 #include "filter/series.h"
 #include "io/csv.h"
+#include "io/options.h"
 
 namespace rk::filter {
 
@@ -68,7 +69,12 @@ struct SingerSeriesOptions {
   // k = kAutoAccelGridLow..kAutoAccelGridHigh. false: use the unit default as is.
   bool auto_accel_sigma = true;
   bool smooth = true;  // run the RTS backward pass
+
+  // The numeric options, one line each (docs/architecture.md "Adding an option"): --maneuver-time.
+  static const io::OptionTable<SingerSeriesOptions>& Table();
+  // Table().Check, then the lists: accel_sigma >= 0, meas_sigma > 0.
   bool Check(std::string* why) const;
+  io::Json ToJson() const { return Table().ToJson(*this); }
 };
 
 // Default σ_m (internal units/s²) for a column name; NaN if the unit is unknown.
