@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "analysis/compare.h"
 #include "analyze_commands.h"
@@ -23,6 +24,92 @@ struct CompareArgs {
   CLI::Option* before_opt = nullptr;
   io::BadRows bad_rows = io::BadRows::kError;
 };
+
+// The comparison options from the flags (--interp, --columns, --after/--before). Throws UsageError.
+analysis::CompareOptions CompareOptionsOf(const CompareArgs& a) {
+  analysis::CompareOptions opt = a.opt;
+  if (!track::ParseInterpMethod(a.interp, &opt.interp)) throw UsageError("unknown --interp " + a.interp);
+  opt.columns = io::SplitList(a.columns_arg);
+  if (*a.after_opt) opt.after_s = a.after_s;
+  if (*a.before_opt) opt.before_s = a.before_s;
+  std::string why;
+  if (!opt.Check(&why)) throw UsageError(why);
+  return opt;
+}
+
+// One stdin input; -o, --errors, --table and --report: no output an input, no two on stdout.
+void CheckComparePaths(const CompareArgs& a, const Context& ctx) {
+  if (io::IsStdStream(a.est_path) && io::IsStdStream(a.ref_path)) {
+    throw UsageError("only one input can be read from stdin ('-')");
+  }
+  if (!a.errors_path.empty() && io::IsStdStream(a.errors_path) && io::IsStdStream(a.out_path)) {
+    throw UsageError("--errors and -o cannot both be stdout");
+  }
+  if (a.table && io::IsStdStream(a.errors_path)) {
+    throw UsageError("--table cannot share stdout with --errors -; write --errors to a file");
+  }
+  const std::vector<std::string> inputs = {a.est_path, a.ref_path};
+  io::CheckOutputNotInput(a.out_path, inputs);
+  if (!a.errors_path.empty()) io::CheckOutputNotInput(a.errors_path, inputs);
+  if (!ctx.common.report_path.empty()) io::CheckOutputNotInput(ctx.common.report_path, inputs);
+  if (!a.errors_path.empty() && a.errors_path == a.out_path && !io::IsStdStream(a.out_path)) {
+    throw UsageError("--errors and -o name the same file " + a.out_path);
+  }
+}
+
+// The statistics JSON (-o, and --report): inputs, options, rows, per column statistics.
+io::Json CompareReport(const CompareArgs& a, const Context& ctx, const analysis::CompareOptions& opt,
+                       const analysis::CompareResult& result) {
+  io::Json report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
+  cli::AddReportInput(&report, "estimate", a.est_path);
+  cli::AddReportInput(&report, "reference", a.ref_path);
+  report["options"] = {
+      {"interp", track::InterpMethodName(opt.interp)},
+      {"after_s", opt.after_s ? io::Json(*opt.after_s) : io::Json(nullptr)},
+      {"before_s", opt.before_s ? io::Json(*opt.before_s) : io::Json(nullptr)},
+      {"max_gap_s", std::isfinite(opt.max_gap_s) ? io::Json(opt.max_gap_s) : io::Json(nullptr)},
+      {"arcsec", opt.arcsec},
+      {"errors", "estimate - reference"},
+      {"std", "sample (n-1)"},
+      {"p95_abs", "type-7 linear-interpolated percentile of |error|"}};
+  report["rows"] = {{"estimate", result.estimate_rows}, {"reference", result.reference_rows}};
+  report["columns"] = analysis::ColumnsToJson(result);
+  return report;
+}
+
+int RunCompare(const CompareArgs& a, const Context& ctx) {
+  const analysis::CompareOptions opt = CompareOptionsOf(a);
+  CheckComparePaths(a, ctx);
+  const io::CsvReadOptions read{a.bad_rows, analysis::CompareRowRule(opt.columns)};
+  const io::CsvTable estimate = io::CsvTable::Read(a.est_path, read);
+  const io::CsvTable reference = io::CsvTable::Read(a.ref_path, read);
+  const analysis::CompareResult result = analysis::Compare(estimate, reference, opt);
+  for (const auto& cc : result.columns) {
+    if (!cc.stats) {
+      cli::Warn(ctx.tool, ctx.common,
+                "column " + cc.column + ": no comparable row (estimate empty " +
+                    std::to_string(cc.skipped_estimate_empty) + ", reference outside " +
+                    std::to_string(cc.skipped_reference_outside) + ", reference gap " +
+                    std::to_string(cc.skipped_reference_gap) + ", cut by --after/--before " +
+                    std::to_string(cc.skipped_time_window) + "); statistics are null");
+    }
+  }
+  const io::Json report = CompareReport(a, ctx, opt, result);
+  if (!a.errors_path.empty()) analysis::ErrorsCsv(result).Write(a.errors_path);
+  io::WriteJson(a.out_path, report);
+  if (!ctx.common.report_path.empty() && ctx.common.report_path != a.out_path) {
+    cli::WriteReport(ctx.common.report_path, report);
+  }
+  if (a.table) {
+    const std::string text = analysis::FormatTable(result);
+    if (io::IsStdStream(a.out_path)) {
+      std::cerr << text;
+    } else {
+      std::cout << text;
+    }
+  }
+  return 0;
+}
 
 }  // namespace
 
@@ -69,87 +156,7 @@ Command AddCompareCommand(CLI::App& parent) {
       "Longest reference interval (s) interpolated across (default: no limit; empty reference "
       "values always break the interval)");
 
-  return {
-      compare, [a](const Context& ctx) -> int {
-        analysis::CompareOptions opt = a->opt;
-        const auto& est_path = a->est_path;
-        const auto& ref_path = a->ref_path;
-        const auto& out_path = a->out_path;
-        const auto& errors_path = a->errors_path;
-        const auto& interp = a->interp;
-        const bool table = a->table;
-        const auto& common = ctx.common;
-        const int argc = ctx.argc;
-        char** const argv = ctx.argv;
-        if (!rk::track::ParseInterpMethod(interp, &opt.interp))
-          throw rk::UsageError("unknown --interp " + interp);
-        opt.columns = rk::io::SplitList(a->columns_arg);
-        if (*a->after_opt) opt.after_s = a->after_s;
-        if (*a->before_opt) opt.before_s = a->before_s;
-        std::string why;
-        if (!opt.Check(&why)) throw rk::UsageError(why);
-        if (rk::io::IsStdStream(est_path) && rk::io::IsStdStream(ref_path)) {
-          throw rk::UsageError("only one input can be read from stdin ('-')");
-        }
-        if (!errors_path.empty() && rk::io::IsStdStream(errors_path) && rk::io::IsStdStream(out_path)) {
-          throw rk::UsageError("--errors and -o cannot both be stdout");
-        }
-        if (table && rk::io::IsStdStream(errors_path)) {
-          throw rk::UsageError("--table cannot share stdout with --errors -; write --errors to a file");
-        }
-        const std::vector<std::string> inputs = {est_path, ref_path};
-        rk::io::CheckOutputNotInput(out_path, inputs);
-        if (!errors_path.empty()) rk::io::CheckOutputNotInput(errors_path, inputs);
-        if (!common.report_path.empty()) rk::io::CheckOutputNotInput(common.report_path, inputs);
-        if (!errors_path.empty() && errors_path == out_path && !rk::io::IsStdStream(out_path)) {
-          throw rk::UsageError("--errors and -o name the same file " + out_path);
-        }
-
-        const rk::io::CsvReadOptions read{a->bad_rows, rk::analysis::CompareRowRule(opt.columns)};
-        const rk::io::CsvTable estimate = rk::io::CsvTable::Read(est_path, read);
-        const rk::io::CsvTable reference = rk::io::CsvTable::Read(ref_path, read);
-        const rk::analysis::CompareResult result = rk::analysis::Compare(estimate, reference, opt);
-        for (const auto& cc : result.columns) {
-          if (!cc.stats) {
-            rk::cli::Warn(ctx.tool, common,
-                          "column " + cc.column + ": no comparable row (estimate empty " +
-                              std::to_string(cc.skipped_estimate_empty) + ", reference outside " +
-                              std::to_string(cc.skipped_reference_outside) + ", reference gap " +
-                              std::to_string(cc.skipped_reference_gap) + ", cut by --after/--before " +
-                              std::to_string(cc.skipped_time_window) + "); statistics are null");
-          }
-        }
-
-        rk::io::Json report = rk::cli::MakeReport(ctx.tool, argc, argv);
-        rk::cli::AddReportInput(&report, "estimate", est_path);
-        rk::cli::AddReportInput(&report, "reference", ref_path);
-        report["options"] = {
-            {"interp", rk::track::InterpMethodName(opt.interp)},
-            {"after_s", opt.after_s ? rk::io::Json(*opt.after_s) : rk::io::Json(nullptr)},
-            {"before_s", opt.before_s ? rk::io::Json(*opt.before_s) : rk::io::Json(nullptr)},
-            {"max_gap_s", std::isfinite(opt.max_gap_s) ? rk::io::Json(opt.max_gap_s) : rk::io::Json(nullptr)},
-            {"arcsec", opt.arcsec},
-            {"errors", "estimate - reference"},
-            {"std", "sample (n-1)"},
-            {"p95_abs", "type-7 linear-interpolated percentile of |error|"}};
-        report["rows"] = {{"estimate", result.estimate_rows}, {"reference", result.reference_rows}};
-        report["columns"] = rk::analysis::ColumnsToJson(result);
-
-        if (!errors_path.empty()) rk::analysis::ErrorsCsv(result).Write(errors_path);
-        rk::io::WriteJson(out_path, report);
-        if (!common.report_path.empty() && common.report_path != out_path) {
-          rk::cli::WriteReport(common.report_path, report);
-        }
-        if (table) {
-          const std::string text = rk::analysis::FormatTable(result);
-          if (rk::io::IsStdStream(out_path)) {
-            std::cerr << text;
-          } else {
-            std::cout << text;
-          }
-        }
-        return 0;
-      }};
+  return {compare, [a](const Context& ctx) { return RunCompare(*a, ctx); }};
 }
 
 }  // namespace rk::app

@@ -143,6 +143,7 @@ int RunOi(const OiArgs& a, const Context& ctx) {
                    {"turret_duplicate_times", res.turret_duplicate_times},
                    {"unusable_point_rows", points.unusable_rows}};
     r["mean_chi2_per_dof"] = std::isfinite(c2) ? io::Json(c2) : io::Json(nullptr);
+    r["summary"] = res.SummaryJson();
     r["target"] = {{"points", model.size()}, {"planarity", model.Planarity()}};
     r["options"] = {{"boresight", fixed ? io::Json{geo::RadToDeg(fixed->az_rad), geo::RadToDeg(fixed->el_rad)}
                                         : io::Json(nullptr)},

@@ -181,6 +181,7 @@ Command AddBeaconCommand(CLI::App& parent) {
               rep["acquisitions"] = s.acquisitions;
               rep["full_frame_searches"] = s.full_frame_searches;
               rep["mean_ncc"] = s.mean_ncc();
+              rep["summary"] = res.SummaryJson();
               rep["restarts"] = s.restarts;
               rep["centroid_estimator"] = {{"per_lamp", s.per_lamp},
                                            {"cluster", s.ok + s.reacquired - s.per_lamp}};

@@ -95,6 +95,7 @@ Command AddSilhouetteCommand(CLI::App& parent) {
               for (int s = 0; s < 5; ++s)
                 counts[extract::SilhouetteStatusName(static_cast<S>(s))] = res.by_status[static_cast<std::size_t>(s)];
               rep["status_counts"] = counts;
+              rep["summary"] = res.SummaryJson();
               rep["time_s"] = {{"total", res.wall_s}, {"extraction", res.extract_s}};
               rep["options"] = {{"k_detect", a->opt.k_detect},     {"min_area_px", a->opt.min_area_px},
                                 {"border_px", a->opt.border_px},   {"psf_sigma_px", a->opt.psf_sigma_px},

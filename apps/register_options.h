@@ -140,7 +140,7 @@ inline registration::RegistrationInput ReadInput(const InputArgs& a, bool requir
 }
 
 // Writes the biases CSV and, with --report, the JSON report: {tool, version, command_line,
-// inputs, subcommand, radars, input, options, estimate, sigma, correlation, stats, rows_written}
+// inputs, subcommand, radars, input, options, estimate, sigma, correlation, stats, summary, rows_written}
 // plus `extra`.
 inline void WriteOutputs(const InputArgs& a, const Context& ctx, const std::string& subcommand,
                          const registration::RegistrationInput& in, const registration::RegistrationResult& r,
@@ -152,15 +152,8 @@ inline void WriteOutputs(const InputArgs& a, const Context& ctx, const std::stri
     cli::AddReportInput(&report, "plots", a.plots);
     cli::AddReportInput(&report, "nav", a.nav);
     report["subcommand"] = subcommand;
-    report["radars"] = {in.radars[0], in.radars[1]};
-    report["input"] = in.summary.ToJson(in.radars);
-    const io::Json est = registration::EstimateJson(in, r.x, r.P);
-    for (auto it = est.begin(); it != est.end(); ++it) report[it.key()] = it.value();
-    report["stats"] = r.stats;
-    if (report["stats"].contains("options")) {
-      report["options"] = report["stats"]["options"];
-      report["stats"].erase("options");
-    }
+    const io::Json body = r.ToJson(in);
+    for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
     for (auto it = extra.begin(); it != extra.end(); ++it) report[it.key()] = it.value();
     report["rows_written"] = csv.rows();
   }

@@ -108,6 +108,7 @@ int main(int argc, char** argv) {
                           {"range_duplicate_times", result.range_duplicate_times},
                           {"range_device_errors", result.range_device_errors}};
       report["range_coverage"] = std::isfinite(coverage) ? rk::io::Json(coverage) : rk::io::Json(nullptr);
+      report["summary"] = result.SummaryJson();
       rk::cli::WriteReport(common.report_path, report);
     }
     return 0;

@@ -44,6 +44,96 @@ std::vector<double> ParseNumbers(const std::string& list, const std::string& opt
   return v;
 }
 
+// The filter options from the flags: names of modes parsed, --window/--fading, the noise lists (one value or
+// one per column; file units → radians for angle columns). Throws UsageError.
+filter::AukfOptions AukfOptionsOf(const AukfArgs& a, const CLI::App& sub, std::vector<std::string>* columns_out) {
+  filter::AukfOptions opt = a.opt;
+  if (!filter::ParseAdaptMode(a.adapt == "auto" ? "none" : a.adapt, &opt.adapt.mode)) {
+    throw UsageError("--adapt: unknown mode " + a.adapt);
+  }
+  if (!filter::ParseNoiseEstimator(a.noise_estimate, &opt.noise_estimator)) {
+    throw UsageError("--noise-estimate: unknown method " + a.noise_estimate);
+  }
+  if (!filter::ParseNoiseFit(a.noise_fit, &opt.noise_fit) ||
+      !filter::ParseNoiseFit(a.smooth_noise_fit, &opt.smooth_noise_fit)) {
+    throw UsageError("--noise-fit/--smooth-noise-fit: causal or file");
+  }
+  opt.adapt.window = a.window;
+  if (sub.count("--fading") > 0) {
+    opt.adapt.memory = filter::AdaptMemory::kFading;
+    opt.adapt.fading = a.fading;
+    if (sub.count("--window") > 0) throw UsageError("--window and --fading exclude each other");
+  }
+  const std::vector<std::string> columns = io::SplitList(a.columns);
+  *columns_out = columns;
+  if (columns.empty() || columns.size() > static_cast<std::size_t>(filter::ukf::kMaxColumns)) {
+    throw UsageError("--columns: give 1 to 12 columns, got " + std::to_string(columns.size()));
+  }
+  opt.meas_sigma = ParseNumbers(a.meas_sigma, "--meas-sigma");
+  opt.q = ParseNumbers(a.q, "--q");
+  for (const auto* list : {&opt.meas_sigma, &opt.q}) {
+    if (list->size() > 1 && list->size() != columns.size()) {
+      throw UsageError(std::string(list == &opt.q ? "--q" : "--meas-sigma") +
+                       ": give one value or one per column (" + std::to_string(columns.size()) + ")");
+    }
+  }
+  // One value applies to every column; then file units → radians for angle columns.
+  if (opt.meas_sigma.size() == 1) opt.meas_sigma.assign(columns.size(), opt.meas_sigma[0]);
+  if (opt.q.size() == 1) opt.q.assign(columns.size(), opt.q[0]);
+  std::string why;
+  if (!opt.Check(&why)) throw UsageError(why);
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    if (!filter::IsAngleColumn(columns[c])) continue;
+    if (!opt.meas_sigma.empty()) opt.meas_sigma[c] = geo::DegToRad(opt.meas_sigma[c]);
+    if (!opt.q.empty()) opt.q[c] *= geo::DegToRad(1.0) * geo::DegToRad(1.0);
+  }
+  return opt;
+}
+
+// -o and --report: not the input, not the same file, not both stdout.
+void CheckAukfPaths(const AukfArgs& a, const Context& ctx) {
+  io::CheckOutputNotInput(a.output, {a.input});
+  if (!ctx.common.report_path.empty()) {
+    io::CheckOutputNotInput(ctx.common.report_path, {a.input});
+    if (ctx.common.report_path == a.output && !io::IsStdStream(a.output)) {
+      throw UsageError("--report and -o name the same file " + a.output);
+    }
+    if (io::IsStdStream(ctx.common.report_path) && io::IsStdStream(a.output)) {
+      throw UsageError("--report and -o cannot both be stdout");
+    }
+  }
+}
+
+int RunAukfCommand(const AukfArgs& a, const CLI::App& sub, const Context& ctx) {
+  std::vector<std::string> columns;
+  const filter::AukfOptions opt = AukfOptionsOf(a, sub, &columns);
+  CheckAukfPaths(a, ctx);
+
+  const io::CsvTable table = io::CsvTable::Read(a.input, {a.bad_rows, filter::SeriesRowRule(columns)});
+  const filter::Series series = filter::ReadSeries(table, columns, 3);
+  const filter::AukfResult result = filter::RunAukf(series, opt);
+  const io::CsvWriter csv = filter::AukfCsv(series, result, a.out);
+
+  io::Json report;
+  if (!ctx.common.report_path.empty()) {
+    report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
+    cli::AddReportInput(&report, "input", a.input);
+    const io::Json body = filter::AukfReportJson(series, opt, result);
+    for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
+    report["subcommand"] = "aukf";
+    report["options"]["adapt_requested"] = a.adapt;
+    report["rows_written"] = csv.rows();
+  }
+  csv.Write(a.output);
+  if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
+  if (result.skipped_updates > 0) {
+    cli::Warn(ctx.tool, ctx.common,
+              std::to_string(result.skipped_updates) +
+                  " sample rows without any value: no update, status 'predicted'");
+  }
+  return 0;
+}
+
 }  // namespace
 
 Command AddAukfCommand(CLI::App& app) {
@@ -106,85 +196,7 @@ Command AddAukfCommand(CLI::App& app) {
   sub->add_flag("--sigmas", args->out.sigmas,
                 "Add <base>_sigma_<unit> columns (1-sigma of each value, file units)");
 
-  Command cmd;
-  cmd.app = sub;
-  cmd.run = [args, sub](const Context& ctx) -> int {
-    AukfArgs& a = *args;
-    filter::AukfOptions opt = a.opt;
-    if (!filter::ParseAdaptMode(a.adapt == "auto" ? "none" : a.adapt, &opt.adapt.mode)) {
-      throw UsageError("--adapt: unknown mode " + a.adapt);
-    }
-    if (!filter::ParseNoiseEstimator(a.noise_estimate, &opt.noise_estimator)) {
-      throw UsageError("--noise-estimate: unknown method " + a.noise_estimate);
-    }
-    if (!filter::ParseNoiseFit(a.noise_fit, &opt.noise_fit) ||
-        !filter::ParseNoiseFit(a.smooth_noise_fit, &opt.smooth_noise_fit)) {
-      throw UsageError("--noise-fit/--smooth-noise-fit: causal or file");
-    }
-    opt.adapt.window = a.window;
-    if (sub->count("--fading") > 0) {
-      opt.adapt.memory = filter::AdaptMemory::kFading;
-      opt.adapt.fading = a.fading;
-      if (sub->count("--window") > 0) throw UsageError("--window and --fading exclude each other");
-    }
-    const std::vector<std::string> columns = io::SplitList(a.columns);
-    if (columns.empty() || columns.size() > static_cast<std::size_t>(filter::ukf::kMaxColumns)) {
-      throw UsageError("--columns: give 1 to 12 columns, got " + std::to_string(columns.size()));
-    }
-    opt.meas_sigma = ParseNumbers(a.meas_sigma, "--meas-sigma");
-    opt.q = ParseNumbers(a.q, "--q");
-    for (const auto* list : {&opt.meas_sigma, &opt.q}) {
-      if (list->size() > 1 && list->size() != columns.size()) {
-        throw UsageError(std::string(list == &opt.q ? "--q" : "--meas-sigma") +
-                         ": give one value or one per column (" + std::to_string(columns.size()) + ")");
-      }
-    }
-    // One value applies to every column; then file units → radians for angle columns.
-    if (opt.meas_sigma.size() == 1) opt.meas_sigma.assign(columns.size(), opt.meas_sigma[0]);
-    if (opt.q.size() == 1) opt.q.assign(columns.size(), opt.q[0]);
-    std::string why;
-    if (!opt.Check(&why)) throw UsageError(why);
-    for (std::size_t c = 0; c < columns.size(); ++c) {
-      if (!filter::IsAngleColumn(columns[c])) continue;
-      if (!opt.meas_sigma.empty()) opt.meas_sigma[c] = geo::DegToRad(opt.meas_sigma[c]);
-      if (!opt.q.empty()) opt.q[c] *= geo::DegToRad(1.0) * geo::DegToRad(1.0);
-    }
-    io::CheckOutputNotInput(a.output, {a.input});
-    if (!ctx.common.report_path.empty()) {
-      io::CheckOutputNotInput(ctx.common.report_path, {a.input});
-      if (ctx.common.report_path == a.output && !io::IsStdStream(a.output)) {
-        throw UsageError("--report and -o name the same file " + a.output);
-      }
-      if (io::IsStdStream(ctx.common.report_path) && io::IsStdStream(a.output)) {
-        throw UsageError("--report and -o cannot both be stdout");
-      }
-    }
-
-    const io::CsvTable table = io::CsvTable::Read(a.input, {a.bad_rows, filter::SeriesRowRule(columns)});
-    const filter::Series series = filter::ReadSeries(table, columns, 3);
-    const filter::AukfResult result = filter::RunAukf(series, opt);
-    const io::CsvWriter csv = filter::AukfCsv(series, result, a.out);
-
-    io::Json report;
-    if (!ctx.common.report_path.empty()) {
-      report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
-      cli::AddReportInput(&report, "input", a.input);
-      const io::Json body = filter::AukfReportJson(series, opt, result);
-      for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
-      report["subcommand"] = "aukf";
-      report["options"]["adapt_requested"] = a.adapt;
-      report["rows_written"] = csv.rows();
-    }
-    csv.Write(a.output);
-    if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
-    if (result.skipped_updates > 0) {
-      cli::Warn(ctx.tool, ctx.common,
-                std::to_string(result.skipped_updates) +
-                    " sample rows without any value: no update, status 'predicted'");
-    }
-    return 0;
-  };
-  return cmd;
+  return {sub, [args, sub](const Context& ctx) { return RunAukfCommand(*args, *sub, ctx); }};
 }
 
 }  // namespace rk::app

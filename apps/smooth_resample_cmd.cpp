@@ -19,26 +19,25 @@ namespace rk::app {
 namespace {
 
 struct ResampleArgs {
-  std::string input, output, columns, at, method = "kalman";
+  std::string input, output, columns, at;
   double rate_hz = std::numeric_limits<double>::quiet_NaN();
   double t0_s = std::numeric_limits<double>::quiet_NaN();
   double t1_s = std::numeric_limits<double>::quiet_NaN();
-  double max_gap_s = 0.0, margin_s = 0.0;
+  filter::ResampleOptions opt;                  // the table's options (--method, --max-gap, --margin, --maneuver-time)
   std::vector<double> accel_sigma, meas_sigma;  // column units
-  double maneuver_time_s = filter::kDefaultManeuverTimeS;
   bool sigmas = false, ignore_status = false;
   CLI::Option* rate_opt = nullptr;
   CLI::Option* at_opt = nullptr;
   CLI::Option* t0_opt = nullptr;
   CLI::Option* t1_opt = nullptr;
-  CLI::Option* gap_opt = nullptr;
   io::BadRows bad_rows = io::BadRows::kError;
 };
 
 constexpr int kResampleDecimals = 9;
 
-int RunResample(const ResampleArgs& args, const Context& ctx) {
-  const bool have_at = args.at_opt->count() > 0, have_rate = args.rate_opt->count() > 0;
+// Exactly one of --at and --rate; --t0/--t1 only with --rate; one stdin input; --report and -o not an
+// input and not both stdout.
+void CheckResampleArgs(const ResampleArgs& args, const Context& ctx, bool have_at, bool have_rate) {
   if (have_at == have_rate) throw UsageError("give exactly one of --at FILE and --rate HZ");
   if (have_rate && !(args.rate_hz > 0.0 && std::isfinite(args.rate_hz)))
     throw UsageError("--rate must be > 0 Hz");
@@ -57,83 +56,76 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
       throw UsageError("--report and -o cannot both be stdout");
     }
   }
-  filter::ResampleOptions opt;
-  if (!filter::ParseResampleMethod(args.method, &opt.method))
-    throw UsageError("unknown --method " + args.method);
-  opt.max_gap_s = args.max_gap_s;
-  opt.margin_s = args.margin_s;
-  if (args.gap_opt->count() && !(args.max_gap_s > 0.0)) throw UsageError("--max-gap must be > 0 s");
-  opt.singer.maneuver_time_s = args.maneuver_time_s;
+}
+
+filter::ResampleOptions ResampleOptionsOf(const ResampleArgs& args, bool max_gap_given) {
+  filter::ResampleOptions opt = args.opt;
+  // 0 is "not given" (2.5 x the median interval); given, it must be > 0.
+  if (max_gap_given && !(opt.max_gap_s > 0.0)) throw UsageError("--max-gap must be > 0 s");
   opt.singer.accel_sigma = args.accel_sigma;
   opt.singer.meas_sigma = args.meas_sigma;
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
+  return opt;
+}
 
-  const std::vector<std::string> columns = io::SplitList(args.columns);
-  const io::CsvTable table = io::CsvTable::Read(args.input, {args.bad_rows, filter::SeriesRowRule(columns)});
-  filter::Series series = filter::ReadSeries(table, columns, 3);
-  const std::size_t masked = args.ignore_status ? 0 : filter::MaskByStatus(table, &series, 3);
-  opt.singer.accel_sigma = filter::ColumnUnitsToInternal(opt.singer.accel_sigma, series, "--accel-sigma");
-  opt.singer.meas_sigma = filter::ColumnUnitsToInternal(opt.singer.meas_sigma, series, "--meas-sigma");
-
-  // Target times (+ passthrough columns of --at).
-  std::vector<double> targets;
+// The target times, and the columns of --at copied to the output (those the output does not write itself).
+struct ResampleTargets {
+  std::vector<double> t_s;
   std::vector<std::string> pass_names;
   std::vector<int> pass_cols;
   io::CsvTable at_table = io::CsvTable::Parse("t_s\n", "none");
-  if (have_at) {
-    io::CsvReadOptions at_read;
-    at_read.bad_rows = args.bad_rows;
-    at_read.rule.non_decreasing = "t_s";
-    at_table = io::CsvTable::Read(args.at, at_read);
-    const int c_t = at_table.RequireColumn("t_s");
-    at_table.RequireNonDecreasing(c_t);
-    for (std::size_t r = 0; r < at_table.rows(); ++r) targets.push_back(at_table.Double(r, c_t));
-    if (targets.empty()) throw DataError(at_table.name(), 0, 0, "no target times");
-    std::vector<std::string> reserved = {"t_s", "kind", "status", "reason"};
-    for (const auto& c : columns) {
-      reserved.push_back(c);
-      reserved.push_back(filter::DerivedColumnName(c, 0, true));
-    }
-    for (std::size_t c = 0; c < at_table.header().size(); ++c) {
-      const std::string& h = at_table.header()[c];
-      if (std::find(reserved.begin(), reserved.end(), h) != reserved.end()) continue;
-      pass_names.push_back(h);
-      pass_cols.push_back(static_cast<int>(c));
-    }
-  } else {
+};
+
+ResampleTargets TargetsOf(const ResampleArgs& args, const filter::Series& series, bool have_at) {
+  ResampleTargets tg;
+  if (!have_at) {
     const double t0 = args.t0_opt->count() ? args.t0_s : series.t_s.front();
     const double t1 = args.t1_opt->count() ? args.t1_s : series.t_s.back();
-    targets = filter::TimesAtRate(t0, t1, args.rate_hz);
+    tg.t_s = filter::TimesAtRate(t0, t1, args.rate_hz);
+    return tg;
   }
-
-  const filter::ResampleResult res = filter::Resample(series, targets, opt);
-
-  const std::size_t nc = columns.size();
-  const bool with_sigmas = args.sigmas && opt.method == filter::ResampleMethod::kKalman;
-  std::vector<bool> is360(nc, false);
-  for (std::size_t c = 0; c < nc; ++c) {
-    if (!series.is_angle[c]) continue;
-    std::vector<double> v(series.rows());
-    for (std::size_t r = 0; r < series.rows(); ++r) {
-      v[r] = series.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
-    }
-    is360[c] = filter::AngleColumnIs360(columns[c], v);
+  io::CsvReadOptions at_read;
+  at_read.bad_rows = args.bad_rows;
+  at_read.rule.non_decreasing = "t_s";
+  tg.at_table = io::CsvTable::Read(args.at, at_read);
+  const int c_t = tg.at_table.RequireColumn("t_s");
+  tg.at_table.RequireNonDecreasing(c_t);
+  for (std::size_t r = 0; r < tg.at_table.rows(); ++r) tg.t_s.push_back(tg.at_table.Double(r, c_t));
+  if (tg.t_s.empty()) throw DataError(tg.at_table.name(), 0, 0, "no target times");
+  std::vector<std::string> reserved = {"t_s", "kind", "status", "reason"};
+  for (const auto& c : series.columns) {
+    reserved.push_back(c);
+    reserved.push_back(filter::DerivedColumnName(c, 0, true));
   }
+  for (std::size_t c = 0; c < tg.at_table.header().size(); ++c) {
+    const std::string& h = tg.at_table.header()[c];
+    if (std::find(reserved.begin(), reserved.end(), h) != reserved.end()) continue;
+    tg.pass_names.push_back(h);
+    tg.pass_cols.push_back(static_cast<int>(c));
+  }
+  return tg;
+}
+
+// t_s, the copied columns of --at, kind, the values, status, reason (and 1-sigma with kalman --sigmas).
+io::CsvWriter ResampleCsv(const filter::Series& series, const ResampleTargets& tg, const filter::ResampleResult& res,
+                          const filter::ResampleOptions& opt, bool with_sigmas) {
+  const std::size_t nc = series.columns.size();
+  const std::vector<bool> is360 = filter::AngleColumnsIn360(series);
   std::vector<std::string> header = {"t_s"};
-  for (const auto& p : pass_names) header.push_back(p);
+  for (const auto& p : tg.pass_names) header.push_back(p);
   header.push_back("kind");
-  for (const auto& c : columns) header.push_back(c);
+  for (const auto& c : series.columns) header.push_back(c);
   header.push_back("status");
   header.push_back("reason");
   if (with_sigmas) {
-    for (const auto& c : columns) header.push_back(filter::DerivedColumnName(c, 0, true));
+    for (const auto& c : series.columns) header.push_back(filter::DerivedColumnName(c, 0, true));
   }
   io::CsvWriter w(header);
   const std::string kind = opt.method == filter::ResampleMethod::kKalman ? "smoothed" : "estimate";
-  for (std::size_t i = 0; i < targets.size(); ++i) {
-    w.Add(targets[i], kResampleDecimals);
-    for (int pc : pass_cols) w.Add(at_table.Cell(i, pc));
+  for (std::size_t i = 0; i < tg.t_s.size(); ++i) {
+    w.Add(tg.t_s[i], kResampleDecimals);
+    for (int pc : tg.pass_cols) w.Add(tg.at_table.Cell(i, pc));
     w.Add(kind);
     for (std::size_t c = 0; c < nc; ++c) {
       const double v = res.values[c][i];
@@ -166,38 +158,36 @@ int RunResample(const ResampleArgs& args, const Context& ctx) {
     }
     w.EndRow();
   }
+  return w;
+}
+
+int RunResample(const ResampleArgs& args, const CLI::App& sub, const Context& ctx) {
+  const bool have_at = args.at_opt->count() > 0, have_rate = args.rate_opt->count() > 0;
+  CheckResampleArgs(args, ctx, have_at, have_rate);
+  filter::ResampleOptions opt = ResampleOptionsOf(args, sub.count("--max-gap") > 0);
+
+  const std::vector<std::string> columns = io::SplitList(args.columns);
+  const io::CsvTable table = io::CsvTable::Read(args.input, {args.bad_rows, filter::SeriesRowRule(columns)});
+  filter::Series series = filter::ReadSeries(table, columns, 3);
+  const std::size_t masked = args.ignore_status ? 0 : filter::MaskByStatus(table, &series, 3);
+  opt.singer.accel_sigma = filter::ColumnUnitsToInternal(opt.singer.accel_sigma, series, "--accel-sigma");
+  opt.singer.meas_sigma = filter::ColumnUnitsToInternal(opt.singer.meas_sigma, series, "--meas-sigma");
+
+  const ResampleTargets targets = TargetsOf(args, series, have_at);
+  const filter::ResampleResult res = filter::Resample(series, targets.t_s, opt);
+  const bool with_sigmas = args.sigmas && opt.method == filter::ResampleMethod::kKalman;
+  const io::CsvWriter w = ResampleCsv(series, targets, res, opt, with_sigmas);
 
   io::Json report;
   if (!ctx.common.report_path.empty()) {
     report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     cli::AddReportInput(&report, "input", args.input);
     if (have_at) cli::AddReportInput(&report, "at", args.at);
+    const io::Json body = res.ToJson(series, opt);
+    for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
     report["subcommand"] = "resample";
-    report["method"] = filter::ResampleMethodName(opt.method);
-    report["max_gap_s"] = res.max_gap_s;
-    report["margin_s"] = opt.margin_s;
-    report["median_interval_s"] = res.median_interval_s;
-    report["input_rows"] = series.rows();
     report["rows_masked_by_status"] = masked;
-    report["rows"] = res.rows;
-    report["rows_ok"] = res.rows_ok;
-    report["rows_gap"] = res.rows_gap;
-    report["rows_outside"] = res.rows_outside;
-    report["rows_extrapolated"] = res.rows_extrapolated;
-    if (opt.method == filter::ResampleMethod::kKalman) {
-      report["maneuver_time_s"] = opt.singer.maneuver_time_s;
-      for (std::size_t c = 0; c < nc; ++c) {
-        const filter::SingerColumnStats& st = res.singer.stats[c];
-        const double u = series.is_angle[c] ? geo::RadToDeg(1.0) : 1.0;
-        report["columns"][columns[c]] = {
-            {"updates", st.updates},
-            {"meas_sigma", st.meas_sigma * u},
-            {"meas_sigma_estimated", st.meas_sigma_estimated},
-            {"accel_sigma", st.accel_sigma * u},
-            {"nis_mean", std::isfinite(st.nis_mean) ? io::Json(st.nis_mean) : io::Json(nullptr)},
-        };
-      }
-    }
+    report["options"] = opt.ToJson();
   }
   w.Write(args.output);
   if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
@@ -226,19 +216,7 @@ Command AddResampleCommand(CLI::App& app) {
   args->t1_opt =
       sub->add_option("--t1", args->t1_s, "With --rate: last target time (s); default last input t_s");
   sub->add_option("-o,--output", args->output, "Output CSV ('-' = stdout)")->required();
-  sub->add_option("--method", args->method, "linear, cubic or kalman (Singer RTS smoother)")
-      ->check(CLI::IsMember({"linear", "cubic", "kalman"}))
-      ->capture_default_str();
-  args->gap_opt = sub->add_option(
-      "--max-gap", args->max_gap_s,
-      "Longest interval (s) between usable samples interpolated across; default 2.5 x the median "
-      "input interval");
-  sub->add_option("--margin", args->margin_s,
-                  "Extrapolation allowed (s) before the first / after the last usable sample; beyond it rows "
-                  "are empty with status invalid, reason outside")
-      ->capture_default_str();
-  sub->add_option("--maneuver-time", args->maneuver_time_s, "kalman: Singer maneuver time constant tau_m (s)")
-      ->capture_default_str();
+  cli::AddOptions(sub, &args->opt, filter::ResampleOptions::Table());
   sub->add_option("--accel-sigma", args->accel_sigma,
                   "kalman: RMS acceleration in column units/s^2, one or one per column; default: chosen by "
                   "maximum likelihood on a grid 1/16..8 x (_m 0.5, _deg 5, _px 50)")
@@ -251,7 +229,7 @@ Command AddResampleCommand(CLI::App& app) {
   sub->add_flag("--ignore-status", args->ignore_status,
                 "Use values whatever the input's status column says (default: non-zero device codes and "
                 "predicted/lost/invalid rows are missing)");
-  return {sub, [args](const Context& ctx) { return RunResample(*args, ctx); }};
+  return {sub, [args, sub](const Context& ctx) { return RunResample(*args, *sub, ctx); }};
 }
 
 }  // namespace rk::app

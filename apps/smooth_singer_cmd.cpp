@@ -18,14 +18,15 @@ namespace {
 struct SingerArgs {
   std::string input, output, columns;
   std::vector<double> accel_sigma, meas_sigma;  // column units (degrees for _deg columns)
-  double maneuver_time_s = filter::kDefaultManeuverTimeS;
+  filter::SingerSeriesOptions opt;              // the table's options (--maneuver-time)
   bool no_smooth = false, derivatives = true, sigmas = false, ignore_status = false;
   io::BadRows bad_rows = io::BadRows::kError;
 };
 
 constexpr int kDecimals = 9;
 
-int RunSinger(const SingerArgs& args, const Context& ctx) {
+// --report and -o: not an input, not both stdout.
+void CheckSingerPaths(const SingerArgs& args, const Context& ctx) {
   const std::vector<std::string> inputs = {args.input};
   io::CheckOutputNotInput(args.output, inputs);
   if (!ctx.common.report_path.empty()) {
@@ -34,32 +35,20 @@ int RunSinger(const SingerArgs& args, const Context& ctx) {
       throw UsageError("--report and -o cannot both be stdout");
     }
   }
-  const std::vector<std::string> columns = io::SplitList(args.columns);
-  filter::SingerSeriesOptions opt;
-  opt.maneuver_time_s = args.maneuver_time_s;
+}
+
+filter::SingerSeriesOptions SingerOptionsOf(const SingerArgs& args) {
+  filter::SingerSeriesOptions opt = args.opt;
   opt.smooth = !args.no_smooth;
   opt.accel_sigma = args.accel_sigma;
   opt.meas_sigma = args.meas_sigma;
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
+  return opt;
+}
 
-  const io::CsvTable table = io::CsvTable::Read(args.input, {args.bad_rows, filter::SeriesRowRule(columns)});
-  filter::Series series = filter::ReadSeries(table, columns, 3);
-  const std::size_t masked = args.ignore_status ? 0 : filter::MaskByStatus(table, &series, 3);
-  opt.accel_sigma = filter::ColumnUnitsToInternal(opt.accel_sigma, series, "--accel-sigma");
-  opt.meas_sigma = filter::ColumnUnitsToInternal(opt.meas_sigma, series, "--meas-sigma");
-  const filter::SingerSeriesResult res = filter::RunSingerSeries(series, opt);
-
-  const std::size_t nc = columns.size();
-  std::vector<bool> is360(nc, false);
-  for (std::size_t c = 0; c < nc; ++c) {
-    if (!series.is_angle[c]) continue;
-    std::vector<double> v(series.rows());
-    for (std::size_t r = 0; r < series.rows(); ++r) {
-      v[r] = series.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
-    }
-    is360[c] = filter::AngleColumnIs360(columns[c], v);
-  }
+// t_s, kind, the columns, status, then rates and accelerations, then the 1-sigma columns.
+std::vector<std::string> SingerHeader(const std::vector<std::string>& columns, const SingerArgs& args) {
   std::vector<std::string> header = {"t_s", "kind"};
   for (const auto& c : columns) header.push_back(c);
   header.push_back("status");
@@ -78,11 +67,19 @@ int RunSinger(const SingerArgs& args, const Context& ctx) {
       }
     }
   }
-  io::CsvWriter w(header);
+  return header;
+}
+
+// The smoothed (or filtered) series, one row per input row, in column units.
+io::CsvWriter SingerCsv(const filter::Series& series, const filter::SingerSeriesResult& res, const SingerArgs& args) {
+  const std::size_t nc = series.columns.size();
+  const std::vector<bool> is360 = filter::AngleColumnsIn360(series);
+  io::CsvWriter w(SingerHeader(series.columns, args));
   const std::string kind = res.smoothed ? "smoothed" : "estimate";
   std::vector<Eigen::Vector3d> x(nc);
   std::vector<Eigen::Matrix3d> P(nc);
   std::vector<bool> have(nc);
+  const auto unit = [&](std::size_t c) { return series.is_angle[c] ? geo::RadToDeg(1.0) : 1.0; };
   for (std::size_t r = 0; r < series.rows(); ++r) {
     w.Add(series.t_s[r], kDecimals).Add(kind);
     for (std::size_t c = 0; c < nc; ++c) {
@@ -97,7 +94,6 @@ int RunSinger(const SingerArgs& args, const Context& ctx) {
       }
     }
     w.Add(filter::SingerRowStatusName(res.status[r]));
-    const auto unit = [&](std::size_t c) { return series.is_angle[c] ? geo::RadToDeg(1.0) : 1.0; };
     if (args.derivatives) {
       for (std::size_t c = 0; c < nc; ++c) {
         if (!have[c]) {
@@ -120,32 +116,31 @@ int RunSinger(const SingerArgs& args, const Context& ctx) {
     }
     w.EndRow();
   }
+  return w;
+}
+
+int RunSinger(const SingerArgs& args, const Context& ctx) {
+  CheckSingerPaths(args, ctx);
+  const std::vector<std::string> columns = io::SplitList(args.columns);
+  filter::SingerSeriesOptions opt = SingerOptionsOf(args);
+
+  const io::CsvTable table = io::CsvTable::Read(args.input, {args.bad_rows, filter::SeriesRowRule(columns)});
+  filter::Series series = filter::ReadSeries(table, columns, 3);
+  const std::size_t masked = args.ignore_status ? 0 : filter::MaskByStatus(table, &series, 3);
+  opt.accel_sigma = filter::ColumnUnitsToInternal(opt.accel_sigma, series, "--accel-sigma");
+  opt.meas_sigma = filter::ColumnUnitsToInternal(opt.meas_sigma, series, "--meas-sigma");
+  const filter::SingerSeriesResult res = filter::RunSingerSeries(series, opt);
+  const io::CsvWriter w = SingerCsv(series, res, args);
 
   io::Json report;
   if (!ctx.common.report_path.empty()) {
     report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     cli::AddReportInput(&report, "input", args.input);
+    const io::Json body = res.ToJson(series, opt.maneuver_time_s);
+    for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
     report["subcommand"] = "singer";
-    report["smoothed"] = res.smoothed;
-    report["maneuver_time_s"] = opt.maneuver_time_s;
-    report["rows"] = res.rows;
-    report["rows_ok"] = res.rows_ok;
-    report["rows_predicted"] = res.rows_predicted;
-    report["rows_lost"] = res.rows_lost;
     report["rows_masked_by_status"] = masked;
-    for (std::size_t c = 0; c < nc; ++c) {
-      const filter::SingerColumnStats& st = res.stats[c];
-      const double u = series.is_angle[c] ? geo::RadToDeg(1.0) : 1.0;
-      report["columns"][columns[c]] = {
-          {"updates", st.updates},
-          {"missing", st.missing},
-          {"meas_sigma", st.meas_sigma * u},
-          {"meas_sigma_estimated", st.meas_sigma_estimated},
-          {"accel_sigma", st.accel_sigma * u},
-          {"nis_mean", std::isfinite(st.nis_mean) ? io::Json(st.nis_mean) : io::Json(nullptr)},
-          {"nis_count", st.nis_count},
-      };
-    }
+    report["options"] = opt.ToJson();
   }
   w.Write(args.output);
   if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
@@ -166,8 +161,7 @@ Command AddSingerCommand(CLI::App& app) {
   sub->add_option("--columns", args->columns, "Value columns, comma-separated (e.g. range_m,az_deg,el_deg)")
       ->required();
   sub->add_option("-o,--output", args->output, "Output CSV ('-' = stdout)")->required();
-  sub->add_option("--maneuver-time", args->maneuver_time_s, "Singer maneuver time constant tau_m (s), > 0")
-      ->capture_default_str();
+  cli::AddOptions(sub, &args->opt, filter::SingerSeriesOptions::Table());
   sub->add_option("--accel-sigma", args->accel_sigma,
                   "RMS acceleration sigma_m in column units/s^2 (deg/s^2 for _deg), one value or one per "
                   "column; default: chosen per column by maximum likelihood on a grid 1/16..8 x (_m 0.5, "

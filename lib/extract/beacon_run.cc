@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "io/error.h"
+#include "io/json_util.h"
 #include "video/frame_source.h"
 
 namespace rk::extract {
@@ -65,6 +66,10 @@ io::CsvWriter BeaconTrackCsv(const std::vector<BeaconFrameResult>& rows, int bit
     w.EndRow();
   }
   return w;
+}
+
+nlohmann::json BeaconRunResult::SummaryJson() const {
+  return {{"frames", frames}, {"mean_ncc", summary.mean_ncc()}, {"restarts", summary.restarts}};
 }
 
 }  // namespace rk::extract

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "extract/beacon_tracker.h"
@@ -21,6 +22,8 @@ namespace rk::extract {
 struct BeaconRunResult : VideoRunStats {  // frames, size, bit depth, wall and extraction time
   std::vector<BeaconFrameResult> rows;
   BeaconTrackSummary summary;
+  // The report's "summary" (docs/rk-extract.md "Report"): the headline figures rk-run copies.
+  nlohmann::json SummaryJson() const;
 };
 
 // Runs the tracker over all frames of `videos`. Throws DataError naming the

@@ -2,6 +2,7 @@
 #include "extract/features_run.h"
 
 #include "io/error.h"
+#include "io/json_util.h"
 
 namespace rk::extract {
 
@@ -49,6 +50,10 @@ io::CsvWriter FeaturePointsCsv(const std::vector<FeatureFrameResult>& rows, cons
     }
   }
   return w;
+}
+
+nlohmann::json FeatureRunResult::SummaryJson() const {
+  return {{"frames", frames}, {"mean_ncc", summary.mean_ncc}, {"frames_with_4_points", summary.frames_with_4}};
 }
 
 }  // namespace rk::extract

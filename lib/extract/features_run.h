@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "extract/features_tracker.h"
@@ -23,6 +24,8 @@ namespace rk::extract {
 struct FeatureRunResult : VideoRunStats {  // frames, size, bit depth, wall and extraction time
   std::vector<FeatureFrameResult> rows;
   FeatureTrackSummary summary;
+  // The report's "summary" (docs/rk-extract.md "Report"): the headline figures rk-run copies.
+  nlohmann::json SummaryJson() const;
 };
 
 // Throws DataError for a frames file that lists fewer frames than the video has (and for a

@@ -2,6 +2,7 @@
 #include "extract/silhouette_run.h"
 
 #include "io/error.h"
+#include "io/json_util.h"
 
 namespace rk::extract {
 
@@ -51,6 +52,10 @@ io::CsvWriter SilhouettePointsCsv(const std::vector<SilhouetteFrameRow>& rows) {
     }
   }
   return w;
+}
+
+nlohmann::json SilhouetteRunResult::SummaryJson() const {
+  return {{"frames", frames}, {"frames_with_points", by_status[static_cast<std::size_t>(SilhouetteStatus::kOk)]}};
 }
 
 }  // namespace rk::extract

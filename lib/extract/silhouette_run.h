@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "extract/frame_loop.h"
@@ -29,6 +30,8 @@ struct SilhouetteFrameRow {
 struct SilhouetteRunResult : VideoRunStats {  // frames, size, bit depth, wall and extraction time
   std::vector<SilhouetteFrameRow> rows;
   std::array<std::int64_t, 5> by_status{};  // indexed by SilhouetteStatus
+  // The report's "summary" (docs/rk-extract.md "Report"): the headline figures rk-run copies.
+  nlohmann::json SummaryJson() const;
 };
 
 // Throws DataError for a truncated video (fewer frames than the frames file lists) or a frames file with

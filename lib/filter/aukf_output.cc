@@ -25,12 +25,7 @@ io::CsvWriter AukfCsv(const Series& series, const AukfResult& result, const Aukf
   }
   // Output range of each angle column, shared with `singer` (AngleColumnIs360): [0, 360) for
   // azimuth/yaw-like names or when some input value exceeds 180°, else (−180, 180].
-  std::vector<bool> wrap360(static_cast<std::size_t>(m), false);
-  for (int c = 0; c < m; ++c) {
-    if (!series.is_angle[static_cast<std::size_t>(c)]) continue;
-    std::vector<double> v(series.values.col(c).data(), series.values.col(c).data() + series.values.rows());
-    wrap360[static_cast<std::size_t>(c)] = AngleColumnIs360(series.columns[static_cast<std::size_t>(c)], v);
-  }
+  const std::vector<bool> wrap360 = AngleColumnsIn360(series);
   io::CsvWriter w(header);
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   // Empty fields: a column before its first value; its 1σ in the forward pass before its noise is known.
@@ -153,6 +148,9 @@ io::Json AukfReportJson(const Series& series, const AukfOptions& options, const 
   j["interval_s"] = result.interval_s;
   j["nis_mean"] = result.NisMean();
   j["nis_mean_per_dof"] = result.nis_dof ? result.nis_sum / static_cast<double>(result.nis_dof) : 0.0;
+  // Headline figures (docs/rk-smooth.md "Report"): what rk-run copies into a step's quality record.
+  j["summary"] = {{"nis_mean", j["nis_mean"]}, {"nis_mean_per_dof", j["nis_mean_per_dof"]},
+                  {"updates", result.updates}, {"skipped_updates", result.skipped_updates}};
   j["final_R"] = matrix(result.final_R);
   j["final_Q"] = matrix(result.final_Q);
   j["final_Q_adapted"] = result.final_Q_adapted;

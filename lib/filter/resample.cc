@@ -8,6 +8,7 @@
 
 #include "geo/angles.h"
 #include "io/error.h"
+#include "io/json_util.h"
 #include "numeric/robust_stats.h"
 #include "track/interp.h"
 
@@ -45,16 +46,26 @@ std::string ResampleReasonName(ResampleReason r) {
   return "";
 }
 
+const io::OptionTable<ResampleOptions>& ResampleOptions::Table() {
+  static const io::OptionTable<ResampleOptions> table =
+      io::OptionTable<ResampleOptions>()
+          .Choice("--method", &ResampleOptions::method,
+                  {ResampleMethod::kLinear, ResampleMethod::kCubic, ResampleMethod::kKalman}, ResampleMethodName,
+                  "linear, cubic or kalman (Singer RTS smoother)")
+          .Real("--max-gap", &ResampleOptions::max_gap_s, "s", io::Bounds::AtLeast(0.0),
+                "Longest interval (s) between usable samples interpolated across; default 2.5 x the median "
+                "input interval")
+          .Real("--margin", &ResampleOptions::margin_s, "s", io::Bounds::AtLeast(0.0),
+                "Extrapolation allowed (s) before the first / after the last usable sample; beyond it rows "
+                "are empty with status invalid, reason outside")
+          .Real(
+              "--maneuver-time", [](ResampleOptions& o) -> double& { return o.singer.maneuver_time_s; }, "s",
+              io::Bounds::Positive(), "kalman: Singer maneuver time constant tau_m (s)");
+  return table;
+}
+
 bool ResampleOptions::Check(std::string* why) const {
-  if (!(max_gap_s >= 0.0) || !std::isfinite(max_gap_s)) {
-    if (why) *why = "--max-gap must be > 0 s";
-    return false;
-  }
-  if (!(margin_s >= 0.0) || !std::isfinite(margin_s)) {
-    if (why) *why = "--margin must be >= 0 s";
-    return false;
-  }
-  return singer.Check(why);
+  return Table().Check(*this, why) && singer.Check(why);
 }
 
 std::vector<double> TimesAtRate(double t0, double t1, double rate_hz) {
@@ -177,6 +188,27 @@ ResampleResult Resample(const Series& series, const std::vector<double>& targets
     res.rows_extrapolated += extrapolated[i];
   }
   return res;
+}
+
+nlohmann::json ResampleResult::ToJson(const Series& series, const ResampleOptions& options) const {
+  io::Json j;
+  j["method"] = ResampleMethodName(options.method);
+  j["max_gap_s"] = max_gap_s;
+  j["margin_s"] = options.margin_s;
+  j["median_interval_s"] = median_interval_s;
+  j["input_rows"] = series.rows();
+  j["rows"] = rows;
+  j["rows_ok"] = rows_ok;
+  j["rows_gap"] = rows_gap;
+  j["rows_outside"] = rows_outside;
+  j["rows_extrapolated"] = rows_extrapolated;
+  j["summary"] = {{"rows_ok", rows_ok}, {"rows_gap", rows_gap}, {"rows_outside", rows_outside}};
+  if (options.method == ResampleMethod::kKalman) {
+    j["maneuver_time_s"] = options.singer.maneuver_time_s;
+    j["columns"] = singer.ColumnsJson(series, false);
+    j["summary"]["nis_mean"] = singer.SummaryJson(series)["nis_mean"];
+  }
+  return j;
 }
 
 }  // namespace rk::filter

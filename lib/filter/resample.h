@@ -21,6 +21,7 @@
 // without one (lost/gap or invalid/outside), the other columns' values still given.
 #pragma once
 
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
@@ -40,7 +41,13 @@ struct ResampleOptions {
   double max_gap_s = 0.0;  // > 0; 0 = default (kDefaultGapFactor × median input interval)
   double margin_s = 0.0;   // ≥ 0: extrapolation allowed beyond the first/last usable sample
   SingerSeriesOptions singer;  // kalman only
+
+  // The options, one line each (docs/architecture.md "Adding an option"): --method, --max-gap, --margin,
+  // --maneuver-time (of `singer`, with the help text of resample).
+  static const io::OptionTable<ResampleOptions>& Table();
+  // Table().Check, then singer's list rules.
   bool Check(std::string* why) const;
+  io::Json ToJson() const { return Table().ToJson(*this); }
 };
 
 enum class ResampleReason { kNone, kGap, kOutside };
@@ -55,6 +62,11 @@ struct ResampleResult {
   double median_interval_s = 0.0;         // of the input rows
   std::size_t rows = 0, rows_ok = 0, rows_gap = 0, rows_outside = 0, rows_extrapolated = 0;
   SingerSeriesResult singer;              // kalman only: the smoother run (noise figures, NIS)
+
+  // rk-smooth resample's report body (docs/rk-smooth-singer-resample.md "Report"): method, max_gap_s,
+  // margin_s, median_interval_s, input_rows, the row counts, with kalman maneuver_time_s and columns, and
+  // the "summary" rk-run copies: {rows_ok, rows_gap, rows_outside} (+ nis_mean per column with kalman).
+  nlohmann::json ToJson(const Series& series, const ResampleOptions& options) const;
 };
 
 // target_t_s must be non-decreasing and finite (RK_CHECK). Throws UsageError for bad options.

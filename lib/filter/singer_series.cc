@@ -9,6 +9,7 @@
 
 #include "geo/angles.h"
 #include "io/error.h"
+#include "io/json_util.h"
 #include "numeric/robust_stats.h"
 #include "track/singer.h"
 
@@ -115,12 +116,19 @@ double ForwardPass(const ForwardInput& in, double accel_sigma, SingerTrack* tr, 
 
 }  // namespace
 
+const io::OptionTable<SingerSeriesOptions>& SingerSeriesOptions::Table() {
+  static const io::OptionTable<SingerSeriesOptions> table = io::OptionTable<SingerSeriesOptions>().Real(
+      "--maneuver-time", &SingerSeriesOptions::maneuver_time_s, "s", io::Bounds::Positive(),
+      "Singer maneuver time constant tau_m (s), > 0");
+  return table;
+}
+
 bool SingerSeriesOptions::Check(std::string* why) const {
   auto fail = [&](const std::string& w) {
     if (why) *why = w;
     return false;
   };
-  if (!(maneuver_time_s > 0.0) || !std::isfinite(maneuver_time_s)) return fail("--maneuver-time must be > 0 s");
+  if (!Table().Check(*this, why)) return false;
   for (double s : accel_sigma) {
     if (!(s >= 0.0) || !std::isfinite(s)) return fail("--accel-sigma values must be >= 0");
   }
@@ -450,6 +458,56 @@ bool AngleColumnIs360(const std::string& column, const std::vector<double>& valu
     above = above || v > geo::kPi;
   }
   return above && !negative;
+}
+
+std::vector<bool> AngleColumnsIn360(const Series& series) {
+  std::vector<bool> is360(series.columns.size(), false);
+  for (std::size_t c = 0; c < series.columns.size(); ++c) {
+    if (!series.is_angle[c]) continue;
+    const Eigen::Index col = static_cast<Eigen::Index>(c);
+    const std::vector<double> v(series.values.col(col).data(), series.values.col(col).data() + series.values.rows());
+    is360[c] = AngleColumnIs360(series.columns[c], v);
+  }
+  return is360;
+}
+
+nlohmann::json SingerSeriesResult::ColumnsJson(const Series& series, bool counts) const {
+  io::Json j = io::Json::object();
+  for (std::size_t c = 0; c < stats.size(); ++c) {
+    const SingerColumnStats& st = stats[c];
+    const double u = series.is_angle[c] ? geo::RadToDeg(1.0) : 1.0;
+    io::Json col = {{"updates", st.updates},
+                    {"meas_sigma", st.meas_sigma * u},
+                    {"meas_sigma_estimated", st.meas_sigma_estimated},
+                    {"accel_sigma", st.accel_sigma * u},
+                    {"nis_mean", std::isfinite(st.nis_mean) ? io::Json(st.nis_mean) : io::Json(nullptr)}};
+    if (counts) {
+      col["missing"] = st.missing;
+      col["nis_count"] = st.nis_count;
+    }
+    j[series.columns[c]] = col;
+  }
+  return j;
+}
+
+nlohmann::json SingerSeriesResult::SummaryJson(const Series& series) const {
+  const io::Json columns = ColumnsJson(series, false);
+  io::Json nis = io::Json::object();
+  for (const auto& [name, col] : columns.items()) nis[name] = col["nis_mean"];
+  return {{"nis_mean", nis}, {"rows_lost", rows_lost}};
+}
+
+nlohmann::json SingerSeriesResult::ToJson(const Series& series, double maneuver_time_s) const {
+  io::Json j;
+  j["smoothed"] = smoothed;
+  j["maneuver_time_s"] = maneuver_time_s;
+  j["rows"] = rows;
+  j["rows_ok"] = rows_ok;
+  j["rows_predicted"] = rows_predicted;
+  j["rows_lost"] = rows_lost;
+  j["columns"] = ColumnsJson(series, true);
+  j["summary"] = SummaryJson(series);
+  return j;
 }
 
 }  // namespace rk::filter

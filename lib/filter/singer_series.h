@@ -34,11 +34,13 @@
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <vector>
 
 #include "filter/series.h"
 #include "io/csv.h"
+#include "io/options.h"
 
 namespace rk::filter {
 
@@ -67,7 +69,12 @@ struct SingerSeriesOptions {
   // k = kAutoAccelGridLow..kAutoAccelGridHigh. false: use the unit default as is.
   bool auto_accel_sigma = true;
   bool smooth = true;  // run the RTS backward pass
+
+  // The numeric options, one line each (docs/architecture.md "Adding an option"): --maneuver-time.
+  static const io::OptionTable<SingerSeriesOptions>& Table();
+  // Table().Check, then the lists: accel_sigma >= 0, meas_sigma > 0.
   bool Check(std::string* why) const;
+  io::Json ToJson() const { return Table().ToJson(*this); }
 };
 
 // Default σ_m (internal units/s²) for a column name; NaN if the unit is unknown.
@@ -103,6 +110,16 @@ struct SingerSeriesResult {
   std::size_t rows = 0, rows_ok = 0, rows_predicted = 0, rows_lost = 0;
   // Best estimate at a row (smoothed if available, else filtered); false before first_row.
   bool At(std::size_t column, std::size_t row, Eigen::Vector3d* x, Eigen::Matrix3d* P) const;
+
+  // Reports, in column units (degrees for _deg columns; docs/rk-smooth-singer-resample.md "Report").
+  // {column: {updates, meas_sigma, meas_sigma_estimated, accel_sigma, nis_mean}}; `counts` adds missing
+  // and nis_count. A NIS without updates is null.
+  nlohmann::json ColumnsJson(const Series& series, bool counts) const;
+  // The "summary" rk-run copies: {"nis_mean": {column: mean NIS or null}, "rows_lost": n}.
+  nlohmann::json SummaryJson(const Series& series) const;
+  // rk-smooth singer's report body: smoothed, maneuver_time_s, rows, rows_ok, rows_predicted, rows_lost,
+  // columns (with counts) and summary.
+  nlohmann::json ToJson(const Series& series, double maneuver_time_s) const;
 };
 
 // Robust σ of white noise from the k-th differences of the usable (finite) values; angles
@@ -149,5 +166,7 @@ std::vector<double> ColumnUnitsToInternal(const std::vector<double>& values, con
 // True if an angle column is written in [0, 360): azimuth-like name (starts with "az" or
 // "yaw", SPEC.md §2), or no input value < 0 and some > 180° (the aukf rule); else (−180, 180].
 bool AngleColumnIs360(const std::string& column, const std::vector<double>& values_rad);
+// AngleColumnIs360 of every column of `series` (false for a column that is not an angle).
+std::vector<bool> AngleColumnsIn360(const Series& series);
 
 }  // namespace rk::filter

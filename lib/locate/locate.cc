@@ -55,6 +55,13 @@ double LocateResult::RangeCoverage() const {
   return static_cast<double>(rows_with_range) / static_cast<double>(rows_with_los);
 }
 
+io::Json LocateResult::SummaryJson() const {
+  const double coverage = RangeCoverage();
+  return {{"range_coverage", std::isfinite(coverage) ? io::Json(coverage) : io::Json(nullptr)},
+          {"rows_with_los", rows_with_los},
+          {"rows_with_range", rows_with_range}};
+}
+
 static RangeStatus FromInterpStatus(track::InterpStatus s) {
   switch (s) {
     case track::InterpStatus::kOk:

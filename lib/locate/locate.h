@@ -84,6 +84,8 @@ struct LocateResult {
   std::size_t range_device_errors = 0;
   // Fraction of rows with a line of sight that also got a range (NaN if none).
   double RangeCoverage() const;
+  // The report's "summary" (docs/rk-locate.md "Report"): the headline figures rk-run copies.
+  io::Json SummaryJson() const;
 };
 
 // Throws rk::Error: DataError naming the turret log if it covers no frame

@@ -7,6 +7,7 @@
 
 #include "geo/angles.h"
 #include "io/error.h"
+#include "io/json_util.h"
 #include "pose/reproj_refine.h"
 
 namespace rk::pose {
@@ -80,6 +81,14 @@ const char* PoseNoteName(PoseNote note) {
 }
 
 double AttitudeOiResult::MeanChi2PerDof() const { return dof_sum > 0 ? chi2_sum / dof_sum : std::nan(""); }
+
+nlohmann::json AttitudeOiResult::SummaryJson() const {
+  const double c2 = MeanChi2PerDof();
+  return {{"frames", rows.size()},
+          {"mean_chi2_per_dof", std::isfinite(c2) ? io::Json(c2) : io::Json(nullptr)},
+          {"poses", rows_by_status[static_cast<std::size_t>(RowStatus::kOk)]},
+          {"outliers_rejected", outliers_rejected}};
+}
 
 void StationPose(const camera::CameraModel& camera, const geo::AzEl& boresight, const Eigen::Matrix3d& R_cam_body,
                  const Eigen::Vector3d& t_cam, Eigen::Vector3d* p_enu, Eigen::Matrix3d* R_enu_body) {

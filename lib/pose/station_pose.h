@@ -36,6 +36,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <nlohmann/json_fwd.hpp>
 #include <vector>
 
 #include "camera/camera_model.h"
@@ -96,6 +97,8 @@ struct AttitudeOiResult {
   double dof_sum = 0.0;
   // Mean χ²/dof over the rows with a pose (≈ 1 when sigma_px is right; NaN if none).
   double MeanChi2PerDof() const;
+  // The report's "summary" (docs/rk-attitude.md "Report"): the headline figures rk-run copies.
+  nlohmann::json SummaryJson() const;
 };
 
 // Throws DataError naming file:line:col for a pixel outside the camera's image, and naming the

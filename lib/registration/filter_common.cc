@@ -164,4 +164,19 @@ io::Json EstimateJson(const RegistrationInput& input, const BiasVector& x, const
   return j;
 }
 
+io::Json RegistrationResult::ToJson(const RegistrationInput& input) const {
+  io::Json j;
+  j["radars"] = {input.radars[0], input.radars[1]};
+  j["input"] = input.summary.ToJson(input.radars);
+  const io::Json est = EstimateJson(input, x, P);
+  for (auto it = est.begin(); it != est.end(); ++it) j[it.key()] = it.value();
+  j["stats"] = stats;
+  if (j["stats"].contains("options")) {
+    j["options"] = j["stats"]["options"];
+    j["stats"].erase("options");
+  }
+  j["summary"] = {{"estimate", est["estimate"]}, {"sigma", est["sigma"]}};
+  return j;
+}
+
 }  // namespace rk::registration

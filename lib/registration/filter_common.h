@@ -74,6 +74,10 @@ struct RegistrationResult {
   BiasVector x = BiasVector::Zero();  // final estimate
   BiasMatrix P = BiasMatrix::Zero();  // its covariance
   io::Json stats = io::Json::object();  // method-specific statistics (counters, options)
+
+  // The report's body (docs/rk-register.md "Report"): radars, input, estimate, sigma, correlation,
+  // stats, options, and the "summary" rk-run copies: the final estimate and its 1-sigma per radar.
+  io::Json ToJson(const RegistrationInput& input) const;
 };
 
 // Biases CSV of SPEC.md §2.1: t_s + per radar R: R_range_m,R_az_deg,R_el_deg,R_yaw_deg,

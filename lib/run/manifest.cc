@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <map>
 #include <regex>
 #include <set>
 #include <utility>
@@ -16,18 +15,19 @@ namespace fs = std::filesystem;
 using io::Json;
 
 const std::vector<StepKindInfo>& StepKinds() {
+  static const std::vector<std::string> kVideo = {"video", "frames", "fps", "t0"};
   static const std::vector<StepKindInfo> kinds = {
-      {"extract-beacon", "beacon", "rk-extract", "beacon"},
-      {"locate", "beacon", "rk-locate", ""},
-      {"smooth", "beacon", "rk-smooth", "singer"},
-      {"resample-range", "beacon", "rk-smooth", "resample"},
-      {"extract-features", "features", "rk-extract", "features"},
-      {"attitude-oi", "features", "rk-attitude", "oi"},
-      {"extract-silhouette", "silhouette", "rk-extract", "silhouette"},
-      {"attitude-cylinder", "silhouette", "rk-attitude", "cylinder"},
-      {"register", "radar", "rk-register", "bernoulli"},
-      {"register-batch", "radar", "rk-register", "batch"},
-      {"plot", "*", "rk-plot", ""},
+      {"extract-beacon", "beacon", "rk-extract", "beacon", kVideo, {"decode-only"}},
+      {"locate", "beacon", "rk-locate", "", {"track", "camera", "turret", "range"}},
+      {"smooth", "beacon", "rk-smooth", "singer", {"i", "input"}},
+      {"resample-range", "beacon", "rk-smooth", "resample", {"i", "input", "at"}, {"rate", "t0", "t1"}},
+      {"extract-features", "features", "rk-extract", "features", {"video", "frames", "fps", "t0", "target"}},
+      {"attitude-oi", "features", "rk-attitude", "oi", {"points", "camera", "target", "turret", "boresight"}},
+      {"extract-silhouette", "silhouette", "rk-extract", "silhouette", kVideo},
+      {"attitude-cylinder", "silhouette", "rk-attitude", "cylinder", {"points", "theodolite", "camera", "target"}},
+      {"register", "radar", "rk-register", "bernoulli", {"plots", "nav"}},
+      {"register-batch", "radar", "rk-register", "batch", {"plots", "nav"}},
+      {"plot", "*", "rk-plot", "", {"i", "input"}},
   };
   return kinds;
 }
@@ -39,24 +39,16 @@ const StepKindInfo* FindStepKind(const std::string& kind) {
   return nullptr;
 }
 
-bool IsReservedOption(const std::string& kind, const std::string& option) {
+bool IsReservedOption(const StepKindInfo& kind, const std::string& option) {
   static const std::set<std::string> common = {"help", "h", "version", "report", "quiet", "q", "o", "output"};
-  if (common.count(option)) return true;
-  static const std::map<std::string, std::set<std::string>> per_kind = {
-      {"extract-beacon", {"video", "frames", "fps", "t0", "decode-only"}},
-      {"extract-features", {"video", "frames", "fps", "t0", "target"}},
-      {"extract-silhouette", {"video", "frames", "fps", "t0"}},
-      {"locate", {"track", "camera", "turret", "range"}},
-      {"smooth", {"i", "input"}},
-      {"resample-range", {"i", "input", "at", "rate", "t0", "t1"}},
-      {"attitude-oi", {"points", "camera", "target", "turret", "boresight"}},
-      {"attitude-cylinder", {"points", "theodolite", "camera", "target"}},
-      {"register", {"plots", "nav"}},
-      {"register-batch", {"plots", "nav"}},
-      {"plot", {"i", "input"}},
-  };
-  auto it = per_kind.find(kind);
-  return it != per_kind.end() && it->second.count(option) > 0;
+  const auto listed = [&](const std::vector<std::string>& v) { return std::find(v.begin(), v.end(), option) != v.end(); };
+  return common.count(option) > 0 || listed(kind.bindings) || listed(kind.contradicting);
+}
+
+bool IsReservedOption(const std::string& kind, const std::string& option) {
+  static const StepKindInfo kUnknown = {"", "", "", "", {}};
+  const StepKindInfo* info = FindStepKind(kind);
+  return IsReservedOption(info ? *info : kUnknown, option);
 }
 
 Json StepSettings::AsJson() const {

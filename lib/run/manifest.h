@@ -26,12 +26,20 @@ using trial::CameraRole;
 using trial::CameraRoleName;
 using trial::RadarEntry;
 
-// Step kinds rk-run knows, the camera role (or "radar") they belong to, and the tool they run.
+// Step kinds rk-run knows, the camera role (or "radar") they belong to, the tool they run and the
+// options rk-run sets on them itself.
 struct StepKindInfo {
   const char* kind;     // "extract-beacon", "locate", ...
   const char* unit;     // "beacon", "features", "silhouette", "radar" or "*" (any unit: plots)
   const char* tool;     // "rk-extract"
   const char* subcommand;  // "beacon" or "" (single-mode tool)
+  // The input bindings: every option the plan (plan.cc) gives this kind from the manifest, long name and
+  // short alias ("i" for --input) without dashes. The plan can bind no other option (it throws), so a
+  // binding added here is one the manifest's "steps" may not override (IsReservedOption).
+  std::vector<std::string> bindings;
+  // Options that would contradict a binding and so are reserved too (--decode-only writes no track,
+  // --rate/--t0/--t1 compete with --at).
+  std::vector<std::string> contradicting = {};
 };
 const std::vector<StepKindInfo>& StepKinds();
 const StepKindInfo* FindStepKind(const std::string& kind);
@@ -59,7 +67,9 @@ TrialManifest LoadManifest(const std::string& path);
 // The same from text (tests); `manifest_path` names the file in messages and gives the trial dir.
 TrialManifest ParseManifest(const std::string& text, const std::string& manifest_path);
 
-// Options a step's overrides may not set, because rk-run sets them (inputs, outputs, report).
+// Options a step's overrides may not set, because rk-run sets them: the common ones (-o, --report, --quiet,
+// --help, --version) and the kind's bindings and contradicting options (StepKindInfo).
 bool IsReservedOption(const std::string& kind, const std::string& option);
+bool IsReservedOption(const StepKindInfo& kind, const std::string& option);
 
 }  // namespace rk::run

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <map>
+#include <stdexcept>
 
 namespace rk::run {
 using io::Json;
@@ -77,9 +78,21 @@ class PlanBuilder {
     }
     return s;
   }
+  // "--option value" (or "-o value") of an input binding. The option must be one of the kind's
+  // bindings (StepKindInfo::bindings): those are the options a manifest may not override.
+  static void Bind(Step* s, const std::string& option, const std::string& value, bool out_path = false) {
+    std::string name = option;
+    while (!name.empty() && name[0] == '-') name.erase(0, 1);
+    const StepKindInfo* info = FindStepKind(s->kind);
+    if (info == nullptr || std::find(info->bindings.begin(), info->bindings.end(), name) == info->bindings.end()) {
+      throw std::logic_error("rk-run plan: step kind " + s->kind + " binds " + option +
+                             ", which is not among its bindings in StepKinds()");
+    }
+    s->args.push_back({option[0] == '-' ? option : "--" + option});
+    s->args.push_back({value, out_path});
+  }
   static void In(Step* s, const std::string& option, const std::string& path) {
-    s->args.push_back({"--" + option});
-    s->args.push_back({path});
+    Bind(s, option, path);
     s->inputs.push_back({option, path});
   }
   static void Out(Step* s, const std::string& option, const std::string& rel) {
@@ -89,8 +102,7 @@ class PlanBuilder {
   }
   // An input that is another step's product.
   void Upstream(Step* s, const std::string& option, const Step& from, const std::string& rel) {
-    s->args.push_back({option});
-    s->args.push_back({rel, true});
+    Bind(s, option, rel, true);
     Depend(s, from);
   }
   void Depend(Step* s, const Step& from) {
@@ -115,12 +127,8 @@ class PlanBuilder {
     if (!cam.frames.empty()) {
       In(s, "frames", cam.frames);
     } else {
-      s->args.push_back({"--fps"});
-      s->args.push_back({NumberText(Json(*cam.fps))});
-      if (cam.t0_s) {
-        s->args.push_back({"--t0"});
-        s->args.push_back({NumberText(Json(*cam.t0_s))});
-      }
+      Bind(s, "fps", NumberText(Json(*cam.fps)));
+      if (cam.t0_s) Bind(s, "t0", NumberText(Json(*cam.t0_s)));
     }
   }
   void Plot(const Step& of, const std::string& series, const std::string& table, const std::string& columns,
@@ -205,8 +213,7 @@ class PlanBuilder {
     } else if (cam.frames.empty()) {
       NotApplicable(&rs, "the camera has no frame-times CSV");
     } else {
-      rs.args.push_back({"-i"});
-      rs.args.push_back({m_.range});
+      Bind(&rs, "-i", m_.range);
       rs.inputs.push_back({"input", m_.range});
       const bool user_columns_rs = std::any_of(rs.settings.options.begin(), rs.settings.options.end(),
                                                [](const auto& o) { return o.first == "columns"; });
@@ -237,8 +244,8 @@ class PlanBuilder {
     if (!m_.turret.empty()) {
       In(&at, "turret", m_.turret);
     } else if (cam.boresight_deg) {
-      at.args.push_back({"--boresight"});
-      at.args.push_back({NumberText(Json(cam.boresight_deg->first)) + "," + NumberText(Json(cam.boresight_deg->second))});
+      Bind(&at, "boresight",
+           NumberText(Json(cam.boresight_deg->first)) + "," + NumberText(Json(cam.boresight_deg->second)));
     } else {
       NotApplicable(&at, "the manifest has no turret log and the camera no boresight_deg");
     }

@@ -38,24 +38,17 @@ Json TableQuality(const std::string& path) {
   return q;
 }
 
-// A few headline figures from the tools' own reports, where they exist.
-void AddToolFigures(const std::string& kind, const Json& rep, Json* q) {
-  if (!rep.is_object()) return;
-  if (kind == "extract-beacon") {
-    if (rep.contains("mean_ncc")) (*q)["mean_ncc"] = rep["mean_ncc"];
-    if (rep.contains("frames")) (*q)["frames"] = rep["frames"];
-  } else if (kind == "locate") {
-    if (rep.contains("range_coverage")) (*q)["range_coverage"] = rep["range_coverage"];
-  } else if (kind == "smooth" && rep.contains("columns") && rep["columns"].is_object()) {
-    Json nis = Json::object();
-    for (const auto& [c, v] : rep["columns"].items()) {
-      if (v.is_object() && v.contains("nis_mean")) nis[c] = v["nis_mean"];
-    }
-    (*q)["nis_mean"] = nis;
+}  // namespace
+
+// The tool's headline figures: every member of its report's "summary" object (docs/architecture.md
+// "Adding an rk-run step"), whatever the step kind. The table's own figures above (rows, status,
+// ok_fraction, error) are rk-run's and stay: a summary member of the same name is left out.
+void AddToolSummary(const Json& tool_report, Json* quality) {
+  if (!tool_report.is_object() || !tool_report.contains("summary") || !tool_report["summary"].is_object()) return;
+  for (const auto& [k, v] : tool_report["summary"].items()) {
+    if (!quality->contains(k)) (*quality)[k] = v;
   }
 }
-
-}  // namespace
 
 // What a step that ran adds to its full record `j`: time, log, products with their digests, the tool's
 // report and the quality figures.
@@ -89,7 +82,7 @@ Json TrialRun::StepOutcomeJson(const StepRun& r) const {
     }
     if (r.status == "ok" && !r.step.table.empty()) {
       Json q = TableQuality((fs::path(work_) / r.step.table).string());
-      AddToolFigures(r.step.kind, j.value("tool_report", Json()), &q);
+      AddToolSummary(j.value("tool_report", Json()), &q);
       j["quality"] = q;
     }
   }

@@ -29,6 +29,10 @@
 
 namespace rk::run::internal {
 
+// Copies every member of a tool report's "summary" object into a step's quality figures `quality`
+// (run_report.cc), except a name the figures already have; no per-kind code (docs/rk-run.md).
+void AddToolSummary(const io::Json& tool_report, io::Json* quality);
+
 // One step of the plan with its decision and outcome.
 struct StepRun {
   explicit StepRun(const Step& s) : step(s) {}

@@ -195,6 +195,15 @@ TEST(Resample, TimesAtRateAndOptions) {
   EXPECT_TRUE(o.Check(&why));
   o.margin_s = -1.0;
   EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--margin must be >= 0 s");
+  o = ResampleOptions{};
+  o.singer.maneuver_time_s = -2.0;  // the nested Singer option, reached through the resample table
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--maneuver-time must be > 0 s");
+  o.singer.maneuver_time_s = 7.0;
+  o.method = ResampleMethod::kCubic;
+  EXPECT_EQ(o.ToJson(), io::Json::parse(R"({"method": "cubic", "max_gap_s": 0.0, "margin_s": 0.0,
+                                            "maneuver_time_s": 7.0})"));
   ResampleMethod m;
   EXPECT_TRUE(ParseResampleMethod("cubic", &m));
   EXPECT_FALSE(ParseResampleMethod("spline", &m));

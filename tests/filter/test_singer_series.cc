@@ -205,6 +205,7 @@ TEST(SingerSeries, OptionsAndNames) {
   EXPECT_TRUE(o.Check(&why));
   o.maneuver_time_s = 0.0;
   EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--maneuver-time must be > 0 s");
   o = SingerSeriesOptions{};
   o.meas_sigma = {0.0};
   EXPECT_FALSE(o.Check(&why));

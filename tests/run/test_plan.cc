@@ -120,5 +120,51 @@ TEST(Plan, FeaturesSilhouetteRadar) {
   EXPECT_EQ(Argv(Find(plan, "radar/register-batch"))[1], "batch");
 }
 
+// The reserved options come from the plan's bindings: every option the plan gives a step from the
+// manifest (an argument before the overrides, other than the defaults --columns/--title a manifest may
+// replace) is reserved for its kind, and a manifest that sets one fails with the one message.
+TEST(Plan, EveryBoundOptionIsReserved) {
+  const std::string text = R"({"cameras": {
+      "az": {"video": "az/v.mkv", "frames": "az/frames.csv", "model": "az/camera.json", "role": "beacon"},
+      "att": {"video": "att/v.mkv", "fps": 25, "t0_s": 1.5, "model": "att/camera.json", "role": "features",
+              "target": "target.json", "boresight_deg": [10, 20]},
+      "sil": {"video": ["sil/v.mkv"], "fps": 25, "t0_s": 1.5, "model": "sil/camera.json",
+              "role": "silhouette", "target": "cyl.json"}},
+    "theodolite": "theo.csv", "range": "range.csv",
+    "radar": {"plots": "radar/plots.csv", "nav": "radar/nav.csv"}})";
+  const std::vector<Step> plan = BuildPlan(ParseManifest(text, "/t/trial.json"), PlanOptions{});
+  std::size_t bound = 0;
+  for (const Step& st : plan) {
+    for (std::size_t i = st.subcommand.empty() ? 0 : 1; i + 1 < st.args.size(); i += 2) {
+      std::string name = st.args[i].text;
+      ASSERT_EQ(name[0], '-') << st.id << " argument " << i;
+      while (name[0] == '-') name.erase(0, 1);
+      if (name == "columns" || name == "title") continue;
+      EXPECT_TRUE(IsReservedOption(st.kind, name)) << st.id << " --" << name;
+      ++bound;
+    }
+  }
+  EXPECT_GE(bound, 30u);
+  EXPECT_NE(ManifestError(WithSteps(R"({"smooth": {"input": "x.csv"}})"))
+                .find("option '--input' is set by rk-run from the manifest and cannot be overridden"),
+            std::string::npos);
+}
+
+// A binding added to a kind's table is reserved at once; the common options are reserved for every kind.
+TEST(Plan, BindingAddedToTheTableIsReserved) {
+  StepKindInfo kind = *FindStepKind("locate");
+  EXPECT_FALSE(IsReservedOption(kind, "pointing-model"));
+  kind.bindings.push_back("pointing-model");
+  EXPECT_TRUE(IsReservedOption(kind, "pointing-model"));
+  EXPECT_FALSE(IsReservedOption("locate", "range-interp"));
+  EXPECT_TRUE(IsReservedOption("resample-range", "rate"));  // contradicts --at
+  EXPECT_TRUE(IsReservedOption("extract-beacon", "decode-only"));
+  for (const char* common : {"help", "h", "version", "report", "quiet", "q", "o", "output"}) {
+    EXPECT_TRUE(IsReservedOption("plot", common)) << common;
+    EXPECT_TRUE(IsReservedOption("no-such-kind", common)) << common;
+  }
+  EXPECT_FALSE(IsReservedOption("no-such-kind", "input"));
+}
+
 }  // namespace
 }  // namespace rk::run

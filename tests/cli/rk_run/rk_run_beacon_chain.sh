@@ -24,6 +24,17 @@ assert d["tools"]["rk-locate"]["version"].startswith("rk-locate (rangekit) ")
 assert steps["az/locate"]["time"]["wall_s"] >= 0 and steps["az/locate"]["tool_report"]["tool"] == "rk-locate"
 assert steps["az/extract-beacon"]["quality"]["status"]["ok"] >= 45   # 60 frames, 10 occluded
 assert steps["az/locate"]["command_line"][:3] == ["rk-locate", "--track", "out/az/track.csv"]
+# Quality figures: each step's quality holds its tool's report "summary", member by member (the old
+# per-kind figures mean_ncc/frames, range_coverage, nis_mean among them), rk-run's table figures kept.
+for sid, keys in {"az/extract-beacon": ["mean_ncc", "frames"], "az/locate": ["range_coverage"],
+                  "az/smooth": ["nis_mean"], "az/resample-range": ["rows_ok"]}.items():
+    q, summary = steps[sid]["quality"], steps[sid]["tool_report"]["summary"]
+    for k in keys:
+        assert k in summary, (sid, k, summary)
+    for k, v in summary.items():
+        assert k in ("rows", "status") or q[k] == v, (sid, k, q.get(k), v)
+assert set(steps["az/smooth"]["quality"]["nis_mean"]) == {"az_deg", "el_deg", "range_m", "e_m", "n_m", "u_m"}
+assert steps["az/extract-beacon"]["quality"]["frames"] == 60 and steps["az/locate"]["quality"]["range_coverage"] > 0.5
 print("report ok")
 PY
 head -c 8 "$t/out/plots/az_located.png" | od -c | grep -q 'P   N   G'
