@@ -1,5 +1,5 @@
-// Shared by the budget tests: the "locate" budget model (analysis/budget_locate.h) on a camera with lens
-// distortion and a tilted mount, at a given boresight and pixel, 850 m away.
+// Shared by the budget tests: the Jacobian tolerance, and the "locate" budget model (analysis/budget_locate.h)
+// on a camera with lens distortion and a tilted mount, at a given boresight and pixel, 850 m away.
 #pragma once
 
 #include <memory>
@@ -11,6 +11,9 @@
 #include "io/json_util.h"
 
 namespace rk::analysis {
+
+// Central differences with steps 1e-7 rad / 1e-4 px / 1e-6 m have truncation + rounding ~1e-8 relative.
+inline constexpr double kJacobianRel = 1e-6;
 
 inline camera::CameraModel DistortedCamera() {
   camera::CameraModel c = camera::DefaultCamera();

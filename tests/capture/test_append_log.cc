@@ -6,6 +6,7 @@
 
 #include "capture/append_log.h"
 #include "capture/durable_file.h"
+#include "io/error.h"
 #include "io/file_util.h"
 #include "test_temp_dir.h"
 

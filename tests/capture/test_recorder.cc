@@ -9,6 +9,7 @@
 #include <thread>
 
 #include "capture/recorder.h"
+#include "capture/recover.h"
 #include "io/error.h"
 #include "io/file_util.h"
 #include "io/json_util.h"

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <gtest/gtest.h>
+
 #include <cstdint>
 #include <functional>
 #include <string>
@@ -14,6 +15,7 @@
 #include "io/csv.h"
 #include "io/file_util.h"
 #include "io/json_util.h"
+#include "trial/layout.h"
 #include "video/frame_source.h"
 
 namespace rk::capture {
