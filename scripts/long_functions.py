@@ -6,12 +6,13 @@
 A function's length is counted from the first line of its declaration to its closing brace, both
 included. Lambdas and local classes count towards the function that holds them; member functions
 defined in a class body are functions of their own. A function may stay long when the comment block
-right above it says why, in a line containing "Long function:". The scan is a plain brace matcher over
+right above it says why, in a line `// Long function: <the reason>` (docs/architecture.md, "A long
+function"); template lines between the comment and the function are allowed. The scan is a plain brace matcher over
 the source with comments, string and character literals and preprocessor lines blanked out (no
 compiler needed, so its answer does not depend on the build); it prints one line per long function,
 longest first, and the longest function of all.
 
---check: exit 1 when a long function has no reason written above it.
+--check: exit 1 when a long function has no reason written above it, naming each such function on stderr.
 """
 import argparse
 import os
@@ -207,6 +208,11 @@ def main():
         length, path, first, name, _ = rows[0]
         print(f"longest: {path}:{first}: {name}: {length} lines ({len(rows)} functions scanned)")
     if args.check and missing:
+        for length, path, first, name, why in rows:
+            if length <= args.max_lines:
+                break
+            if not why:
+                print(f"{path}:{first}: {name}: {length} lines, no '// {REASON_MARK} <reason>' above it", file=sys.stderr)
         print(f"{missing} function(s) over {args.max_lines} lines without a '{REASON_MARK}' comment above them",
               file=sys.stderr)
         return 1

@@ -177,6 +177,70 @@ struct LmPass {
   }
 };
 
+// The fit's window: the initial outline (nose cone at 1/4 of the length) grown by `margin`, inside the frame;
+// false when the outline itself leaves the frame.
+bool InitialWindow(const cv::Mat& frame, const camera::CameraModel& cam, double az_rad, double el_rad,
+                   const target::CylinderShape& target, const Eigen::Vector3d& tail_centre_enu, double yaw_rad,
+                   double pitch_rad, int margin, cv::Rect* roi) {
+  target::CylinderPose pose0;
+  pose0.tail_centre_enu = tail_centre_enu;
+  pose0.yaw_rad = yaw_rad;
+  pose0.pitch_rad = pitch_rad;
+  target::CylinderShape shape0 = target;
+  shape0.nose_length_m = 0.25 * target.length_m;
+  const std::vector<Eigen::Vector2d> poly0 = target::SilhouettePolygon(cam, pose0, shape0, az_rad, el_rad, 64);
+  if (poly0.size() < 3) return false;
+  const cv::Rect outline = target::PolygonWindow(poly0, 0);
+  if (outline.x < 0 || outline.y < 0 || outline.br().x > frame.cols || outline.br().y > frame.rows) return false;
+  *roi = target::PolygonWindow(poly0, margin);
+  *roi &= cv::Rect(0, 0, frame.cols, frame.rows);
+  return true;
+}
+
+// Tail centre as offsets from its start along two directions across the line of sight and one along it: the
+// range is seen far more weakly (through the image scale) than the lateral position, and with its own
+// coordinate Marquardt's scaling damps it by its own curvature (in ENU coordinates LM crept along the
+// range–yaw valley for ten iterations).
+Eigen::Matrix3d AlongSightBasis(const Eigen::Vector3d& tail_centre_enu) {
+  const Eigen::Vector3d los = tail_centre_enu.normalized();
+  Eigen::Vector3d across = los.cross(Eigen::Vector3d::UnitZ());
+  if (across.norm() < 1e-6) across = los.cross(Eigen::Vector3d::UnitX());
+  across.normalize();
+  Eigen::Matrix3d basis;
+  basis << across, los.cross(across), los;
+  return basis;
+}
+
+// Nose-cone length: best of a coarse scan from `start` (the cost is flat in it far from the truth only near
+// the tip). Returns the cost (infinite if no model could be evaluated), the parameters in p, residuals in r;
+// `start` is a copy, so p may be the caller's start.
+double ScanNoseLength(Problem& prob, const Params start, double length_m, Params* p, Eigen::VectorXd* r) {
+  Eigen::VectorXd rt;
+  double cost = std::numeric_limits<double>::infinity();
+  for (double frac : {0.1, 0.2, 0.3, 0.4, 0.5, 0.6}) {
+    Params q = start;
+    q(5) = frac * length_m;
+    if (prob.Residual(q, &rt) && rt.squaredNorm() < cost) {
+      cost = rt.squaredNorm();
+      *p = q;
+      *r = rt;
+    }
+  }
+  return cost;
+}
+
+// The noise variance per pixel modelled as c0 + c1 · signal (read + shot noise: the sky and the body differ
+// by their shot noise), fitted to the squared residuals r of the unweighted pass, becomes the weights.
+void WeightByNoiseModel(Problem& prob, const Eigen::VectorXd& r) {
+  const Eigen::VectorXd m = prob.Model(r), u2 = prob.Unwhiten(r).array().square().matrix();
+  Eigen::Matrix2d Nv;
+  Nv << static_cast<double>(m.size()), m.sum(), m.sum(), m.squaredNorm();
+  const Eigen::Vector2d c = Nv.ldlt().solve(Eigen::Vector2d(u2.sum(), m.dot(u2)));
+  const double mean = u2.mean();
+  const bool usable = c.allFinite() && c(1) >= 0.0 && c(0) > 0.05 * mean;
+  prob.SetWeights(m, usable ? c(0) : mean, usable ? c(1) : 0.0);
+}
+
 }  // namespace
 
 bool CylinderImageFitOptions::Check(std::string* why) const {
@@ -212,34 +276,16 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
     return out;
 
   // Window: the initial outline (nose cone at 1/4 of the length) + 4σ_max + margin, inside the frame.
-  target::CylinderPose pose0;
-  pose0.tail_centre_enu = tail_centre_enu;
-  pose0.yaw_rad = yaw_rad;
-  pose0.pitch_rad = pitch_rad;
-  target::CylinderShape shape0 = target;
-  shape0.nose_length_m = 0.25 * target.length_m;
-  const std::vector<Eigen::Vector2d> poly0 = target::SilhouettePolygon(cam, pose0, shape0, az_rad, el_rad, 64);
-  if (poly0.size() < 3) return out;
-  const cv::Rect outline = target::PolygonWindow(poly0, 0);
-  if (outline.x < 0 || outline.y < 0 || outline.br().x > frame.cols || outline.br().y > frame.rows)
-    return out;
   const double sigma_cap = std::max(2.0 * opt.initial_psf_sigma_px, 1.5);
   const int margin = static_cast<int>(std::ceil(4.0 * sigma_cap + opt.margin_px));
-  cv::Rect roi = target::PolygonWindow(poly0, margin);
-  roi &= cv::Rect(0, 0, frame.cols, frame.rows);
+  cv::Rect roi;
+  if (!InitialWindow(frame, cam, az_rad, el_rad, target, tail_centre_enu, yaw_rad, pitch_rad, margin, &roi)) {
+    return out;
+  }
   cv::Mat window;
   frame(roi).convertTo(window, CV_64F);
   const int kernel = 2 * static_cast<int>(std::ceil(4.0 * sigma_cap)) + 1;
-  // Tail centre as offsets from its start along two directions across the line of sight and one along it: the
-  // range is seen far more weakly (through the image scale) than the lateral position, and with its own
-  // coordinate Marquardt's scaling damps it by its own curvature (in ENU coordinates LM crept along the
-  // range–yaw valley for ten iterations).
-  const Eigen::Vector3d los = tail_centre_enu.normalized();
-  Eigen::Vector3d across = los.cross(Eigen::Vector3d::UnitZ());
-  if (across.norm() < 1e-6) across = los.cross(Eigen::Vector3d::UnitX());
-  across.normalize();
-  Eigen::Matrix3d basis;
-  basis << across, los.cross(across), los;
+  const Eigen::Matrix3d basis = AlongSightBasis(tail_centre_enu);
   Problem prob(window, roi, cam, az_rad, el_rad, target, opt.rim_samples, kernel, tail_centre_enu, basis);
 
   // Steps that move the outline by ~0.02 px: the central-difference steps and the parameter scaling.
@@ -250,19 +296,9 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
   Params p;
   p << 0.0, 0.0, 0.0, yaw_rad, pitch_rad, 0.25 * target.length_m, opt.initial_psf_sigma_px;
 
-  // Nose-cone length: best of a coarse scan (the cost is flat in it far from the truth only near the tip).
-  Eigen::VectorXd r, rt;
-  double cost = std::numeric_limits<double>::infinity();
-  const Params start = p;
-  for (double frac : {0.1, 0.2, 0.3, 0.4, 0.5, 0.6}) {
-    Params q = start;
-    q(5) = frac * target.length_m;
-    if (prob.Residual(q, &rt) && rt.squaredNorm() < cost) {
-      cost = rt.squaredNorm();
-      p = q;
-      r = rt;
-    }
-  }
+  // Nose-cone length: best of a coarse scan.
+  Eigen::VectorXd r;
+  double cost = ScanNoseLength(prob, p, target.length_m, &p, &r);
   if (!std::isfinite(cost)) return out;
 
   // Levenberg–Marquardt from p (numeric::LevenbergMarquardt with the damping below); false if a model
@@ -297,13 +333,7 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
   bool converged = false;
   if (!levenberg_marquardt(opt.max_iterations, 1e-2, 1e-2, &converged)) return out;
   {
-    const Eigen::VectorXd m = prob.Model(r), u2 = prob.Unwhiten(r).array().square().matrix();
-    Eigen::Matrix2d Nv;
-    Nv << static_cast<double>(m.size()), m.sum(), m.sum(), m.squaredNorm();
-    const Eigen::Vector2d c = Nv.ldlt().solve(Eigen::Vector2d(u2.sum(), m.dot(u2)));
-    const double mean = u2.mean();
-    const bool usable = c.allFinite() && c(1) >= 0.0 && c(0) > 0.05 * mean;
-    prob.SetWeights(m, usable ? c(0) : mean, usable ? c(1) : 0.0);
+    WeightByNoiseModel(prob, r);
     if (!prob.Residual(p, &r)) return out;
     cost = r.squaredNorm();
     if (!levenberg_marquardt(opt.max_iterations, 1e-3, 1e-4, &converged)) return out;

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <regex>
 
@@ -45,6 +46,18 @@ struct LogText {
   std::vector<std::size_t> line_start;  // offset of each line (complete lines only)
 };
 
+// A video segment of a camera folder; frames: whole frames on disk, -1 removed (no frames), -2 unreadable.
+struct SegmentOnDisk {
+  int index = 0;
+  std::string rel;      // manifest path
+  std::string path;     // file (y4m) or folder (pgm)
+  bool pgm = false;
+  std::int64_t frames = 0;
+  // y4m
+  std::int64_t header_bytes = 0, frame_bytes = 0;
+  FrameFormat format;
+};
+
 class Recovery {
  public:
   Recovery(std::string dir, const RecoverOptions& o) : dir_(std::move(dir)), o_(o) { s_.dir = dir_; }
@@ -64,6 +77,17 @@ class Recovery {
   void CheckRange(const std::string& rel);
   void CheckTurret(const std::string& rel);
   std::vector<std::string> RecoverCamera(const std::string& name, const io::Json& cam, const io::Json& stream);
+  // RecoverCamera's stages: the segments of the folder, whole frames in each, then frames.csv against them.
+  std::vector<SegmentOnDisk> ListSegments(const std::string& name, const std::string& folder);
+  void CheckY4mSegment(SegmentOnDisk* s, std::optional<FrameFormat>* first_format);
+  void CheckPgmSegment(const std::string& name, SegmentOnDisk* s);
+  bool ReadRowSegments(const io::CsvTable& table, std::vector<int>* row_segment,
+                       std::map<int, std::int64_t>* rows_per_segment);
+  bool CutRowsWithoutFrames(const std::string& frames_rel, const LogText& text, const io::CsvTable& table,
+                            const std::vector<SegmentOnDisk>& segs, int last_row_segment,
+                            std::vector<int>* row_segment, std::map<int, std::int64_t>* rows_per_segment);
+  bool CutFramesWithoutRows(std::vector<SegmentOnDisk>* segs, std::map<int, std::int64_t>* rows_per_segment,
+                            int last_row_segment, std::vector<std::string>* video, std::int64_t* frames_total);
 
   std::string dir_;
   RecoverOptions o_;
@@ -179,26 +203,55 @@ void Recovery::CheckTurret(const std::string& rel) {
   }
 }
 
-struct SegmentOnDisk {
-  int index = 0;
-  std::string rel;      // manifest path
-  std::string path;     // file (y4m) or folder (pgm)
-  bool pgm = false;
-  std::int64_t frames = 0;
-  // y4m
-  std::int64_t header_bytes = 0, frame_bytes = 0;
-  FrameFormat format;
-};
-
 std::vector<std::string> Recovery::RecoverCamera(const std::string& name, const io::Json& cam,
                                                  const io::Json& /*stream*/) {
   const std::string folder = Path(name);
-  std::vector<SegmentOnDisk> segs;
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) {
     Problem(name + ": camera folder missing");
     return {};
   }
+  std::vector<SegmentOnDisk> segs = ListSegments(name, folder);
+
+  // 1. Every segment: whole frames only.
+  std::optional<FrameFormat> first_format;
+  for (auto& s : segs) {
+    if (!s.pgm) {
+      CheckY4mSegment(&s, &first_format);
+    } else {
+      CheckPgmSegment(name, &s);
+    }
+  }
+
+  // 2. frames.csv against the frames on disk, segment by segment.
+  const std::string frames_rel = cam.contains("frames") && cam["frames"].is_string()
+                                     ? cam["frames"].get<std::string>()
+                                     : name + "/" + trial::kFramesFile;
+  const auto text = ReadLog(frames_rel);
+  std::vector<std::string> video;
+  if (!text) return video;
+  const auto table = CheckCsv(frames_rel, *text, {"frame", "t_s", "segment"});
+  if (!table) return video;
+  std::map<int, std::int64_t> rows_per_segment;
+  std::vector<int> row_segment;
+  if (!ReadRowSegments(*table, &row_segment, &rows_per_segment)) return video;
+  for (const auto& s : segs) {
+    if (s.frames == -2) return video;  // reported above; nothing more can be matched
+  }
+  const int last_row_segment = row_segment.empty() ? -1 : row_segment.back();
+  if (!CutRowsWithoutFrames(frames_rel, *text, *table, segs, last_row_segment, &row_segment, &rows_per_segment)) {
+    return video;
+  }
+  std::int64_t frames_total = 0;
+  if (!CutFramesWithoutRows(&segs, &rows_per_segment, last_row_segment, &video, &frames_total)) return video;
+  s_.frames[name] = frames_total;
+  s_.rows[frames_rel] = static_cast<std::int64_t>(row_segment.size());
+  return video;
+}
+
+std::vector<SegmentOnDisk> Recovery::ListSegments(const std::string& name, const std::string& folder) {
+  std::vector<SegmentOnDisk> segs;
+  std::error_code ec;
   static const std::regex y4m_re(R"(seg_(\d{3,})\.y4m)"), pgm_re(R"(seg_(\d{3,}))");
   for (const auto& e : fs::directory_iterator(folder, ec)) {
     const std::string fn = e.path().filename().string();
@@ -219,166 +272,174 @@ std::vector<std::string> Recovery::RecoverCamera(const std::string& name, const 
     segs.push_back(s);
   }
   std::sort(segs.begin(), segs.end(), [](const auto& a, const auto& b) { return a.index < b.index; });
+  return segs;
+}
 
-  // 1. Every segment: whole frames only.
-  std::optional<FrameFormat> first_format;
-  for (auto& s : segs) {
-    if (!s.pgm) {
-      std::ifstream in(s.path, std::ios::binary);
-      std::string header;
-      std::getline(in, header);
-      const std::int64_t size = static_cast<std::int64_t>(fs::file_size(s.path, ec));
-      if (!in || !ParseY4mHeader(header, &s.format)) {
-        if (size == 0 || (size < 256 && header.rfind("YUV4MPEG2", 0) == 0 && header.size() == static_cast<std::size_t>(size))) {
-          Repair(s.rel + ": segment without frames (torn header) removed");
-          Remove(s.path);
-          s.frames = -1;
-        } else {
-          Problem(s.rel + ": not a readable YUV4MPEG2 (mono) header");
-          s.frames = -2;
-        }
-        continue;
-      }
-      s.header_bytes = static_cast<std::int64_t>(header.size()) + 1;
-      s.frame_bytes = 6 + static_cast<std::int64_t>(s.format.width) * s.format.height * (s.format.bit_depth / 8);
-      const std::int64_t whole = (size - s.header_bytes) / s.frame_bytes;
-      const std::int64_t torn = (size - s.header_bytes) % s.frame_bytes;
-      // Every frame starts with its marker.
-      const int fd = ::open(s.path.c_str(), O_RDONLY | O_CLOEXEC);
-      std::int64_t good = 0;
-      for (; good < whole; ++good) {
-        char mark[6];
-        if (::pread(fd, mark, 6, static_cast<off_t>(s.header_bytes + good * s.frame_bytes)) != 6 ||
-            std::memcmp(mark, "FRAME\n", 6) != 0) {
-          break;
-        }
-      }
-      if (fd >= 0) ::close(fd);
-      if (good < whole) {
-        Problem(s.rel + ": frame " + std::to_string(good) + " has no FRAME marker at byte " +
-                std::to_string(s.header_bytes + good * s.frame_bytes) + " (corrupt segment)");
-        s.frames = -2;
-        continue;
-      }
-      if (torn > 0) {
-        Repair(s.rel + ": torn last frame (" + std::to_string(torn) + " bytes) cut off");
-        Truncate(s.path, s.header_bytes + whole * s.frame_bytes);
-      }
-      s.frames = whole;
-      if (first_format && (first_format->width != s.format.width || first_format->height != s.format.height ||
-                           first_format->bit_depth != s.format.bit_depth)) {
-        Problem(s.rel + ": frame size or depth differs from the first segment");
-      }
-      if (!first_format) first_format = s.format;
+// A y4m segment: a readable header, every frame with its marker, a torn last frame cut off.
+void Recovery::CheckY4mSegment(SegmentOnDisk* seg, std::optional<FrameFormat>* first_format) {
+  SegmentOnDisk& s = *seg;
+  std::error_code ec;
+  std::ifstream in(s.path, std::ios::binary);
+  std::string header;
+  std::getline(in, header);
+  const std::int64_t size = static_cast<std::int64_t>(fs::file_size(s.path, ec));
+  if (!in || !ParseY4mHeader(header, &s.format)) {
+    if (size == 0 || (size < 256 && header.rfind("YUV4MPEG2", 0) == 0 && header.size() == static_cast<std::size_t>(size))) {
+      Repair(s.rel + ": segment without frames (torn header) removed");
+      Remove(s.path);
+      s.frames = -1;
     } else {
-      // Hidden temporaries are frames that were being written.
-      for (const auto& e : fs::directory_iterator(s.path, ec)) {
-        const std::string fn = e.path().filename().string();
-        if (!fn.empty() && fn[0] == '.' && fn.size() > 4 && fn.substr(fn.size() - 4) == ".tmp") {
-          Repair(name + "/" + fs::path(s.path).filename().string() + "/" + fn + ": unfinished frame removed");
-          Remove(e.path().string());
-        }
-      }
-      const std::string pattern = (fs::path(s.path) / "%06d.pgm").string();
-      std::int64_t n = 0;
-      while (fs::exists(video::SequenceFramePath(pattern, n), ec)) {
-        const std::string f = video::SequenceFramePath(pattern, n);
-        std::ifstream in(f, std::ios::binary);
-        std::string magic;
-        int w = 0, h = 0, maxval = 0;
-        in >> magic >> w >> h >> maxval;
-        in.get();
-        const std::int64_t want = static_cast<std::int64_t>(in.tellg()) +
-                                  static_cast<std::int64_t>(w) * h * (maxval > 255 ? 2 : 1);
-        if (!in || magic != "P5" || w <= 0 || h <= 0 || static_cast<std::int64_t>(fs::file_size(f, ec)) != want) {
-          Problem(name + "/" + fs::path(s.path).filename().string() + "/" + fs::path(f).filename().string() +
-                  ": not a complete PGM");
-          break;
-        }
-        ++n;
-      }
-      // A file after a missing index would never be read.
-      std::int64_t total = 0;
-      for (const auto& e : fs::directory_iterator(s.path, ec)) {
-        if (e.path().extension() == ".pgm") ++total;
-      }
-      if (total > n) {
-        Problem(s.rel + ": " + std::to_string(total - n) + " frame file(s) after frame " + std::to_string(n) +
-                " are missing or unreadable");
-        s.frames = -2;
-        continue;
-      }
-      s.frames = n;
+      Problem(s.rel + ": not a readable YUV4MPEG2 (mono) header");
+      s.frames = -2;
+    }
+    return;
+  }
+  s.header_bytes = static_cast<std::int64_t>(header.size()) + 1;
+  s.frame_bytes = 6 + static_cast<std::int64_t>(s.format.width) * s.format.height * (s.format.bit_depth / 8);
+  const std::int64_t whole = (size - s.header_bytes) / s.frame_bytes;
+  const std::int64_t torn = (size - s.header_bytes) % s.frame_bytes;
+  // Every frame starts with its marker.
+  const int fd = ::open(s.path.c_str(), O_RDONLY | O_CLOEXEC);
+  std::int64_t good = 0;
+  for (; good < whole; ++good) {
+    char mark[6];
+    if (::pread(fd, mark, 6, static_cast<off_t>(s.header_bytes + good * s.frame_bytes)) != 6 ||
+        std::memcmp(mark, "FRAME\n", 6) != 0) {
+      break;
     }
   }
+  if (fd >= 0) ::close(fd);
+  if (good < whole) {
+    Problem(s.rel + ": frame " + std::to_string(good) + " has no FRAME marker at byte " +
+            std::to_string(s.header_bytes + good * s.frame_bytes) + " (corrupt segment)");
+    s.frames = -2;
+    return;
+  }
+  if (torn > 0) {
+    Repair(s.rel + ": torn last frame (" + std::to_string(torn) + " bytes) cut off");
+    Truncate(s.path, s.header_bytes + whole * s.frame_bytes);
+  }
+  s.frames = whole;
+  if (*first_format && ((*first_format)->width != s.format.width || (*first_format)->height != s.format.height ||
+                        (*first_format)->bit_depth != s.format.bit_depth)) {
+    Problem(s.rel + ": frame size or depth differs from the first segment");
+  }
+  if (!*first_format) *first_format = s.format;
+}
 
-  // 2. frames.csv against the frames on disk, segment by segment.
-  const std::string frames_rel = cam.contains("frames") && cam["frames"].is_string()
-                                     ? cam["frames"].get<std::string>()
-                                     : name + "/" + trial::kFramesFile;
-  const auto text = ReadLog(frames_rel);
-  std::vector<std::string> video;
-  if (!text) return video;
-  const auto table = CheckCsv(frames_rel, *text, {"frame", "t_s", "segment"});
-  if (!table) return video;
-  std::map<int, std::int64_t> rows_per_segment;
-  std::vector<int> row_segment;
+// A PGM segment folder: unfinished frames removed, complete frames counted up to the first gap.
+void Recovery::CheckPgmSegment(const std::string& name, SegmentOnDisk* seg) {
+  SegmentOnDisk& s = *seg;
+  std::error_code ec;
+  // Hidden temporaries are frames that were being written.
+  for (const auto& e : fs::directory_iterator(s.path, ec)) {
+    const std::string fn = e.path().filename().string();
+    if (!fn.empty() && fn[0] == '.' && fn.size() > 4 && fn.substr(fn.size() - 4) == ".tmp") {
+      Repair(name + "/" + fs::path(s.path).filename().string() + "/" + fn + ": unfinished frame removed");
+      Remove(e.path().string());
+    }
+  }
+  const std::string pattern = (fs::path(s.path) / "%06d.pgm").string();
+  std::int64_t n = 0;
+  while (fs::exists(video::SequenceFramePath(pattern, n), ec)) {
+    const std::string f = video::SequenceFramePath(pattern, n);
+    std::ifstream in(f, std::ios::binary);
+    std::string magic;
+    int w = 0, h = 0, maxval = 0;
+    in >> magic >> w >> h >> maxval;
+    in.get();
+    const std::int64_t want = static_cast<std::int64_t>(in.tellg()) +
+                              static_cast<std::int64_t>(w) * h * (maxval > 255 ? 2 : 1);
+    if (!in || magic != "P5" || w <= 0 || h <= 0 || static_cast<std::int64_t>(fs::file_size(f, ec)) != want) {
+      Problem(name + "/" + fs::path(s.path).filename().string() + "/" + fs::path(f).filename().string() +
+              ": not a complete PGM");
+      break;
+    }
+    ++n;
+  }
+  // A file after a missing index would never be read.
+  std::int64_t total = 0;
+  for (const auto& e : fs::directory_iterator(s.path, ec)) {
+    if (e.path().extension() == ".pgm") ++total;
+  }
+  if (total > n) {
+    Problem(s.rel + ": " + std::to_string(total - n) + " frame file(s) after frame " + std::to_string(n) +
+            " are missing or unreadable");
+    s.frames = -2;
+    return;
+  }
+  s.frames = n;
+}
+
+// frames.csv's segment of each row (frame numbers counting up, segments never going back).
+bool Recovery::ReadRowSegments(const io::CsvTable& table, std::vector<int>* row_segment,
+                               std::map<int, std::int64_t>* rows_per_segment) {
   try {
-    const int cf = table->RequireColumn("frame"), cs = table->RequireColumn("segment");
-    for (std::size_t r = 0; r < table->rows(); ++r) {
-      if (table->Int(r, cf) != static_cast<std::int64_t>(r)) {
-        throw table->CellError(r, cf, "frame numbers must count 0, 1, 2, ...");
+    const int cf = table.RequireColumn("frame"), cs = table.RequireColumn("segment");
+    for (std::size_t r = 0; r < table.rows(); ++r) {
+      if (table.Int(r, cf) != static_cast<std::int64_t>(r)) {
+        throw table.CellError(r, cf, "frame numbers must count 0, 1, 2, ...");
       }
-      const int seg = static_cast<int>(table->Int(r, cs));
-      if (!row_segment.empty() && seg < row_segment.back()) throw table->CellError(r, cs, "segment goes backwards");
-      row_segment.push_back(seg);
-      ++rows_per_segment[seg];
+      const int seg = static_cast<int>(table.Int(r, cs));
+      if (!row_segment->empty() && seg < row_segment->back()) throw table.CellError(r, cs, "segment goes backwards");
+      row_segment->push_back(seg);
+      ++(*rows_per_segment)[seg];
     }
   } catch (const Error& e) {
     Problem(e.what());
-    return video;
+    return false;
   }
-  for (const auto& s : segs) {
-    if (s.frames == -2) return video;  // reported above; nothing more can be matched
-  }
-  const int last_row_segment = row_segment.empty() ? -1 : row_segment.back();
-  std::int64_t rows_to_keep = static_cast<std::int64_t>(row_segment.size());
+  return true;
+}
+
+// Rows naming frames that are not on disk: cut from the end of frames.csv, a problem anywhere else.
+bool Recovery::CutRowsWithoutFrames(const std::string& frames_rel, const LogText& text, const io::CsvTable& table,
+                                    const std::vector<SegmentOnDisk>& segs, int last_row_segment,
+                                    std::vector<int>* row_segment, std::map<int, std::int64_t>* rows_per_segment) {
+  std::int64_t rows_to_keep = static_cast<std::int64_t>(row_segment->size());
   std::map<int, const SegmentOnDisk*> by_index;
   for (const auto& s : segs) {
     if (s.frames >= 0) by_index[s.index] = &s;
   }
-  for (const auto& [seg, nrows] : rows_per_segment) {
+  for (const auto& [seg, nrows] : *rows_per_segment) {
     const auto it = by_index.find(seg);
     const std::int64_t on_disk = it == by_index.end() ? 0 : it->second->frames;
     if (nrows > on_disk) {
       if (seg != last_row_segment) {
         Problem(frames_rel + ": segment " + std::to_string(seg) + " has " + std::to_string(nrows) +
                 " rows but only " + std::to_string(on_disk) + " frames on disk (not at the end of the recording)");
-        return video;
+        return false;
       }
       rows_to_keep -= nrows - on_disk;
       Repair(frames_rel + ": " + std::to_string(nrows - on_disk) + " row(s) at the end name frames not on disk; removed");
     }
   }
-  if (rows_to_keep < static_cast<std::int64_t>(row_segment.size())) {
+  if (rows_to_keep < static_cast<std::int64_t>(row_segment->size())) {
     // Cut the file at the first dropped row (found by its line in the file).
-    const std::size_t line = table->Line(static_cast<std::size_t>(rows_to_keep));  // 1-based
-    const std::size_t offset = text->line_start[line - 1];
+    const std::size_t line = table.Line(static_cast<std::size_t>(rows_to_keep));  // 1-based
+    const std::size_t offset = text.line_start[line - 1];
     Truncate(Path(frames_rel), static_cast<std::int64_t>(offset));
-    row_segment.resize(static_cast<std::size_t>(rows_to_keep));
-    rows_per_segment.clear();
-    for (int sgi : row_segment) ++rows_per_segment[sgi];
+    row_segment->resize(static_cast<std::size_t>(rows_to_keep));
+    rows_per_segment->clear();
+    for (int sgi : *row_segment) ++(*rows_per_segment)[sgi];
   }
-  std::int64_t frames_total = 0;
-  for (auto& s : segs) {
+  return true;
+}
+
+// Frames without a row: removed at the end of the recording, a problem anywhere else; empty segments
+// removed. The segments kept go into `video` (in order, also those before a problem).
+bool Recovery::CutFramesWithoutRows(std::vector<SegmentOnDisk>* segs, std::map<int, std::int64_t>* rows_per_segment,
+                                    int last_row_segment, std::vector<std::string>* video,
+                                    std::int64_t* frames_total) {
+  for (auto& s : *segs) {
     if (s.frames < 0) continue;
-    const std::int64_t rows = rows_per_segment.count(s.index) ? rows_per_segment[s.index] : 0;
+    const std::int64_t rows = rows_per_segment->count(s.index) ? (*rows_per_segment)[s.index] : 0;
     if (s.frames > rows) {
       const bool at_end = s.index >= last_row_segment;
       if (!at_end) {
         Problem(s.rel + ": " + std::to_string(s.frames) + " frames but frames.csv has " + std::to_string(rows) +
                 " rows for it (not at the end of the recording)");
-        return video;
+        return false;
       }
       Repair(s.rel + ": " + std::to_string(s.frames - rows) + " frame(s) without a time in frames.csv removed");
       if (s.pgm) {
@@ -394,12 +455,10 @@ std::vector<std::string> Recovery::RecoverCamera(const std::string& name, const 
       Remove(s.path);
       continue;
     }
-    frames_total += s.frames;
-    video.push_back(s.rel);
+    *frames_total += s.frames;
+    video->push_back(s.rel);
   }
-  s_.frames[name] = frames_total;
-  s_.rows[frames_rel] = static_cast<std::int64_t>(row_segment.size());
-  return video;
+  return true;
 }
 
 RecoverSummary Recovery::Run() {

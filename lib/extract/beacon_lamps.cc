@@ -17,57 +17,23 @@ LampEstimator::LampEstimator(const DetectOptions& opt) : opt_(opt) {
   match_.reserve(kMaxLamps);
 }
 
+namespace {
+
+// A pixel's signal above the cluster's background plane.
+double Signal(const cv::Mat& frame, const SpotMeasurement& cl, int x, int y) {
+  const double bg = cl.background_dn + cl.bg_dx * (x - cl.x_px) + cl.bg_dy * (y - cl.y_px);
+  return PixelValue(frame, x, y) - bg;
+}
+
+}  // namespace
+
 bool LampEstimator::Measure(const cv::Mat& frame, const SpotMeasurement& cl, std::vector<LampMeasurement>* lamps) {
   lamps->clear();
   const int m = opt_.margin_px;
   const int x0 = cl.region.x0 - m, y0 = cl.region.y0 - m, x1 = cl.region.x1 + m, y1 = cl.region.y1 + m;
   if (x0 < 0 || y0 < 0 || x1 >= frame.cols || y1 >= frame.rows || cl.noise_dn <= 0) return false;
-  const int w = x1 - x0 + 1, h = y1 - y0 + 1;
-  auto bg = [&](int x, int y) { return cl.background_dn + cl.bg_dx * (x - cl.x_px) + cl.bg_dy * (y - cl.y_px); };
-  auto sig = [&](int x, int y) { return PixelValue(frame, x, y) - bg(x, y); };
   const double thr_grow = opt_.k_grow * cl.noise_dn, thr_det = opt_.k_detect * cl.noise_dn;
-
-  // 8-connected components of pixels ≥ b + k_grow σ.
-  label_.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), -1);
-  comp_.clear();
-  constexpr int reach = 1;  // 8-connected (beacon_lamps.h)
-  for (int sy = y0; sy <= y1; ++sy) {
-    for (int sx = x0; sx <= x1; ++sx) {
-      const std::size_t si = static_cast<std::size_t>((sy - y0) * w + (sx - x0));
-      if (label_[si] >= 0 || sig(sx, sy) < thr_grow) continue;
-      if (static_cast<int>(comp_.size()) > kMaxLamps) return false;
-      const int id = static_cast<int>(comp_.size());
-      Component c;
-      c.x0 = c.x1 = sx;
-      c.y0 = c.y1 = sy;
-      label_[si] = id;
-      stack_.clear();
-      stack_.push_back(static_cast<int>(si));
-      while (!stack_.empty()) {
-        const int p = stack_.back();
-        stack_.pop_back();
-        const int x = x0 + p % w, y = y0 + p / w;
-        const double v = sig(x, y);
-        c.sw += v;
-        c.swx += v * x;
-        c.swy += v * y;
-        c.peak = std::max(c.peak, v);
-        c.x0 = std::min(c.x0, x);
-        c.x1 = std::max(c.x1, x);
-        c.y0 = std::min(c.y0, y);
-        c.y1 = std::max(c.y1, y);
-        for (int yy = std::max(y0, y - reach); yy <= std::min(y1, y + reach); ++yy) {
-          for (int xx = std::max(x0, x - reach); xx <= std::min(x1, x + reach); ++xx) {
-            const std::size_t q = static_cast<std::size_t>((yy - y0) * w + (xx - x0));
-            if (label_[q] >= 0 || sig(xx, yy) < thr_grow) continue;
-            label_[q] = id;
-            stack_.push_back(static_cast<int>(q));
-          }
-        }
-      }
-      comp_.push_back(c);
-    }
-  }
+  if (!LabelComponents(frame, cl, x0, y0, x1, y1, thr_grow)) return false;
   // Lamps: components reaching the detection threshold; their disks.
   disk_.clear();
   for (const Component& c : comp_) {
@@ -87,7 +53,75 @@ bool LampEstimator::Measure(const cv::Mat& frame, const SpotMeasurement& cl, std
       if (dx * dx + dy * dy <= disk_[i].r2) return false;  // another lamp inside the disk: not resolved
     }
   }
-  // Partition: each pixel of a disk goes to the nearest lamp centre.
+  if (!PartitionDisks(frame, cl)) return false;
+  const double var_pix = cl.noise_dn * cl.noise_dn;
+  for (const Disk& d : disk_) {
+    if (!(d.s > 0)) return false;
+    LampMeasurement l;
+    const double ux = d.sx / d.s, uy = d.sy / d.s;
+    l.x_px = d.cx + ux;
+    l.y_px = d.cy + uy;
+    l.flux_dn = d.s;
+    // Σ_p (dx − ux)² = Σ dx² − 2 ux Σ dx + n ux² over the lamp's pixels.
+    l.var_x_px2 = var_pix * std::max(0.0, d.gxx - 2 * ux * d.gx + d.n * ux * ux) / (d.s * d.s);
+    l.var_y_px2 = var_pix * std::max(0.0, d.gyy - 2 * uy * d.gy + d.n * uy * uy) / (d.s * d.s);
+    l.var_flux_dn2 = var_pix * d.n;
+    lamps->push_back(l);
+  }
+  return true;
+}
+
+// 8-connected components of the window [x0, x1] × [y0, y1] (pixels ≥ b + k_grow σ) in comp_; false if there
+// are more than kMaxLamps.
+bool LampEstimator::LabelComponents(const cv::Mat& frame, const SpotMeasurement& cl, int x0, int y0, int x1, int y1,
+                                    double thr_grow) {
+  const int w = x1 - x0 + 1, h = y1 - y0 + 1;
+  label_.assign(static_cast<std::size_t>(w) * static_cast<std::size_t>(h), -1);
+  comp_.clear();
+  constexpr int reach = 1;  // 8-connected (beacon_lamps.h)
+  for (int sy = y0; sy <= y1; ++sy) {
+    for (int sx = x0; sx <= x1; ++sx) {
+      const std::size_t si = static_cast<std::size_t>((sy - y0) * w + (sx - x0));
+      if (label_[si] >= 0 || Signal(frame, cl, sx, sy) < thr_grow) continue;
+      if (static_cast<int>(comp_.size()) > kMaxLamps) return false;
+      const int id = static_cast<int>(comp_.size());
+      Component c;
+      c.x0 = c.x1 = sx;
+      c.y0 = c.y1 = sy;
+      label_[si] = id;
+      stack_.clear();
+      stack_.push_back(static_cast<int>(si));
+      while (!stack_.empty()) {
+        const int p = stack_.back();
+        stack_.pop_back();
+        const int x = x0 + p % w, y = y0 + p / w;
+        const double v = Signal(frame, cl, x, y);
+        c.sw += v;
+        c.swx += v * x;
+        c.swy += v * y;
+        c.peak = std::max(c.peak, v);
+        c.x0 = std::min(c.x0, x);
+        c.x1 = std::max(c.x1, x);
+        c.y0 = std::min(c.y0, y);
+        c.y1 = std::max(c.y1, y);
+        for (int yy = std::max(y0, y - reach); yy <= std::min(y1, y + reach); ++yy) {
+          for (int xx = std::max(x0, x - reach); xx <= std::min(x1, x + reach); ++xx) {
+            const std::size_t q = static_cast<std::size_t>((yy - y0) * w + (xx - x0));
+            if (label_[q] >= 0 || Signal(frame, cl, xx, yy) < thr_grow) continue;
+            label_[q] = id;
+            stack_.push_back(static_cast<int>(q));
+          }
+        }
+      }
+      comp_.push_back(c);
+    }
+  }
+  return true;
+}
+
+// The lamp disks' pixel sums (disk_); false if a disk leaves the frame.
+bool LampEstimator::PartitionDisks(const cv::Mat& frame, const SpotMeasurement& cl) {
+  // Each pixel of a disk goes to the nearest lamp centre.
   int bx0 = frame.cols, by0 = frame.rows, bx1 = -1, by1 = -1;
   for (const Disk& d : disk_) {
     const int r = static_cast<int>(std::sqrt(static_cast<double>(d.r2)));
@@ -110,7 +144,7 @@ bool LampEstimator::Measure(const cv::Mat& frame, const SpotMeasurement& cl, std
       }
       if (best < 0) continue;
       Disk& d = disk_[static_cast<std::size_t>(best)];
-      const double v = sig(x, y);
+      const double v = Signal(frame, cl, x, y);
       const int dx = x - d.cx, dy = y - d.cy;
       d.s += v;
       d.sx += v * dx;
@@ -121,20 +155,6 @@ bool LampEstimator::Measure(const cv::Mat& frame, const SpotMeasurement& cl, std
       d.gyy += dy * dy;
       ++d.n;
     }
-  }
-  const double var_pix = cl.noise_dn * cl.noise_dn;
-  for (const Disk& d : disk_) {
-    if (!(d.s > 0)) return false;
-    LampMeasurement l;
-    const double ux = d.sx / d.s, uy = d.sy / d.s;
-    l.x_px = d.cx + ux;
-    l.y_px = d.cy + uy;
-    l.flux_dn = d.s;
-    // Σ_p (dx − ux)² = Σ dx² − 2 ux Σ dx + n ux² over the lamp's pixels.
-    l.var_x_px2 = var_pix * std::max(0.0, d.gxx - 2 * ux * d.gx + d.n * ux * ux) / (d.s * d.s);
-    l.var_y_px2 = var_pix * std::max(0.0, d.gyy - 2 * uy * d.gy + d.n * uy * uy) / (d.s * d.s);
-    l.var_flux_dn2 = var_pix * d.n;
-    lamps->push_back(l);
   }
   return true;
 }

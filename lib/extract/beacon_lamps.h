@@ -82,6 +82,11 @@ class LampEstimator {
   void Reset() { shares_.clear(); }
 
  private:
+  // Measure's stages: the window's components above k_grow σ (comp_), then the lamp disks' pixel sums.
+  bool LabelComponents(const cv::Mat& frame, const SpotMeasurement& cl, int x0, int y0, int x1, int y1,
+                       double thr_grow);
+  bool PartitionDisks(const cv::Mat& frame, const SpotMeasurement& cl);
+
   struct Share {
     double dx_px = 0.0, dy_px = 0.0;  // offset of the lamp from the cluster centroid, last frame
     double flux_mean_dn = 0.0;        // F̄_i

@@ -16,6 +16,81 @@ namespace {
 constexpr double kInvSqrt2 = 0.70710678118654752440;
 constexpr double kInvSqrt2Pi = 0.39894228040143267794;
 
+using Vec8 = Eigen::Matrix<double, 8, 1>;
+using Mat8 = Eigen::Matrix<double, 8, 8>;
+
+// The blurred-disk model of a marker over the window of ±half px about (x0, y0): the SSE of
+// θ = (cx, cy, ρ, s, a, b0, bx, by) (the plane is about (x0, y0)) and, with H and g, the Gauss–Newton
+// normal equations.
+class DiskModel {
+ public:
+  DiskModel(const cv::Mat& image, int x0, int y0, int half) : image_(image), x0_(x0), y0_(y0), half_(half) {}
+
+  double operator()(const Vec8& t, Mat8* H, Vec8* g) const {
+    double sse = 0.0;
+    if (H) {
+      H->setZero();
+      g->setZero();
+    }
+    const double k = 1.0 / t(3);
+    for (int y = y0_ - half_; y <= y0_ + half_; ++y) {
+      const float* row = image_.ptr<float>(y);
+      const double dy = y - t(1);
+      for (int x = x0_ - half_; x <= x0_ + half_; ++x) {
+        const double dx = x - t(0);
+        const double r = std::sqrt(dx * dx + dy * dy);
+        const double z = (t(2) - r) * k;
+        const double Phi = 0.5 * std::erfc(-z * kInvSqrt2);
+        const double model = t(5) + t(6) * (x - x0_) + t(7) * (y - y0_) + t(4) * Phi;
+        const double res = model - row[x];
+        sse += res * res;
+        if (H) {
+          const double aphi = t(4) * kInvSqrt2Pi * std::exp(-0.5 * z * z) * k;  // a φ(z) / s
+          Vec8 J;
+          J(0) = r > 1e-12 ? aphi * dx / r : 0.0;
+          J(1) = r > 1e-12 ? aphi * dy / r : 0.0;
+          J(2) = aphi;
+          J(3) = -aphi * z;
+          J(4) = Phi;
+          J(5) = 1.0;
+          J(6) = x - x0_;
+          J(7) = y - y0_;
+          H->selfadjointView<Eigen::Upper>().rankUpdate(J);
+          *g += J * res;
+        }
+      }
+    }
+    if (H) *H = H->selfadjointView<Eigen::Upper>();
+    return sse;
+  }
+
+ private:
+  const cv::Mat& image_;
+  const int x0_, y0_, half_;
+};
+
+// The fit's start: the background from the median of the window's border, the amplitude from the centre pixel.
+Vec8 StartParameters(const cv::Mat& image, const Eigen::Vector2d& start, int x0, int y0, int half, double radius_px,
+                     double edge_px) {
+  // Background start: median of the window's border.
+  std::vector<double> ring;
+  for (int k = -half; k <= half; ++k) {
+    ring.push_back(image.at<float>(y0 - half, x0 + k));
+    ring.push_back(image.at<float>(y0 + half, x0 + k));
+    ring.push_back(image.at<float>(y0 + k, x0 - half));
+    ring.push_back(image.at<float>(y0 + k, x0 + half));
+  }
+  const double b_start = numeric::UpperMedianInPlace(ring);
+  // θ = (cx, cy, ρ, s, a, b0, bx, by); the plane is about (x0, y0).
+  Vec8 th;
+  const double phi0 = 0.5 * std::erfc(-radius_px / std::max(edge_px, 0.3) * kInvSqrt2);
+  th << start.x(), start.y(), radius_px, std::max(edge_px, 0.5),
+      (image.at<float>(static_cast<int>(std::lround(start.y())), static_cast<int>(std::lround(start.x()))) -
+       b_start) / std::max(phi0, 0.05),
+      b_start, 0.0, 0.0;
+  return th;
+}
+
 }  // namespace
 
 bool MarkerDetectOptions::Check(std::string* why) const {
@@ -130,8 +205,6 @@ MarkerMeasurement MarkerDetector::Measure(const Eigen::Vector2d& predicted, doub
 }
 
 MarkerMeasurement MarkerDetector::Fit(const Eigen::Vector2d& start, double radius_px, double edge_px, double ncc) {
-  using Vec8 = Eigen::Matrix<double, 8, 1>;
-  using Mat8 = Eigen::Matrix<double, 8, 8>;
   MarkerMeasurement m;
   m.ncc = ncc;
   const int half = static_cast<int>(std::ceil(radius_px + 3.0 * edge_px + 3.0));
@@ -140,65 +213,13 @@ MarkerMeasurement MarkerDetector::Fit(const Eigen::Vector2d& start, double radiu
     m.why = "at the image border";
     return m;
   }
-  // Background start: median of the window's border.
-  std::vector<double> ring;
-  for (int k = -half; k <= half; ++k) {
-    ring.push_back(image_.at<float>(y0 - half, x0 + k));
-    ring.push_back(image_.at<float>(y0 + half, x0 + k));
-    ring.push_back(image_.at<float>(y0 + k, x0 - half));
-    ring.push_back(image_.at<float>(y0 + k, x0 + half));
-  }
-  const double b_start = numeric::UpperMedianInPlace(ring);
-  // θ = (cx, cy, ρ, s, a, b0, bx, by); the plane is about (x0, y0).
-  Vec8 th;
-  const double phi0 = 0.5 * std::erfc(-radius_px / std::max(edge_px, 0.3) * kInvSqrt2);
-  th << start.x(), start.y(), radius_px, std::max(edge_px, 0.5),
-      (image_.at<float>(static_cast<int>(std::lround(start.y())), static_cast<int>(std::lround(start.x()))) -
-       b_start) / std::max(phi0, 0.05),
-      b_start, 0.0, 0.0;
-
-  auto eval = [&](const Vec8& t, Mat8* H, Vec8* g) {
-    double sse = 0.0;
-    if (H) {
-      H->setZero();
-      g->setZero();
-    }
-    const double k = 1.0 / t(3);
-    for (int y = y0 - half; y <= y0 + half; ++y) {
-      const float* row = image_.ptr<float>(y);
-      const double dy = y - t(1);
-      for (int x = x0 - half; x <= x0 + half; ++x) {
-        const double dx = x - t(0);
-        const double r = std::sqrt(dx * dx + dy * dy);
-        const double z = (t(2) - r) * k;
-        const double Phi = 0.5 * std::erfc(-z * kInvSqrt2);
-        const double model = t(5) + t(6) * (x - x0) + t(7) * (y - y0) + t(4) * Phi;
-        const double res = model - row[x];
-        sse += res * res;
-        if (H) {
-          const double aphi = t(4) * kInvSqrt2Pi * std::exp(-0.5 * z * z) * k;  // a φ(z) / s
-          Vec8 J;
-          J(0) = r > 1e-12 ? aphi * dx / r : 0.0;
-          J(1) = r > 1e-12 ? aphi * dy / r : 0.0;
-          J(2) = aphi;
-          J(3) = -aphi * z;
-          J(4) = Phi;
-          J(5) = 1.0;
-          J(6) = x - x0;
-          J(7) = y - y0;
-          H->selfadjointView<Eigen::Upper>().rankUpdate(J);
-          *g += J * res;
-        }
-      }
-    }
-    if (H) *H = H->selfadjointView<Eigen::Upper>();
-    return sse;
-  };
+  Vec8 th = StartParameters(image_, start, x0, y0, half, radius_px, edge_px);
+  const DiskModel eval(image_, x0, y0, half);
 
   // Levenberg–Marquardt; the radius stays >= 0 and the edge width in [0.3, 10] px. Converged: no step
   // lowers the SSE, or the centre moves by less than 1e-5 px.
   struct MarkerLm {
-    decltype(eval)& evaluate;
+    const DiskModel& evaluate;
     Vec8 th, cand;
     bool TryStep(const Vec8& step, double* cost) {
       cand = th + step;

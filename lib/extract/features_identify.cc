@@ -23,6 +23,212 @@ bool Better(const Record& a, const Record& b) {
   return a.inliers != b.inliers ? a.inliers > b.inliers : a.sse < b.sse;
 }
 
+// k model points (k = 3 planar, 4 otherwise) and the inverse of their columns (q, 1).
+struct Basis {
+  std::vector<int> idx;
+  double measure = 0.0;
+  Eigen::Matrix4d inv = Eigen::Matrix4d::Zero();  // k × k inverse of the columns (q, 1) (top-left)
+};
+
+// Every well-conditioned k-subset of the model points, largest volume (area) first.
+std::vector<Basis> AllBases(const AffineCameraModel& affine, std::size_t n, int k) {
+  const bool planar = affine.planar();
+  std::vector<Basis> all;
+  std::vector<int> sel(static_cast<std::size_t>(k));
+  std::function<void(int, int)> rec = [&](int start, int depth) {
+    if (depth == k) {
+      Basis b;
+      b.idx = sel;
+      if (planar) {
+        Eigen::Matrix3d B;
+        for (int c = 0; c < 3; ++c) {
+          const Eigen::Vector3d& q = affine.q(static_cast<std::size_t>(sel[static_cast<std::size_t>(c)]));
+          B.col(c) << q.x(), q.y(), 1.0;
+        }
+        b.measure = std::abs(B.determinant());
+        if (b.measure > 0) b.inv.topLeftCorner<3, 3>() = B.inverse();
+      } else {
+        Eigen::Matrix4d B;
+        for (int c = 0; c < 4; ++c) {
+          const Eigen::Vector3d& q = affine.q(static_cast<std::size_t>(sel[static_cast<std::size_t>(c)]));
+          B.col(c) << q.x(), q.y(), q.z(), 1.0;
+        }
+        b.measure = std::abs(B.determinant());
+        if (b.measure > 0) b.inv = B.inverse();
+      }
+      if (b.measure > 0 && b.inv.allFinite()) all.push_back(b);
+      return;
+    }
+    for (int i = start; i < static_cast<int>(n); ++i) {
+      sel[static_cast<std::size_t>(depth)] = i;
+      rec(i + 1, depth + 1);
+    }
+  };
+  rec(0, 0);
+  std::sort(all.begin(), all.end(), [](const Basis& a, const Basis& b) { return a.measure > b.measure; });
+  return all;
+}
+
+// The bases tried: the best plus, for each of its points, the best one without that point.
+std::vector<const Basis*> ChooseBases(const std::vector<Basis>& all, int max_bases) {
+  std::vector<const Basis*> bases = {&all[0]};
+  for (int excluded : all[0].idx) {
+    for (const Basis& b : all) {
+      if (b.measure < 0.05 * all[0].measure) break;
+      if (std::find(b.idx.begin(), b.idx.end(), excluded) != b.idx.end()) continue;
+      if (std::find(bases.begin(), bases.end(), &b) == bases.end()) bases.push_back(&b);
+      break;
+    }
+    if (static_cast<int>(bases.size()) >= max_bases) break;
+  }
+  return bases;
+}
+
+// Matching of an affine camera's predictions to the detections (nearest pairs first, each used once).
+class Matcher {
+ public:
+  Matcher(const AffineCameraModel& affine, const std::vector<Eigen::Vector2d>& det, std::size_t n,
+          const IdentifyOptions& o)
+      : affine_(affine), det_(det), n_(n), m_(static_cast<int>(det.size())), o_(o), pred_(n),
+        used_(static_cast<std::size_t>(m_)) {}
+
+  bool Match(const Eigen::Matrix<double, 2, 4>& A, Record* r) {
+    double min_sep = 1e300;
+    for (std::size_t i = 0; i < n_; ++i) pred_[i] = affine_.Predict(A, i);
+    for (std::size_t i = 0; i < n_; ++i) {
+      for (std::size_t j = i + 1; j < n_; ++j) min_sep = std::min(min_sep, (pred_[i] - pred_[j]).norm());
+    }
+    if (!(min_sep > 2.0 * o_.tol_min_px)) return false;
+    const double tol = std::max(o_.tol_min_px, o_.tol_frac * min_sep);
+    pairs_.clear();
+    for (std::size_t i = 0; i < n_; ++i) {
+      for (int j = 0; j < m_; ++j) {
+        const double d = (pred_[i] - det_[static_cast<std::size_t>(j)]).norm();
+        if (d < tol) pairs_.emplace_back(d, static_cast<int>(i), j);
+      }
+    }
+    std::sort(pairs_.begin(), pairs_.end());
+    r->det_of_model.assign(n_, -1);
+    std::fill(used_.begin(), used_.end(), 0);
+    r->inliers = 0;
+    r->sse = 0;
+    for (const auto& [d, i, j] : pairs_) {
+      if (r->det_of_model[static_cast<std::size_t>(i)] >= 0 || used_[static_cast<std::size_t>(j)]) continue;
+      r->det_of_model[static_cast<std::size_t>(i)] = j;
+      used_[static_cast<std::size_t>(j)] = 1;
+      ++r->inliers;
+      r->sse += d * d;
+    }
+    r->tol = tol;
+    r->A = A;
+    return true;
+  }
+
+ private:
+  const AffineCameraModel& affine_;
+  const std::vector<Eigen::Vector2d>& det_;
+  const std::size_t n_;
+  const int m_;
+  const IdentifyOptions& o_;
+  std::vector<Eigen::Vector2d> pred_;
+  std::vector<std::tuple<double, int, int>> pairs_;
+  std::vector<char> used_;
+};
+
+// The best few distinct assignments.
+class TopRecords {
+ public:
+  void Keep(const Record& r) {
+    for (Record& t : top_) {
+      if (t.det_of_model == r.det_of_model) {
+        if (Better(r, t)) t = r;
+        return;
+      }
+    }
+    if (top_.size() < kKeep || Better(r, top_.back())) {
+      top_.push_back(r);
+      std::sort(top_.begin(), top_.end(), Better);
+      if (top_.size() > kKeep) top_.pop_back();
+    }
+  }
+  const std::vector<Record>& records() const { return top_; }
+
+ private:
+  static constexpr std::size_t kKeep = 8;
+  std::vector<Record> top_;
+};
+
+// Every hypothesis: each basis against each ordered k-tuple of distinct detections; counts them.
+void TryHypotheses(const std::vector<const Basis*>& bases, const std::vector<Eigen::Vector2d>& det, int k,
+                   bool planar, const IdentifyOptions& o, Matcher* matcher, TopRecords* top, long* hypotheses) {
+  const int m = static_cast<int>(det.size());
+  Eigen::Matrix<double, 2, 4> X = Eigen::Matrix<double, 2, 4>::Zero();
+  std::vector<int> tuple(static_cast<std::size_t>(k));
+  Record r;
+  for (const Basis* b : bases) {
+    std::function<void(int)> loop = [&](int depth) {
+      if (depth == k) {
+        for (int c = 0; c < k; ++c) X.col(c) = det[static_cast<std::size_t>(tuple[static_cast<std::size_t>(c)])];
+        Eigen::Matrix<double, 2, 4> A = Eigen::Matrix<double, 2, 4>::Zero();
+        if (planar) {
+          const Eigen::Matrix<double, 2, 3> Ak = X.leftCols<3>() * b->inv.topLeftCorner<3, 3>();
+          A.col(0) = Ak.col(0);
+          A.col(1) = Ak.col(1);
+          A.col(3) = Ak.col(2);
+        } else {
+          A = X * b->inv;
+          const Eigen::Vector3d r0 = A.block<1, 3>(0, 0).transpose(), r1 = A.block<1, 3>(1, 0).transpose();
+          const double n0 = r0.norm(), n1 = r1.norm();
+          if (!(n0 > 0 && n1 > 0)) return;
+          if (std::max(n0, n1) > o.max_aspect * std::min(n0, n1)) return;
+          if (std::abs(r0.dot(r1)) > o.max_skew_cos * n0 * n1) return;
+        }
+        ++*hypotheses;
+        if (matcher->Match(A, &r)) top->Keep(r);
+        return;
+      }
+      for (int j = 0; j < m; ++j) {
+        bool dup = false;
+        for (int c = 0; c < depth; ++c) dup |= tuple[static_cast<std::size_t>(c)] == j;
+        if (dup) continue;
+        tuple[static_cast<std::size_t>(depth)] = j;
+        loop(depth + 1);
+      }
+    };
+    loop(0);
+  }
+}
+
+// The leading assignments refined by least squares and re-matched (twice), distinct, best first.
+std::vector<Record> Refine(const std::vector<Record>& top, const std::vector<Eigen::Vector2d>& det, std::size_t n,
+                           const AffineCameraModel& affine, Matcher* matcher) {
+  std::vector<Record> refined;
+  for (const Record& t : top) {
+    Record cur = t;
+    for (int pass = 0; pass < 2; ++pass) {
+      std::vector<int> idx;
+      std::vector<Eigen::Vector2d> px;
+      for (std::size_t i = 0; i < n; ++i) {
+        if (cur.det_of_model[i] >= 0) {
+          idx.push_back(static_cast<int>(i));
+          px.push_back(det[static_cast<std::size_t>(cur.det_of_model[i])]);
+        }
+      }
+      Eigen::Matrix<double, 2, 4> A;
+      if (!affine.Fit(idx, px, &A)) break;
+      Record next;
+      if (!matcher->Match(A, &next)) break;
+      cur = next;
+    }
+    cur.rms = cur.inliers > 0 ? std::sqrt(cur.sse / cur.inliers) : 0.0;
+    bool dup = false;
+    for (const Record& q : refined) dup |= q.det_of_model == cur.det_of_model;
+    if (!dup) refined.push_back(cur);
+  }
+  std::sort(refined.begin(), refined.end(), Better);
+  return refined;
+}
+
 }  // namespace
 
 bool IdentifyOptions::Check(std::string* why) const {
@@ -112,147 +318,17 @@ Identification Identify(const std::vector<Eigen::Vector2d>& all_detections, cons
 
   // Bases: k-subsets of model points by volume (area), the best plus, for each of its points,
   // the best one without that point.
-  struct Basis {
-    std::vector<int> idx;
-    double measure = 0.0;
-    Eigen::Matrix4d inv = Eigen::Matrix4d::Zero();  // k × k inverse of the columns (q, 1) (top-left)
-  };
-  std::vector<Basis> all;
-  std::vector<int> sel(static_cast<std::size_t>(k));
-  std::function<void(int, int)> rec = [&](int start, int depth) {
-    if (depth == k) {
-      Basis b;
-      b.idx = sel;
-      if (planar) {
-        Eigen::Matrix3d B;
-        for (int c = 0; c < 3; ++c) {
-          const Eigen::Vector3d& q = affine.q(static_cast<std::size_t>(sel[static_cast<std::size_t>(c)]));
-          B.col(c) << q.x(), q.y(), 1.0;
-        }
-        b.measure = std::abs(B.determinant());
-        if (b.measure > 0) b.inv.topLeftCorner<3, 3>() = B.inverse();
-      } else {
-        Eigen::Matrix4d B;
-        for (int c = 0; c < 4; ++c) {
-          const Eigen::Vector3d& q = affine.q(static_cast<std::size_t>(sel[static_cast<std::size_t>(c)]));
-          B.col(c) << q.x(), q.y(), q.z(), 1.0;
-        }
-        b.measure = std::abs(B.determinant());
-        if (b.measure > 0) b.inv = B.inverse();
-      }
-      if (b.measure > 0 && b.inv.allFinite()) all.push_back(b);
-      return;
-    }
-    for (int i = start; i < static_cast<int>(n); ++i) {
-      sel[static_cast<std::size_t>(depth)] = i;
-      rec(i + 1, depth + 1);
-    }
-  };
-  rec(0, 0);
+  const std::vector<Basis> all = AllBases(affine, n, k);
   if (all.empty()) {
     out.why = "the target model has no well-conditioned basis";
     return out;
   }
-  std::sort(all.begin(), all.end(), [](const Basis& a, const Basis& b) { return a.measure > b.measure; });
-  std::vector<const Basis*> bases = {&all[0]};
-  for (int excluded : all[0].idx) {
-    for (const Basis& b : all) {
-      if (b.measure < 0.05 * all[0].measure) break;
-      if (std::find(b.idx.begin(), b.idx.end(), excluded) != b.idx.end()) continue;
-      if (std::find(bases.begin(), bases.end(), &b) == bases.end()) bases.push_back(&b);
-      break;
-    }
-    if (static_cast<int>(bases.size()) >= o.max_bases) break;
-  }
+  const std::vector<const Basis*> bases = ChooseBases(all, o.max_bases);
 
-  // Matching of predictions to detections (nearest pairs first, each used once).
-  std::vector<Eigen::Vector2d> pred(n);
-  std::vector<std::tuple<double, int, int>> pairs;
-  std::vector<char> used(static_cast<std::size_t>(m));
-  auto match = [&](const Eigen::Matrix<double, 2, 4>& A, Record* r) -> bool {
-    double min_sep = 1e300;
-    for (std::size_t i = 0; i < n; ++i) pred[i] = affine.Predict(A, i);
-    for (std::size_t i = 0; i < n; ++i) {
-      for (std::size_t j = i + 1; j < n; ++j) min_sep = std::min(min_sep, (pred[i] - pred[j]).norm());
-    }
-    if (!(min_sep > 2.0 * o.tol_min_px)) return false;
-    const double tol = std::max(o.tol_min_px, o.tol_frac * min_sep);
-    pairs.clear();
-    for (std::size_t i = 0; i < n; ++i) {
-      for (int j = 0; j < m; ++j) {
-        const double d = (pred[i] - det[static_cast<std::size_t>(j)]).norm();
-        if (d < tol) pairs.emplace_back(d, static_cast<int>(i), j);
-      }
-    }
-    std::sort(pairs.begin(), pairs.end());
-    r->det_of_model.assign(n, -1);
-    std::fill(used.begin(), used.end(), 0);
-    r->inliers = 0;
-    r->sse = 0;
-    for (const auto& [d, i, j] : pairs) {
-      if (r->det_of_model[static_cast<std::size_t>(i)] >= 0 || used[static_cast<std::size_t>(j)]) continue;
-      r->det_of_model[static_cast<std::size_t>(i)] = j;
-      used[static_cast<std::size_t>(j)] = 1;
-      ++r->inliers;
-      r->sse += d * d;
-    }
-    r->tol = tol;
-    r->A = A;
-    return true;
-  };
-
-  // Keep the best few distinct assignments.
-  constexpr std::size_t kKeep = 8;
-  std::vector<Record> top;
-  auto keep = [&](const Record& r) {
-    for (Record& t : top) {
-      if (t.det_of_model == r.det_of_model) {
-        if (Better(r, t)) t = r;
-        return;
-      }
-    }
-    if (top.size() < kKeep || Better(r, top.back())) {
-      top.push_back(r);
-      std::sort(top.begin(), top.end(), Better);
-      if (top.size() > kKeep) top.pop_back();
-    }
-  };
-
-  Eigen::Matrix<double, 2, 4> X = Eigen::Matrix<double, 2, 4>::Zero();
-  std::vector<int> tuple(static_cast<std::size_t>(k));
-  Record r;
-  for (const Basis* b : bases) {
-    std::function<void(int)> loop = [&](int depth) {
-      if (depth == k) {
-        for (int c = 0; c < k; ++c) X.col(c) = det[static_cast<std::size_t>(tuple[static_cast<std::size_t>(c)])];
-        Eigen::Matrix<double, 2, 4> A = Eigen::Matrix<double, 2, 4>::Zero();
-        if (planar) {
-          const Eigen::Matrix<double, 2, 3> Ak = X.leftCols<3>() * b->inv.topLeftCorner<3, 3>();
-          A.col(0) = Ak.col(0);
-          A.col(1) = Ak.col(1);
-          A.col(3) = Ak.col(2);
-        } else {
-          A = X * b->inv;
-          const Eigen::Vector3d r0 = A.block<1, 3>(0, 0).transpose(), r1 = A.block<1, 3>(1, 0).transpose();
-          const double n0 = r0.norm(), n1 = r1.norm();
-          if (!(n0 > 0 && n1 > 0)) return;
-          if (std::max(n0, n1) > o.max_aspect * std::min(n0, n1)) return;
-          if (std::abs(r0.dot(r1)) > o.max_skew_cos * n0 * n1) return;
-        }
-        ++out.hypotheses;
-        if (match(A, &r)) keep(r);
-        return;
-      }
-      for (int j = 0; j < m; ++j) {
-        bool dup = false;
-        for (int c = 0; c < depth; ++c) dup |= tuple[static_cast<std::size_t>(c)] == j;
-        if (dup) continue;
-        tuple[static_cast<std::size_t>(depth)] = j;
-        loop(depth + 1);
-      }
-    };
-    loop(0);
-  }
+  Matcher matcher(affine, det, n, o);
+  TopRecords top_records;
+  TryHypotheses(bases, det, k, planar, o, &matcher, &top_records, &out.hypotheses);
+  const std::vector<Record>& top = top_records.records();
   if (top.empty() || top.front().inliers < min_id) {
     out.why = "no consistent identification (best: " + std::to_string(top.empty() ? 0 : top.front().inliers) + " of " +
               std::to_string(n) + " markers, " + std::to_string(min_id) + " needed)";
@@ -260,30 +336,7 @@ Identification Identify(const std::vector<Eigen::Vector2d>& all_detections, cons
   }
 
   // Refine the leading assignments by least squares, re-match, and look for a rival.
-  std::vector<Record> refined;
-  for (const Record& t : top) {
-    Record cur = t;
-    for (int pass = 0; pass < 2; ++pass) {
-      std::vector<int> idx;
-      std::vector<Eigen::Vector2d> px;
-      for (std::size_t i = 0; i < n; ++i) {
-        if (cur.det_of_model[i] >= 0) {
-          idx.push_back(static_cast<int>(i));
-          px.push_back(det[static_cast<std::size_t>(cur.det_of_model[i])]);
-        }
-      }
-      Eigen::Matrix<double, 2, 4> A;
-      if (!affine.Fit(idx, px, &A)) break;
-      Record next;
-      if (!match(A, &next)) break;
-      cur = next;
-    }
-    cur.rms = cur.inliers > 0 ? std::sqrt(cur.sse / cur.inliers) : 0.0;
-    bool dup = false;
-    for (const Record& q : refined) dup |= q.det_of_model == cur.det_of_model;
-    if (!dup) refined.push_back(cur);
-  }
-  std::sort(refined.begin(), refined.end(), Better);
+  const std::vector<Record> refined = Refine(top, det, n, affine, &matcher);
   const Record& best = refined.front();
   out.identified = best.inliers;
   out.rms_px = best.rms;

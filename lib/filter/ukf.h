@@ -10,7 +10,7 @@
 // Angle components (radians) are wrap-safe: their mean is taken over residuals relative to the
 // reference point Y_0, ŷ = wrap(Y_0 + Σ W_i wrap(Y_i − Y_0)), and every residual Y_i − ŷ is wrapped
 // to (−π, π]. For sigma points that lie within ±π of Y_0 this equals the linear weighted mean exactly,
-// so a linear model gives the Kalman filter's moments to rounding (tests/filter/test_ukf.cc).
+// so a linear model gives the Kalman filter's moments to rounding (tests/filter/test_aukf_series.cc).
 //
 // Matrices are Eigen max-size types (storage on the stack, up to kMaxStates states and kMaxSigma
 // points): no heap allocation per step.

@@ -131,15 +131,12 @@ void RequirePairedSteps(const RegistrationInput& in, double pair_tol_s) {
                         " s after radar '" + in.radars[0] + "'): nothing to estimate; raise --pair-tol");
 }
 
-RegistrationInput ReadRegistrationInput(const io::CsvTable& plots, const io::CsvTable& nav,
-                                        const InputOptions& options) {
-  std::string why;
-  if (!options.Check(&why)) throw UsageError(why);
-  RegistrationInput in;
-  in.plots_source = plots.name();
-  in.nav_source = nav.name();
+namespace {
 
-  // --- nav ---
+// The nav of the two radars (exactly two, each with increasing times), unfolded and ready to interpolate;
+// sets in->radars (sorted by name) and the nav counts of in->summary.
+std::map<std::string, NavSeries> ReadNav(const io::CsvTable& nav, RegistrationInput* in_out) {
+  RegistrationInput& in = *in_out;
   const int n_t = nav.RequireColumn("t_s"), n_radar = nav.RequireColumn("radar"),
             n_lat = nav.RequireColumn("lat_deg"), n_lon = nav.RequireColumn("lon_deg"),
             n_h = nav.RequireColumn("h_m"), n_yaw = nav.RequireColumn("yaw_deg"),
@@ -188,6 +185,20 @@ RegistrationInput ReadRegistrationInput(const io::CsvTable& plots, const io::Csv
     in.summary.nav_unfolded_rows[k] = s.Unfold();
     s.Build();
   }
+  return series;
+}
+
+}  // namespace
+
+RegistrationInput ReadRegistrationInput(const io::CsvTable& plots, const io::CsvTable& nav,
+                                        const InputOptions& options) {
+  std::string why;
+  if (!options.Check(&why)) throw UsageError(why);
+  RegistrationInput in;
+  in.plots_source = plots.name();
+  in.nav_source = nav.name();
+
+  const std::map<std::string, NavSeries> series = ReadNav(nav, &in);
 
   // --- plots ---
   const int p_t = plots.RequireColumn("t_s"), p_radar = plots.RequireColumn("radar"),

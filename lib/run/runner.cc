@@ -13,6 +13,7 @@
 #include "run/sha256.h"
 #include "run/trial_dir.h"
 #include "run/trial_run.h"
+#include "trial/layout.h"
 
 namespace rk::run {
 namespace fs = std::filesystem;
@@ -51,7 +52,7 @@ namespace internal {
 void TrialRun::ResolveTrial() {
   std::error_code ec;
   fs::path given(o_.trial);
-  manifest_file_ = fs::is_directory(given, ec) ? (given / "trial.json").string() : given.string();
+  manifest_file_ = fs::is_directory(given, ec) ? (given / trial::kManifestFile).string() : given.string();
   user_dir_ = fs::is_directory(given, ec) ? given.string() : given.parent_path().string();
   if (user_dir_.empty()) user_dir_ = ".";
   manifest_file_ = fs::absolute(manifest_file_, ec).lexically_normal().string();

@@ -1,27 +1,14 @@
+// CSV tables (io/csv.h): reading with errors that name file, line and column, writing, lists.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
+#include <string>
 
 #include "io/csv.h"
 #include "io/error.h"
-#include "io/file_util.h"
-#include "io/json_util.h"
+#include "test_expect_error.h"
 
 namespace rk::io {
 namespace {
-
-// Runs `f`, expects an rk::Error with `code` whose message contains `needle`.
-template <typename F>
-void ExpectError(F f, ExitCode code, const std::string& needle) {
-  try {
-    f();
-    FAIL() << "no error thrown; expected one containing '" << needle << "'";
-  } catch (const Error& e) {
-    EXPECT_EQ(e.code(), code) << e.what();
-    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
-  }
-}
 
 TEST(CsvTable, ColumnsByNameCommentsAndEmptyFields) {
   auto t = CsvTable::Parse("# a comment\nt_s,range_m,status\n0.0,22.1,0\n# mid comment\n0.2,,255\n", "r.csv");
@@ -74,37 +61,6 @@ TEST(CsvWriter, RoundTripsThroughParser) {
   EXPECT_TRUE(t.IsEmpty(0, 1));
   EXPECT_EQ(t.Cell(1, 0), "0.000");  // never "-0.000"
   EXPECT_EQ(t.Cell(1, 2), "a,b");
-}
-
-TEST(FileUtil, AtomicWriteLeavesNoTemporaryAndRefusesToOverwriteInputs) {
-  namespace fs = std::filesystem;
-  fs::path dir = fs::temp_directory_path() / "rk_test_atomic";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  std::string out = (dir / "out.csv").string();
-  WriteFileAtomic(out, "a\n1\n");
-  WriteFileAtomic(out, "a\n2\n");
-  EXPECT_EQ(ReadFile(out), "a\n2\n");
-  int files = 0;
-  for (auto& e : fs::directory_iterator(dir)) {
-    (void)e;
-    ++files;
-  }
-  EXPECT_EQ(files, 1);
-  ExpectError([&] { CheckOutputNotInput(out, {out}); }, ExitCode::kUsage, "refusing");
-  EXPECT_NO_THROW(CheckOutputNotInput((dir / "other.csv").string(), {out}));
-  ExpectError([&] { WriteFileAtomic((dir / "no/such/dir/x.csv").string(), "x"); }, ExitCode::kIo, "x.csv");
-  ExpectError([&] { ReadFile((dir / "missing.csv").string()); }, ExitCode::kIo, "missing.csv");
-  fs::remove_all(dir);
-}
-
-TEST(Json, SyntaxErrorsGiveLineAndColumnAndMissingFieldsAreNamed) {
-  ExpectError([] { ParseJson("{\n  \"a\": 1,\n  \"b\": ]\n}", "cam.json"); }, ExitCode::kInvalidData,
-              "cam.json:3:");
-  Json j = ParseJson("{\"a\": 1, \"v\": [1, 2]}", "x.json");
-  EXPECT_EQ(RequireNumber(j, "a", "x.json"), 1.0);
-  ExpectError([&] { RequireNumber(j, "b", "x.json"); }, ExitCode::kInvalidData, "missing field 'b'");
-  ExpectError([&] { RequireNumbers(j, "v", 3, 3, "x.json"); }, ExitCode::kInvalidData, "array of 3");
 }
 
 TEST(SplitList, TrimsAndDropsEmpties) {

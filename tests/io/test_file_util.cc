@@ -15,6 +15,7 @@
 
 #include "io/error.h"
 #include "io/file_util.h"
+#include "test_expect_error.h"
 
 namespace rk::io {
 namespace {
@@ -157,6 +158,34 @@ TEST_F(OutputPaths, OutputFolderBehindALinkResolvesToItsTarget) {
   EXPECT_TRUE(fs::equivalent(ResolveOutputFolder(P("out")), P("elsewhere/out")));
   EXPECT_EQ(ResolveOutputFolder(P("plain")), P("plain"));
   EXPECT_THROW(ResolveOutputFolder("/dev/stdout"), Error);
+}
+
+}  // namespace
+}  // namespace rk::io
+
+namespace rk::io {
+namespace {
+
+TEST(FileUtil, AtomicWriteLeavesNoTemporaryAndRefusesToOverwriteInputs) {
+  namespace fs = std::filesystem;
+  fs::path dir = fs::temp_directory_path() / "rk_test_atomic";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::string out = (dir / "out.csv").string();
+  WriteFileAtomic(out, "a\n1\n");
+  WriteFileAtomic(out, "a\n2\n");
+  EXPECT_EQ(ReadFile(out), "a\n2\n");
+  int files = 0;
+  for (auto& e : fs::directory_iterator(dir)) {
+    (void)e;
+    ++files;
+  }
+  EXPECT_EQ(files, 1);
+  ExpectError([&] { CheckOutputNotInput(out, {out}); }, ExitCode::kUsage, "refusing");
+  EXPECT_NO_THROW(CheckOutputNotInput((dir / "other.csv").string(), {out}));
+  ExpectError([&] { WriteFileAtomic((dir / "no/such/dir/x.csv").string(), "x"); }, ExitCode::kIo, "x.csv");
+  ExpectError([&] { ReadFile((dir / "missing.csv").string()); }, ExitCode::kIo, "missing.csv");
+  fs::remove_all(dir);
 }
 
 }  // namespace

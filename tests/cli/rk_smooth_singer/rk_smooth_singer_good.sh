@@ -21,7 +21,8 @@ rk-smooth singer -i "$d/located.csv" --columns az_deg,el_deg,range_m --no-smooth
 head -1 "$o/loc.csv" | grep -qx 't_s,kind,az_deg,el_deg,range_m,status'
 awk -F, '$1 == "0.250000000" { if ($2 != "estimate" || $3 < 359.49 || $3 > 359.51 || $4 < 19.74 || $4 > 19.76 || $6 != "predicted") exit 1; f = 1 } END { exit !f }' "$o/loc.csv"
 awk -F, '$1 == "1.000000000" { if ($3 < 0.99 || $3 > 1.01 || $5 < 40.99 || $5 > 41.01 || $6 != "ok") exit 1; f = 1 } END { exit !f }' "$o/loc.csv"
-! grep -q ',-' "$o/loc.csv"
+# No negative value anywhere (azimuth wrapped into [0, 360)); `if` so that set -e cannot skip the check.
+if grep -q ',-' "$o/loc.csv"; then echo "negative value in $o/loc.csv" >&2; exit 1; fi
 rk-smooth singer -i "$d/located.csv" --columns az_deg --accel-sigma 5 --meas-sigma 0.001 --maneuver-time 3 -o "$o/az.csv"
 head -1 "$o/az.csv" | grep -qx 't_s,kind,az_deg,status,az_rate_deg_s,az_accel_deg_s2'
 awk -F, 'NR > 3 && NR < 28 { if ($5 < 1.99 || $5 > 2.01) exit 1 }' "$o/az.csv"

@@ -1,21 +1,15 @@
-// rk-sim attitude: motion profile of seed 001's dynamic test, truth consistency, rendering,
-// turret log, random PnP problems, and the atomic trial folder.
+// rk-sim attitude's simulator (sim/attitude_scenario.h): the motion profile of seed 001's dynamic test, truth
+// consistency, rendered frames and the turret log.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <opencv2/core.hpp>
 
 #include "geo/angles.h"
 #include "geo/body_attitude.h"
 #include "io/error.h"
-#include "sim/attitude_problems.h"
-#include "sim/attitude_render.h"
 #include "sim/attitude_scenario.h"
-#include "sim/attitude_trial.h"
-#include "sim/trial_folder.h"
 
 namespace rk::sim {
 namespace {
@@ -122,33 +116,6 @@ TEST(AttitudeSim, RefusesAMarkerOutsideTheImage) {
   EXPECT_FALSE(ParseMarkerHide("fin:a:1", &h, &why));
 }
 
-TEST(AttitudeRender, DiscCentroidIsTheCentre) {
-  // Noise-free disc at sub-pixel positions: its intensity centroid (and so any symmetric fit)
-  // is the commanded centre (sub-sampling error < 1e-3 px).
-  constexpr double kCentroidTol = 2e-3;
-  for (double dx : {0.0, 0.17, 0.5, 0.73}) {
-    cv::Mat s = cv::Mat::zeros(64, 64, CV_32FC1);
-    Disc d;
-    d.x_px = 31.0 + dx;
-    d.y_px = 30.0 + 0.61 * dx;
-    d.radius_px = 9.3;
-    AddDiscs(&s, std::span<const Disc>(&d, 1));
-    double sw = 0, sx = 0, sy = 0;
-    for (int y = 0; y < s.rows; ++y) {
-      for (int x = 0; x < s.cols; ++x) {
-        const double v = s.at<float>(y, x);
-        sw += v;
-        sx += v * x;
-        sy += v * y;
-      }
-    }
-    EXPECT_NEAR(sx / sw, d.x_px, kCentroidTol);
-    EXPECT_NEAR(sy / sw, d.y_px, kCentroidTol);
-    EXPECT_NEAR(sw, d.amplitude_dn * M_PI * d.radius_px * d.radius_px, 0.01 * sw);  // flux = a π ρ²
-    EXPECT_NEAR(s.at<float>(30, 31), d.amplitude_dn, 1e-3);  // flat top
-  }
-}
-
 TEST(AttitudeSim, FramesRenderDeterministicallyWithBodyAndHiddenMarkers) {
   AttitudeSimOptions o = Quick(1.0);
   o.camera.width_px = 1000;  // a small sensor and a longer range keep the test fast
@@ -182,57 +149,6 @@ TEST(AttitudeSim, TurretLogIsQuantisedTrueBoresight) {
     EXPECT_LE(std::abs(s.el_rad - s.true_el_rad), 0.5 * q + 1e-12);
   }
   EXPECT_NEAR(log[1].t_s - log[0].t_s, 0.02, 1e-12);
-}
-
-TEST(PnpProblems, ExactPixelsAndDeterminism) {
-  for (PnpGeometry g : {PnpGeometry::kBox, PnpGeometry::kPlanar, PnpGeometry::kNarrow, PnpGeometry::kNarrowPlanar}) {
-    PnpProblemOptions o;
-    o.geometry = g;
-    for (std::uint64_t k = 0; k < 20; ++k) {
-      const PnpProblem a = MakePnpProblem(o, k), b = MakePnpProblem(o, k);
-      ASSERT_EQ(a.px.size(), a.p_body.size());
-      EXPECT_GE(a.px.size(), 4u);
-      EXPECT_LE(a.px.size(), 12u);
-      EXPECT_GE(a.noise_px, 0.1);
-      EXPECT_LE(a.noise_px, 1.0);
-      for (std::size_t i = 0; i < a.px.size(); ++i) {
-        EXPECT_EQ(a.px[i], b.px[i]);
-        const Eigen::Vector3d X = a.R_cam_body * a.p_body[i] + a.t_cam;
-        EXPECT_NEAR(a.fx * X.x() / X.z() + a.cx, a.px_true[i].x(), 1e-9);
-        EXPECT_GE(a.px_true[i].x(), 0.0);
-        EXPECT_LE(a.px_true[i].x(), a.width_px - 1.0);
-      }
-      if (g == PnpGeometry::kPlanar || g == PnpGeometry::kNarrowPlanar) {
-        for (const auto& p : a.p_body) EXPECT_EQ(p.z(), 0.0);
-      }
-    }
-  }
-}
-
-TEST(TrialFolder, AtomicAndRefusesToOverwrite) {
-  namespace fs = std::filesystem;
-  const fs::path base = fs::temp_directory_path() / ("rk_staged_" + std::to_string(::getpid()));
-  fs::remove_all(base);
-  fs::create_directories(base / "keep");
-  std::ofstream(base / "keep" / "precious.txt") << "x";
-  EXPECT_THROW(TrialFolder((base / "keep").string(), false), Error);
-  {
-    TrialFolder d((base / "new").string(), false);
-    std::ofstream(d.Path("a.txt")) << "a";
-    // Destroyed without Commit: nothing appears.
-  }
-  EXPECT_FALSE(fs::exists(base / "new"));
-  {
-    TrialFolder d((base / "keep").string(), true);
-    std::ofstream(d.Path("b.txt")) << "b";
-    d.Commit();
-  }
-  EXPECT_TRUE(fs::exists(base / "keep" / "b.txt"));
-  EXPECT_FALSE(fs::exists(base / "keep" / "precious.txt"));
-  std::size_t leftovers = 0;
-  for (const auto& e : fs::directory_iterator(base)) leftovers += e.path().filename().string()[0] == '.';
-  EXPECT_EQ(leftovers, 0u);
-  fs::remove_all(base);
 }
 
 }  // namespace

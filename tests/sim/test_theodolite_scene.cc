@@ -1,17 +1,14 @@
-// rk-sim theodolite: seed 004 scene geometry, exact projection, theodolite log, rendering, trial files.
+// rk-sim theodolite's scene and simulator (sim/theodolite_scene.h): seed 004 geometry, exact projection,
+// tracking and the theodolite log, quantisation and determinism.
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
-#include "io/csv.h"
 #include "io/error.h"
 #include "sim/theodolite_scene.h"
-#include "sim/theodolite_trial.h"
 
 namespace rk::sim {
 namespace {
@@ -86,31 +83,6 @@ TEST(TheodoliteSimulator, QuantisationAndDeterminism) {
   bad.shape.nose_length_m = 3.0;
   std::string why;
   EXPECT_FALSE(bad.Check(&why));
-}
-
-TEST(TheodoliteTrial, WritesTheFilesAtomically) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "rk_test_theodolite_trial";
-  fs::remove_all(dir);
-  TheodoliteSimOptions o;
-  o.duration_s = 0.1;
-  o.quantise = true;
-  TheodoliteWriteOptions w;
-  w.out_dir = dir.string();
-  const TheodoliteSimulator sim(o);
-  const TheodoliteTrialSummary s = WriteTheodoliteTrial(sim, w);
-  EXPECT_EQ(s.frames, 3);
-  for (const char* f : {"trial.json", "target.json", "theodolite.csv", "points.csv", "theo/camera.json",
-                        "theo/frames.csv", "truth/axis.csv", "truth/points.csv", "truth/theodolite.csv"}) {
-    EXPECT_TRUE(fs::exists(dir / f)) << f;
-  }
-  const io::CsvTable pts = io::CsvTable::Read((dir / "points.csv").string());
-  EXPECT_EQ(pts.rows(), 9u);
-  EXPECT_EQ(pts.Cell(1, pts.RequireColumn("id")), "tail1");
-  // Refuses a non-empty folder without force, and leaves it as it was.
-  EXPECT_THROW(WriteTheodoliteTrial(sim, w), Error);
-  EXPECT_TRUE(fs::exists(dir / "points.csv"));
-  fs::remove_all(dir);
 }
 
 }  // namespace
