@@ -8,7 +8,6 @@
 #include <vector>
 
 #include "camera/camera_model.h"
-#include "geo/angles.h"
 #include "io/cli.h"
 #include "io/error.h"
 #include "io/file_util.h"

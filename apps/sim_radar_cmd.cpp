@@ -5,7 +5,6 @@
 #include <memory>
 #include <string>
 
-#include "geo/angles.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/json_util.h"

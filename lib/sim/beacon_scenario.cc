@@ -205,7 +205,7 @@ bool BeaconSimOptions::Check(std::string* why) const {
 io::Json BeaconSimOptions::ToJson() const {
   const io::Json sim = BeaconSimOptionsToJson(*this);
   io::Json j = Table().ToJson(*this);
-  for (const char* key : {"camera_preset", "trajectory", "occlusions", "servo_holds"}) j[key] = sim[key];
+  for (const char* key : {"camera_preset", "camera", "trajectory", "occlusions", "servo_holds"}) j[key] = sim[key];
   return j;
 }
 

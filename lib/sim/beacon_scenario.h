@@ -112,7 +112,7 @@ struct BeaconSimOptions {
   static const io::OptionTable<BeaconSimOptions>& Table();
   // Table().Check, then the camera size, the trajectory and servo rules, the frame count, the intervals.
   bool Check(std::string* why) const;
-  // The run report's "options": Table().ToJson plus the resolved trajectory, camera preset and intervals.
+  // The run report's "options": Table().ToJson plus the camera, the resolved trajectory and the intervals.
   io::Json ToJson() const;
 };
 io::Json BeaconSimOptionsToJson(const BeaconSimOptions& opt);
