@@ -28,10 +28,10 @@ struct DeviceCli {
   rk::capture::PtuEmulatorOptions ptu;
   std::vector<std::string> faults;
   std::string link, truth, port_file;
-  double baud = 0, error_rate = 0, duration_s = 0;
-  std::uint64_t seed = 1;
+  double duration_s = 0;
 };
 
+// The options both devices take and that are not in a table (EmulatorOptions::Table() follows them).
 void AddCommon(CLI::App* s, DeviceCli* c) {
   s->add_option("--link", c->link,
                 "Keep a symbolic link at this path to the pty (stable across emulated disconnects)");
@@ -41,20 +41,12 @@ void AddCommon(CLI::App* s, DeviceCli* c) {
   s->add_option("--fault", c->faults,
                 "KIND:START:DURATION[:ARG], KIND = error (ARG code), silence, garbage, slow (ARG delay s), "
                 "disconnect; START in s since the emulator started; repeatable");
-  s->add_option("--error-rate", c->error_rate, "Probability that a measurement is answered with an error")
-      ->capture_default_str();
-  s->add_option("--baud", c->baud, "Pace replies at this line rate, 10 bits per byte (0 = no pacing)")
-      ->capture_default_str();
-  s->add_option("--seed", c->seed, "Random seed (noise, errors, garbage)")->capture_default_str();
 }
 
-rk::capture::EmulatorOptions Common(const DeviceCli& c) {
-  rk::capture::EmulatorOptions e;
+// The table's options (in `e`) with the paths and faults.
+rk::capture::EmulatorOptions Common(const DeviceCli& c, rk::capture::EmulatorOptions e) {
   e.link = c.link;
   e.truth_path = c.truth;
-  e.baud = c.baud;
-  e.error_rate = c.error_rate;
-  e.seed = c.seed;
   for (const auto& f : c.faults) {
     rk::capture::Fault fault;
     std::string why;
@@ -95,45 +87,24 @@ Command AddDeviceCommand(CLI::App& parent) {
       "device", "Emulate a serial device on a pseudo-terminal (dimetix: DLS rangefinder, ptu: FLIR pan-tilt unit)");
   device->require_subcommand(1);
   auto c = std::make_shared<DeviceCli>();
-  auto& d = c->dimetix;
-  auto& p = c->ptu;
 
   CLI::App* dim = device->add_subcommand("dimetix", "Dimetix DLS laser rangefinder (sNg, sNh, sNc, sNo, sNp, sNt)");
   AddCommon(dim, c.get());
-  dim->add_option("--device-id", d.device_id, "Device ID N in sNg / gNg (0-9)")->capture_default_str();
-  dim->add_option("--rate-hz", d.rate_hz, "Tracking rate of sNh (Hz)")->capture_default_str();
-  dim->add_option("--measure-s", d.measure_s, "Time of one sNg measurement (s)")->capture_default_str();
-  dim->add_option("--range-m", d.range_m, "Mean distance (m)")->capture_default_str();
-  dim->add_option("--amplitude-m", d.amplitude_m, "Amplitude of the distance sine (m)")->capture_default_str();
-  dim->add_option("--period-s", d.period_s, "Period of the distance sine (s)")->capture_default_str();
-  dim->add_option("--noise-mm", d.noise_mm, "Distance noise std (mm)")->capture_default_str();
-  dim->add_option("--temperature-c", d.temperature_c, "Temperature answered to sNt (deg C)")->capture_default_str();
+  rk::cli::AddOptions(dim, &c->dimetix, rk::capture::DimetixEmulatorOptions::Table());
 
   CLI::App* ptu = device->add_subcommand("ptu", "FLIR PTU-D46/D48 pan-tilt unit (PP, TP, PR, TR, PP<n>, TP<n>, ED, FT, V)");
   AddCommon(ptu, c.get());
-  ptu->add_option("--pan-res-arcsec", p.pan_res_arcsec, "Pan resolution answered to PR (arcsec per position)")
-      ->capture_default_str();
-  ptu->add_option("--tilt-res-arcsec", p.tilt_res_arcsec, "Tilt resolution answered to TR (arcsec per position)")
-      ->capture_default_str();
-  ptu->add_option("--pan-center-deg", p.pan_center_deg, "Centre of the pan sine (deg)")->capture_default_str();
-  ptu->add_option("--pan-amplitude-deg", p.pan_amplitude_deg, "Amplitude of the pan sine (deg)")->capture_default_str();
-  ptu->add_option("--pan-period-s", p.pan_period_s, "Period of the pan sine (s)")->capture_default_str();
-  ptu->add_option("--tilt-center-deg", p.tilt_center_deg, "Centre of the tilt sine (deg)")->capture_default_str();
-  ptu->add_option("--tilt-amplitude-deg", p.tilt_amplitude_deg, "Amplitude of the tilt sine (deg)")
-      ->capture_default_str();
-  ptu->add_option("--tilt-period-s", p.tilt_period_s, "Period of the tilt sine (s)")->capture_default_str();
-  ptu->add_option("--slew-deg-s", p.slew_deg_s, "Speed of commanded moves (deg/s)")->capture_default_str();
-  ptu->add_option("--reply-s", p.reply_s, "Command processing time (s)")->capture_default_str();
+  rk::cli::AddOptions(ptu, &c->ptu, rk::capture::PtuEmulatorOptions::Table());
 
   return {device, [c, dim](const Context& ctx) -> int {
             std::string why;
             if (dim->parsed()) {
-              c->dimetix.common = Common(*c);
+              c->dimetix.common = Common(*c, c->dimetix.common);
               if (!c->dimetix.Check(&why)) throw rk::UsageError(why);
               rk::capture::DimetixEmulator emu(c->dimetix);
               return Serve(&emu, *c, ctx, "dimetix");
             }
-            c->ptu.common = Common(*c);
+            c->ptu.common = Common(*c, c->ptu.common);
             if (!c->ptu.Check(&why)) throw rk::UsageError(why);
             rk::capture::PtuEmulator emu(c->ptu);
             return Serve(&emu, *c, ctx, "ptu");

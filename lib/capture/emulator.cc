@@ -79,14 +79,15 @@ std::string FaultToString(const Fault& f) {
   return s;
 }
 
-bool EmulatorOptions::Check(std::string* why) const {
-  auto fail = [&](const std::string& w) {
-    if (why) *why = w;
-    return false;
-  };
-  if (!(baud >= 0 && baud <= 4e6)) return fail("--baud must be 0 (no pacing) ... 4000000");
-  if (!(error_rate >= 0 && error_rate <= 1)) return fail("--error-rate must be in [0, 1]");
-  return true;
+const io::OptionTable<EmulatorOptions>& EmulatorOptions::Table() {
+  static const io::OptionTable<EmulatorOptions> table =
+      io::OptionTable<EmulatorOptions>()
+          .Real("--error-rate", &EmulatorOptions::error_rate, "", io::Bounds::Closed(0, 1),
+                "Probability that a measurement is answered with an error")
+          .Real("--baud", &EmulatorOptions::baud, "", io::Bounds::Closed(0, 4e6),
+                "Pace replies at this line rate, 10 bits per byte (0 = no pacing)")
+          .Count("--seed", &EmulatorOptions::seed, "", io::Bounds::Any(), "Random seed (noise, errors, garbage)");
+  return table;
 }
 
 bool PtyEndpoint::Open(const std::string& link, std::string* why) {

@@ -29,6 +29,8 @@
 #include <string_view>
 #include <vector>
 
+#include "io/options.h"
+
 namespace rk::capture {
 
 enum class FaultKind { kError, kSilence, kGarbage, kSlow, kDisconnect };
@@ -53,7 +55,9 @@ struct EmulatorOptions {
   std::vector<Fault> faults;
   double error_rate = 0.0;     // probability that a measurement is answered with an error
   std::uint64_t seed = 1;
-  bool Check(std::string* why) const;
+  // --error-rate, --baud, --seed (the paths and the faults are registered by rk-sim device).
+  static const io::OptionTable<EmulatorOptions>& Table();
+  bool Check(std::string* why) const { return Table().Check(*this, why); }
 };
 
 class PtyEndpoint {

@@ -8,20 +8,30 @@
 
 namespace rk::capture {
 
+const io::OptionTable<DimetixEmulatorOptions>& DimetixEmulatorOptions::Table() {
+  using O = DimetixEmulatorOptions;
+  using io::Bounds;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Sub(&O::common, EmulatorOptions::Table())
+          .Integer("--device-id", &O::device_id, "", Bounds::Closed(0, 9), "Device ID N in sNg / gNg (0-9)")
+          .Real("--rate-hz", &O::rate_hz, "Hz", Bounds::LeftOpen(0, 1000), "Tracking rate of sNh (Hz)")
+          .Real("--measure-s", &O::measure_s, "s", Bounds::Closed(0, 10), "Time of one sNg measurement (s)")
+          .Real("--range-m", &O::range_m, "m", Bounds::Any(), "Mean distance (m)")
+          .Real("--amplitude-m", &O::amplitude_m, "m", Bounds::Any(), "Amplitude of the distance sine (m)")
+          .Real("--period-s", &O::period_s, "s", Bounds::Positive(), "Period of the distance sine (s)")
+          .Real("--noise-mm", &O::noise_mm, "mm", Bounds::Closed(0, 1000), "Distance noise std (mm)")
+          .Real("--temperature-c", &O::temperature_c, "deg C", Bounds::Open(-200, 200),
+                "Temperature answered to sNt (deg C)");
+  return table;
+}
+
 bool DimetixEmulatorOptions::Check(std::string* why) const {
-  auto fail = [&](const std::string& w) {
-    if (why) *why = w;
+  if (!Table().Check(*this, why)) return false;
+  if (!(range_m - std::abs(amplitude_m) > 0.05 && range_m + std::abs(amplitude_m) < 10000)) {
+    if (why) *why = "--range-m +- --amplitude-m must stay within 0.05 ... 10000 m";
     return false;
-  };
-  if (!common.Check(why)) return false;
-  if (device_id < 0 || device_id > 9) return fail("--device-id must be 0 ... 9");
-  if (!(rate_hz > 0 && rate_hz <= 1000)) return fail("--rate-hz must be in (0, 1000]");
-  if (!(measure_s >= 0 && measure_s <= 10)) return fail("--measure-s must be in [0, 10]");
-  if (!(range_m - std::abs(amplitude_m) > 0.05 && range_m + std::abs(amplitude_m) < 10000))
-    return fail("--range-m +- --amplitude-m must stay within 0.05 ... 10000 m");
-  if (!(period_s > 0)) return fail("--period-s must be > 0");
-  if (!(noise_mm >= 0 && noise_mm <= 1000)) return fail("--noise-mm must be in [0, 1000]");
-  if (!(std::abs(temperature_c) < 200)) return fail("--temperature-c out of range");
+  }
   return true;
 }
 

@@ -21,6 +21,8 @@ struct DimetixEmulatorOptions {
   double period_s = 20.0;
   double noise_mm = 0.35;
   double temperature_c = 24.5;
+  static const io::OptionTable<DimetixEmulatorOptions>& Table();  // with EmulatorOptions::Table()
+  // Table().Check, then the distance range.
   bool Check(std::string* why) const;
 };
 

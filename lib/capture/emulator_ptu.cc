@@ -6,21 +6,38 @@
 
 namespace rk::capture {
 
+const io::OptionTable<PtuEmulatorOptions>& PtuEmulatorOptions::Table() {
+  using O = PtuEmulatorOptions;
+  using io::Bounds;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Sub(&O::common, EmulatorOptions::Table())
+          .Real("--pan-res-arcsec", &O::pan_res_arcsec, "arcsec", Bounds::Open(0, 36000),
+                "Pan resolution answered to PR (arcsec per position)")
+          .Real("--tilt-res-arcsec", &O::tilt_res_arcsec, "arcsec", Bounds::Open(0, 36000),
+                "Tilt resolution answered to TR (arcsec per position)")
+          .Real("--pan-center-deg", &O::pan_center_deg, "deg", Bounds::Any(), "Centre of the pan sine (deg)")
+          .Real("--pan-amplitude-deg", &O::pan_amplitude_deg, "deg", Bounds::Any(), "Amplitude of the pan sine (deg)")
+          .Real("--pan-period-s", &O::pan_period_s, "s", Bounds::Positive(), "Period of the pan sine (s)")
+          .Real("--tilt-center-deg", &O::tilt_center_deg, "deg", Bounds::Any(), "Centre of the tilt sine (deg)")
+          .Real("--tilt-amplitude-deg", &O::tilt_amplitude_deg, "deg", Bounds::Any(),
+                "Amplitude of the tilt sine (deg)")
+          .Real("--tilt-period-s", &O::tilt_period_s, "s", Bounds::Positive(), "Period of the tilt sine (s)")
+          .Real("--slew-deg-s", &O::slew_deg_s, "deg/s", Bounds::Positive(), "Speed of commanded moves (deg/s)")
+          .Real("--reply-s", &O::reply_s, "s", Bounds::Closed(0, 10), "Command processing time (s)");
+  return table;
+}
+
 bool PtuEmulatorOptions::Check(std::string* why) const {
   auto fail = [&](const std::string& w) {
     if (why) *why = w;
     return false;
   };
-  if (!common.Check(why)) return false;
-  if (!(pan_res_arcsec > 0 && tilt_res_arcsec > 0 && pan_res_arcsec < 36000 && tilt_res_arcsec < 36000))
-    return fail("--pan-res-arcsec / --tilt-res-arcsec must be in (0, 36000)");
-  if (!(pan_period_s > 0 && tilt_period_s > 0)) return fail("periods must be > 0");
-  if (!(slew_deg_s > 0)) return fail("--slew-deg-s must be > 0");
+  if (!Table().Check(*this, why)) return false;
   if (!(std::abs(pan_center_deg) + std::abs(pan_amplitude_deg) <= pan_limit_deg))
     return fail("the pan motion must stay within +-pan limit");
   if (!(std::abs(tilt_center_deg) + std::abs(tilt_amplitude_deg) <= tilt_limit_deg))
     return fail("the tilt motion must stay within +-tilt limit");
-  if (!(reply_s >= 0 && reply_s <= 10)) return fail("--reply-s must be in [0, 10]");
   return true;
 }
 

@@ -20,6 +20,8 @@ struct PtuEmulatorOptions {
   double slew_deg_s = 50.0;
   double pan_limit_deg = 159.0, tilt_limit_deg = 47.0;  // hypothetical ± travel (D48E: pan ±159°, tilt −47°/+31°)
   double reply_s = 0.001;          // command processing time
+  static const io::OptionTable<PtuEmulatorOptions>& Table();  // with EmulatorOptions::Table(); not the limits
+  // Table().Check, then the motion within the limits.
   bool Check(std::string* why) const;
 };
 

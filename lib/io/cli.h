@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -29,47 +30,63 @@ void AddCommonOptions(CLI::App& app, const std::string& tool, CommonOptions* com
 // io::CsvTable::Read with the rule of the file it reads.
 void AddBadRowsOption(CLI::App* app, io::BadRows* bad_rows);
 
+// One option of a table, as AddOptions registers it.
+template <class O>
+void AddOption(CLI::App* app, O* options, const io::OptionSpec<O>& s) {
+  using Kind = typename io::OptionSpec<O>::Kind;
+  switch (s.kind) {
+    case Kind::kReal: {
+      double& v = s.real(*options);
+      app->add_option(s.names(), v, s.help)->default_val(v);
+      break;
+    }
+    case Kind::kInteger: {
+      int& v = s.integer(*options);
+      app->add_option(s.names(), v, s.help)->default_val(v);
+      break;
+    }
+    case Kind::kCount: {
+      std::uint64_t& v = s.count(*options);
+      app->add_option(s.names(), v, s.help)->default_val(v);
+      break;
+    }
+    case Kind::kFlag:
+      app->add_flag(s.names(), s.flag_value(*options), s.help);
+      break;
+    case Kind::kChoice: {
+      auto set = s.set_choice;
+      const std::string flag = s.flag;
+      app->add_option_function<std::string>(
+             s.names(),
+             [options, set, flag](const std::string& v) {
+               if (!set(options, v)) throw CLI::ValidationError(flag, "unknown value '" + v + "'");
+             },
+             s.help)
+          ->check(CLI::IsMember(s.choices))
+          ->default_str(s.get_choice(*options));
+      break;
+    }
+  }
+}
+
 // Registers every option of `table` on `app` (a tool or a subcommand), bound to the members of
 // *options, in the table's order: numbers with their current value as the shown default, choices
 // checked against their names (TEXT:{a,b}=current). Bounds are checked after parsing, by the
 // Options' Check() (io::OptionTable::Check), so that the library and the CLI share one message.
 template <class O>
 void AddOptions(CLI::App* app, O* options, const io::OptionTable<O>& table) {
+  for (const auto& s : table.specs()) AddOption(app, options, s);
+}
+
+// The same, with options registered by hand (paths, lists, optional values) in between, in --help
+// order: before.at(flag)() runs just before the table's option `flag` is registered.
+template <class O>
+void AddOptions(CLI::App* app, O* options, const io::OptionTable<O>& table,
+                const std::map<std::string, std::function<void()>>& before) {
   for (const auto& s : table.specs()) {
-    using Kind = typename io::OptionSpec<O>::Kind;
-    switch (s.kind) {
-      case Kind::kReal: {
-        double& v = s.real(*options);
-        app->add_option(s.names(), v, s.help)->default_val(v);
-        break;
-      }
-      case Kind::kInteger: {
-        int& v = s.integer(*options);
-        app->add_option(s.names(), v, s.help)->default_val(v);
-        break;
-      }
-      case Kind::kCount: {
-        std::uint64_t& v = s.count(*options);
-        app->add_option(s.names(), v, s.help)->default_val(v);
-        break;
-      }
-      case Kind::kFlag:
-        app->add_flag(s.names(), s.flag_value(*options), s.help);
-        break;
-      case Kind::kChoice: {
-        auto set = s.set_choice;
-        const std::string flag = s.flag;
-        app->add_option_function<std::string>(
-               s.names(),
-               [options, set, flag](const std::string& v) {
-                 if (!set(options, v)) throw CLI::ValidationError(flag, "unknown value '" + v + "'");
-               },
-               s.help)
-            ->check(CLI::IsMember(s.choices))
-            ->default_str(s.get_choice(*options));
-        break;
-      }
-    }
+    const auto it = before.find(s.flag);
+    if (it != before.end()) it->second();
+    AddOption(app, options, s);
   }
 }
 

@@ -84,6 +84,51 @@ bool ParseMarkerHide(const std::string& text, MarkerHide* h, std::string* why) {
   return true;
 }
 
+const io::OptionTable<AttitudeSimOptions>& AttitudeSimOptions::Table() {
+  using O = AttitudeSimOptions;
+  using io::Bounds;
+  using geo::RadToDeg;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Real("--duration", &O::duration_s, "s", Bounds::LeftOpen(0, 3600),
+                "Trial length (s); the default 22 s covers the approach and the return")
+          .Real("--fps", &O::fps, "Hz", Bounds::LeftOpen(0, 1000), "Frame rate (Hz)")
+          .Real("--t0", &O::t0_s, "s", Bounds::Any(), "Time of frame 0 since the epoch (s)")
+          .Count("--seed", &O::seed, "", Bounds::Any(), "Random seed (same seed, same trial)")
+          .Real("--range-m", &O::range_m, "m", Bounds::Closed(2, 10000), "Initial range of the body origin (m)")
+          .Real("--azimuth-deg", &O::azimuth_deg, "deg", Bounds::Any(), "Initial azimuth of the target (deg)")
+          .Real("--elevation-deg", &O::elevation_deg, "deg", Bounds::Closed(RadToDeg(-0.2), RadToDeg(1.4)),
+                "Initial elevation of the target (deg)")
+          .Real("--approach-m", &O::approach_m, "m", Bounds::AtLeast(0),
+                "Distance moved toward the station on the way in (m)")
+          .Real("--return-m", &O::return_m, "m", Bounds::AtLeast(0), "Distance moved back on the way out (m)")
+          .Real("--leg-in-s", &O::leg_in_s, "s", Bounds::Positive(), "Duration of the approach (s), from the first frame")
+          .Real("--leg-out-s", &O::leg_out_s, "s", Bounds::Positive(), "Duration of the return (s), after the approach")
+          .Real("--path-angle-deg", &O::path_angle_deg, "deg", Bounds::Closed(-RadToDeg(1.5), RadToDeg(1.5)),
+                "Angle of the (horizontal) motion from the line of sight to the station (deg)")
+          .Real("--yaw0-deg", &O::yaw0_deg, "deg", Bounds::Any(), "Initial yaw (deg, clockwise from north)")
+          .Real("--pitch0-deg", &O::pitch0_deg, "deg", Bounds::Any(), "Initial pitch (deg)")
+          .Real("--roll0-deg", &O::roll0_deg, "deg", Bounds::Any(), "Initial roll (deg)")
+          .Real("--dyaw-deg", &O::dyaw_deg, "deg", Bounds::Any(), "Yaw change on the way in (deg), undone on the way out")
+          .Real("--dpitch-deg", &O::dpitch_deg, "deg", Bounds::Any(), "Pitch change on the way in (deg)")
+          .Real("--droll-deg", &O::droll_deg, "deg", Bounds::Any(), "Roll change on the way in (deg)")
+          .Real("--marker-radius-m", &O::marker_radius_m, "m", Bounds::LeftOpen(0, 1), "Marker sphere radius (m)")
+          .Real("--marker-dn", &O::marker_dn, "DN", Bounds::LeftOpen(0, 255), "Marker level above background (8-bit DN)")
+          .Real("--body-dn", &O::body_dn, "DN", Bounds::Closed(0, 255),
+                "Target body level above background (8-bit DN); 0 = no body")
+          .Real("--psf-sigma-px", &O::psf_sigma_px, "px", Bounds::Closed(0.3, 10), "PSF std (px)")
+          .Sub(&O::sensor, SensorOptions::Table())
+          .Real("--turret-rate-hz", &O::turret_rate_hz, "Hz", Bounds::LeftOpen(0, 10000), "Turret log rate (Hz)")
+          .Real("--turret-offset-s", &O::turret_offset_s, "s", Bounds::Any(),
+                "Turret sample time offset from the frame grid (s)")
+          .Real("--turret-noise-deg", &O::turret_resolution_deg, "deg", Bounds::AtLeast(0),
+                "Turret encoder step (deg): recorded angles are quantised to it; 0 = exact (as rk-sim beacon)")
+          .Real("--turret-noise-std-deg", &O::turret_noise_deg, "deg", Bounds::AtLeast(0),
+                "Extra Gaussian turret angle noise std (deg)")
+          .Sub(&O::servo, TurretServoOptions::Table());
+  return table;
+}
+
 bool AttitudeSimOptions::Check(std::string* why) const {
   auto fail = [&](const std::string& w) {
     *why = w;
@@ -91,36 +136,18 @@ bool AttitudeSimOptions::Check(std::string* why) const {
   };
   if (marker_ids.size() != markers_body.size()) return fail("marker ids and points differ in number");
   if (!marker_ids.empty() && marker_ids.size() < 4) return fail("the target needs at least 4 markers");
-  if (!(marker_radius_m > 0 && marker_radius_m <= 1.0)) return fail("--marker-radius-m must be in (0, 1] m");
-  if (!(marker_dn > 0 && marker_dn <= 255)) return fail("--marker-dn must be in (0, 255]");
-  if (!(body_dn >= 0 && body_dn <= 255)) return fail("--body-dn must be in [0, 255]");
-  if (!(psf_sigma_px >= 0.3 && psf_sigma_px <= 10)) return fail("--psf-sigma-px must be in [0.3, 10]");
-  if (sensor.bit_depth != 8 && sensor.bit_depth != 16) return fail("--bit-depth must be 8 or 16");
-  if (!(sensor.read_noise_dn >= 0 && sensor.background_dn >= 0 && sensor.gain_e_per_dn >= 0)) {
-    return fail("sensor noise and background must be >= 0");
+  if (!Table().Check(*this, why) || !sensor.Check(why) || !servo.Check(why)) return false;
+  for (double v : {t0_s, azimuth_deg, leg_in_s + leg_out_s}) {
+    if (!std::isfinite(v)) return fail("--t0, --azimuth-deg, --leg-in-s and --leg-out-s must be finite");
   }
-  if (!(duration_s > 0 && duration_s <= 3600)) return fail("--duration must be in (0, 3600] s");
-  if (!(fps > 0 && fps <= 1000)) return fail("--fps must be in (0, 1000] Hz");
-  if (!std::isfinite(t0_s)) return fail("--t0 must be finite");
-  if (!(range_m >= 2 && range_m <= 10000)) return fail("--range-m must be in [2, 10000] m");
-  if (!(elevation_rad >= -0.2 && elevation_rad <= 1.4)) return fail("--elevation-deg must be in [-11.5, 80] degrees");
-  if (!std::isfinite(azimuth_rad)) return fail("--azimuth-deg must be finite");
-  if (!(approach_m >= 0 && approach_m <= 0.9 * range_m)) return fail("--approach-m must be in [0, 0.9 range]");
-  if (!(leg_in_s > 0 && leg_out_s > 0 && std::isfinite(leg_in_s + leg_out_s))) {
-    return fail("--leg-in-s and --leg-out-s must be > 0 s");
-  }
-  if (!(return_m >= 0 && return_m <= approach_m + 0.5 * range_m)) return fail("--return-m out of range");
-  if (!(std::abs(path_angle_rad) <= 1.5)) return fail("--path-angle-deg must be within ±86 degrees");
-  for (double a : {yaw0_rad, pitch0_rad, roll0_rad, dyaw_rad, dpitch_rad, droll_rad}) {
+  if (!(approach_m <= 0.9 * range_m)) return fail("--approach-m must be in [0, 0.9 range]");
+  if (!(return_m <= approach_m + 0.5 * range_m)) return fail("--return-m out of range");
+  for (double a : {yaw0_deg, pitch0_deg, roll0_deg, dyaw_deg, dpitch_deg, droll_deg}) {
     if (!std::isfinite(a)) return fail("attitude angles must be finite");
   }
-  if (std::abs(pitch0_rad) > 1.5 || std::abs(pitch0_rad + dpitch_rad) > 1.5) {
+  if (std::abs(pitch0_rad()) > 1.5 || std::abs(pitch0_rad() + dpitch_rad()) > 1.5) {
     return fail("pitch must stay within ±86 degrees");
   }
-  std::string w;
-  if (!servo.Check(&w)) return fail(w);
-  if (!(turret_rate_hz > 0 && turret_rate_hz <= 10000)) return fail("--turret-rate-hz must be in (0, 10000]");
-  if (!(turret_resolution_rad >= 0 && turret_noise_rad >= 0)) return fail("turret noise must be >= 0");
   for (const auto& h : hides) {
     if (std::find(marker_ids.begin(), marker_ids.end(), h.id) == marker_ids.end() && !marker_ids.empty()) {
       return fail("--hide names marker '" + h.id + "', which the target does not have");
@@ -131,6 +158,13 @@ bool AttitudeSimOptions::Check(std::string* why) const {
     if (!markers_body[i].allFinite()) return fail("marker coordinates must be finite");
   }
   return true;
+}
+
+io::Json AttitudeSimOptions::ToJson() const {
+  const io::Json sim = AttitudeSimOptionsToJson(*this);
+  io::Json j = Table().ToJson(*this);
+  for (const char* key : {"camera", "markers_body_m", "hide"}) j[key] = sim[key];
+  return j;
 }
 
 io::Json AttitudeSimOptionsToJson(const AttitudeSimOptions& o) {
@@ -154,21 +188,21 @@ io::Json AttitudeSimOptionsToJson(const AttitudeSimOptions& o) {
   j["fps"] = o.fps;
   j["t0_s"] = o.t0_s;
   j["range_m"] = o.range_m;
-  j["azimuth_deg"] = RadToDeg(o.azimuth_rad);
-  j["elevation_deg"] = RadToDeg(o.elevation_rad);
+  j["azimuth_deg"] = RadToDeg(o.azimuth_rad());
+  j["elevation_deg"] = RadToDeg(o.elevation_rad());
   j["approach_m"] = o.approach_m;
   j["return_m"] = o.return_m;
   j["leg_in_s"] = o.leg_in_s;
   j["leg_out_s"] = o.leg_out_s;
-  j["path_angle_deg"] = RadToDeg(o.path_angle_rad);
-  j["attitude0_deg"] = {RadToDeg(o.yaw0_rad), RadToDeg(o.pitch0_rad), RadToDeg(o.roll0_rad)};
-  j["attitude_change_deg"] = {RadToDeg(o.dyaw_rad), RadToDeg(o.dpitch_rad), RadToDeg(o.droll_rad)};
+  j["path_angle_deg"] = RadToDeg(o.path_angle_rad());
+  j["attitude0_deg"] = {RadToDeg(o.yaw0_rad()), RadToDeg(o.pitch0_rad()), RadToDeg(o.roll0_rad())};
+  j["attitude_change_deg"] = {RadToDeg(o.dyaw_rad()), RadToDeg(o.dpitch_rad()), RadToDeg(o.droll_rad())};
   j["turret"] = {{"lag_s", o.servo.lag_s},
-                 {"jitter_arcsec", o.servo.jitter_rms_rad * geo::kArcsecPerRad},
+                 {"jitter_arcsec", o.servo.jitter_rms_rad() * geo::kArcsecPerRad},
                  {"rate_hz", o.turret_rate_hz},
                  {"offset_s", o.turret_offset_s},
-                 {"resolution_deg", RadToDeg(o.turret_resolution_rad)},
-                 {"noise_deg", RadToDeg(o.turret_noise_rad)}};
+                 {"resolution_deg", RadToDeg(o.turret_resolution_rad())},
+                 {"noise_deg", RadToDeg(o.turret_noise_rad())}};
   io::Json hides = io::Json::array();
   for (const auto& h : o.hides) hides.push_back({{"id", h.id}, {"start_s", h.start_s}, {"duration_s", h.duration_s}});
   j["hide"] = hides;
@@ -197,16 +231,16 @@ Eigen::Vector3d AttitudeSimulator::PositionEnu(double t) const {
 geo::EulerZyx AttitudeSimulator::Attitude(double t) const {
   const double a = Progress(t);
   // Through the rotation matrix so that the angles come back in their SPEC ranges.
-  const Eigen::Matrix3d R = geo::RotationNedFromBody(opt_.yaw0_rad + opt_.dyaw_rad * a,
-                                                     opt_.pitch0_rad + opt_.dpitch_rad * a,
-                                                     opt_.roll0_rad + opt_.droll_rad * a);
+  const Eigen::Matrix3d R = geo::RotationNedFromBody(opt_.yaw0_rad() + opt_.dyaw_rad() * a,
+                                                     opt_.pitch0_rad() + opt_.dpitch_rad() * a,
+                                                     opt_.roll0_rad() + opt_.droll_rad() * a);
   return geo::EulerFromRotationNedBody(R);
 }
 
 AttitudeSimulator::AttitudeSimulator(AttitudeSimOptions opt) : opt_(Prepared(std::move(opt))) {
-  p0_enu_ = opt_.range_m * geo::DirectionFromAzEl(opt_.azimuth_rad, opt_.elevation_rad);
-  const Eigen::Vector3d toward(-std::sin(opt_.azimuth_rad), -std::cos(opt_.azimuth_rad), 0.0);
-  const double c = std::cos(opt_.path_angle_rad), s = std::sin(opt_.path_angle_rad);
+  p0_enu_ = opt_.range_m * geo::DirectionFromAzEl(opt_.azimuth_rad(), opt_.elevation_rad());
+  const Eigen::Vector3d toward(-std::sin(opt_.azimuth_rad()), -std::cos(opt_.azimuth_rad()), 0.0);
+  const double c = std::cos(opt_.path_angle_rad()), s = std::sin(opt_.path_angle_rad());
   // Clockwise (seen from above) rotation of `toward` by path_angle.
   dir_enu_ = Eigen::Vector3d(c * toward.x() + s * toward.y(), -s * toward.x() + c * toward.y(), 0.0);
   const std::int64_t n = FrameCount(opt_);
@@ -313,9 +347,9 @@ cv::Mat AttitudeSimulator::RenderFrame(std::size_t k) const {
 std::vector<AttitudeTurretSample> AttitudeSimulator::TurretLog() const {
   std::mt19937_64 rng = RandomStream(opt_.seed, 4);
   std::normal_distribution<double> normal(0.0, 1.0);
-  const double q = opt_.turret_resolution_rad;
+  const double q = opt_.turret_resolution_rad();
   auto record = [&](double v) {
-    if (opt_.turret_noise_rad > 0) v += opt_.turret_noise_rad * normal(rng);
+    if (opt_.turret_noise_rad() > 0) v += opt_.turret_noise_rad() * normal(rng);
     if (q > 0) v = q * std::round(v / q);
     return v;
   };

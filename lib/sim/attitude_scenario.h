@@ -41,9 +41,11 @@
 #include <opencv2/core.hpp>
 
 #include "camera/camera_model.h"
+#include "geo/angles.h"
 #include "geo/body_attitude.h"
 #include "geo/line_of_sight.h"
 #include "io/json_util.h"
+#include "io/options.h"
 #include "sim/render.h"
 #include "sim/turret_servo.h"
 
@@ -79,30 +81,48 @@ struct AttitudeSimOptions {
   double t0_s = 1.0;                             // time of frame 0 since the epoch (s)
 
   double range_m = 22.0;                         // R0 (m), [2, 10000]
-  double azimuth_rad = 0.5235987755982988;       // A0 (30°)
-  double elevation_rad = 0.05235987755982988;    // E0 (3°), [-0.2, 1.4]
+  double azimuth_deg = 30.0;                     // A0
+  double elevation_deg = 3.0;                    // E0, [-0.2, 1.4] rad
   double approach_m = 6.0;                       // [0, 0.9 R0]
   double leg_in_s = 12.0;                        // duration of the approach (s), > 0
   double leg_out_s = 10.0;                       // duration of the return (s), > 0
   double return_m = 5.0;                         // [0, approach_m + 0.5 R0]
-  double path_angle_rad = 0.5235987755982988;    // 30°, [−1.5, 1.5]
-  double yaw0_rad = 5.235987755982989;           // 300°: side-on (the station sees the left side)
-  double pitch0_rad = 0.08726646259971647;       // 5°
-  double roll0_rad = 0.0;
-  double dyaw_rad = 0.17453292519943295;         // 10°
-  double dpitch_rad = 0.12217304763960307;       // 7°
-  double droll_rad = 0.08726646259971647;        // 5°
+  double path_angle_deg = 30.0;                  // [−1.5, 1.5] rad
+  double yaw0_deg = 300.0;                       // side-on (the station sees the left side)
+  double pitch0_deg = 5.0;
+  double roll0_deg = 0.0;
+  double dyaw_deg = 10.0;
+  double dpitch_deg = 7.0;
+  double droll_deg = 5.0;
 
   TurretServoOptions servo{0.10};                // lag 0.1 s, 5″ jitter
   double turret_rate_hz = 50.0;
   double turret_offset_s = 0.0037;
-  double turret_resolution_rad = 5.235987755982989e-05;  // 0.003° encoder step; 0 = exact
-  double turret_noise_rad = 0.0;
+  double turret_resolution_deg = 0.003;          // encoder step; 0 = exact
+  double turret_noise_deg = 0.0;
 
   std::vector<MarkerHide> hides;
   std::uint64_t seed = 1;
 
+  double azimuth_rad() const { return geo::DegToRad(azimuth_deg); }
+  double elevation_rad() const { return geo::DegToRad(elevation_deg); }
+  double path_angle_rad() const { return geo::DegToRad(path_angle_deg); }
+  double yaw0_rad() const { return geo::DegToRad(yaw0_deg); }
+  double pitch0_rad() const { return geo::DegToRad(pitch0_deg); }
+  double roll0_rad() const { return geo::DegToRad(roll0_deg); }
+  double dyaw_rad() const { return geo::DegToRad(dyaw_deg); }
+  double dpitch_rad() const { return geo::DegToRad(dpitch_deg); }
+  double droll_rad() const { return geo::DegToRad(droll_deg); }
+  double turret_resolution_rad() const { return geo::DegToRad(turret_resolution_deg); }
+  double turret_noise_rad() const { return geo::DegToRad(turret_noise_deg); }
+
+  // Every number option, with the sensor and servo tables; not in it: the camera, the target model,
+  // the marker hides, registered by the app.
+  static const io::OptionTable<AttitudeSimOptions>& Table();
+  // Table().Check, then the markers, finite values and the rules between options.
   bool Check(std::string* why) const;
+  // The run report's "options": Table().ToJson plus the camera, the markers and the hides.
+  io::Json ToJson() const;
 };
 io::Json AttitudeSimOptionsToJson(const AttitudeSimOptions& opt);
 

@@ -25,6 +25,15 @@ constexpr const char* kAttitudeCamera = "att";  // the camera's name in the mani
 
 }  // namespace
 
+const io::OptionTable<AttitudeTrialWriteOptions>& AttitudeTrialWriteOptions::Table() {
+  static const io::OptionTable<AttitudeTrialWriteOptions> table =
+      io::OptionTable<AttitudeTrialWriteOptions>()
+          .Flag("--force", &AttitudeTrialWriteOptions::force, "Replace an existing non-empty --out folder")
+          .Choice("--format", &AttitudeTrialWriteOptions::format, {{"mkv", "mkv"}, {"png", "png"}},
+                  "Video: mkv (att/video.mkv, FFV1) or png (att/%06d.png)");
+  return table;
+}
+
 bool AttitudeTrialWriteOptions::Check(std::string* why) const {
   if (out_dir.empty() || out_dir == "-") {
     *why = "--out must name a folder";
@@ -56,26 +65,12 @@ io::Json AttitudeTrialSummary::ToJson() const {
           {"roll_span_deg", roll_span_deg}};
 }
 
-AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const AttitudeTrialWriteOptions& opt) {
-  std::string why;
-  if (!opt.Check(&why)) throw UsageError(why);
+namespace {
+
+// Frame times, truth/pose.csv and truth/points.csv; the frame counts, extremes and attitude spans of `sum`.
+void WriteAttitudeTruth(const AttitudeSimulator& sim, const TrialFolder& dir, AttitudeTrialSummary* out) {
   const AttitudeSimOptions& so = sim.options();
-  TrialFolder dir(opt.out_dir, opt.force);
-  io::MakeDirectories(dir.Path(kAttitudeCamera));
-  io::MakeDirectories(dir.Path("truth"));
-
-  AttitudeTrialSummary sum;
-  io::WriteJson(dir.Path(trial::CameraFile(kAttitudeCamera, trial::kCameraModelFile)),
-                camera::CameraModelToJson(so.camera));
-  {
-    io::Json pts = io::Json::object();
-    for (std::size_t i = 0; i < so.marker_ids.size(); ++i) {
-      pts[so.marker_ids[i]] = {so.markers_body[i].x(), so.markers_body[i].y(), so.markers_body[i].z()};
-    }
-    io::WriteJson(dir.Path(trial::kTargetModelFile),
-                  io::Json{{"points", pts}, {"marker_radius_m", so.marker_radius_m}});
-  }
-
+  AttitudeTrialSummary& sum = *out;
   io::CsvWriter frames_csv({"frame", "t_s"});
   io::CsvWriter pose_csv({"frame", "t_s", "e_m", "n_m", "u_m", "yaw_deg", "pitch_deg", "roll_deg", "range_m",
                           "boresight_az_deg", "boresight_el_deg"});
@@ -132,7 +127,10 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
   frames_csv.Write(dir.Path(trial::CameraFile(kAttitudeCamera, trial::kFramesFile)));
   pose_csv.Write(dir.Path("truth/pose.csv"));
   points_csv.Write(dir.Path("truth/points.csv"));
+}
 
+// The turret log, recorded (trial root) and true (truth/); its row count in `sum`.
+void WriteTurretLogs(const AttitudeSimulator& sim, const TrialFolder& dir, AttitudeTrialSummary* out) {
   io::CsvWriter turret_csv({"t_s", "az_deg", "el_deg"}), turret_truth({"t_s", "az_deg", "el_deg"});
   for (const AttitudeTurretSample& s : sim.TurretLog()) {
     turret_csv.Add(s.t_s, kTimeDecimals).Add(geo::RadToDeg(s.az_rad), kAngleDecimals).Add(geo::RadToDeg(s.el_rad), kAngleDecimals).EndRow();
@@ -140,21 +138,15 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
         .Add(geo::RadToDeg(geo::WrapTwoPi(s.true_az_rad)), kAngleDecimals)
         .Add(geo::RadToDeg(s.true_el_rad), kAngleDecimals)
         .EndRow();
-    ++sum.turret_rows;
+    ++out->turret_rows;
   }
   turret_csv.Write(dir.Path(trial::kTurretFile));
   turret_truth.Write(dir.Path("truth/turret.csv"));
+}
 
-  const std::string video_rel = trial::CameraFile(kAttitudeCamera, opt.format == "mkv" ? "video.mkv" : "%06d.png");
-  if (opt.video) {
-    video::FrameSink sink(dir.Path(video_rel), so.camera.width_px, so.camera.height_px, so.sensor.bit_depth, so.fps);
-    for (std::size_t k = 0; k < sim.frame_count(); ++k) {
-      sink.Write(sim.RenderFrame(k));
-      if (opt.progress) opt.progress(k + 1, sim.frame_count());
-    }
-    sink.Close();
-  }
-
+void WriteAttitudeManifest(const AttitudeSimulator& sim, const AttitudeTrialWriteOptions& opt, const TrialFolder& dir,
+                           const std::string& video_rel, const AttitudeTrialSummary& sum) {
+  const AttitudeSimOptions& so = sim.options();
   trial::Manifest m;
   m.name = opt.name.empty() ? dir.stem() : opt.name;
   m.epoch_utc = opt.epoch_utc;
@@ -176,6 +168,43 @@ AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const Atti
   simj["summary"] = sum.ToJson();
   m.extra["sim"] = simj;
   trial::WriteManifest(dir.Path(trial::kManifestFile), m);
+}
+
+}  // namespace
+
+AttitudeTrialSummary WriteAttitudeTrial(const AttitudeSimulator& sim, const AttitudeTrialWriteOptions& opt) {
+  std::string why;
+  if (!opt.Check(&why)) throw UsageError(why);
+  const AttitudeSimOptions& so = sim.options();
+  TrialFolder dir(opt.out_dir, opt.force);
+  io::MakeDirectories(dir.Path(kAttitudeCamera));
+  io::MakeDirectories(dir.Path("truth"));
+
+  AttitudeTrialSummary sum;
+  io::WriteJson(dir.Path(trial::CameraFile(kAttitudeCamera, trial::kCameraModelFile)),
+                camera::CameraModelToJson(so.camera));
+  {
+    io::Json pts = io::Json::object();
+    for (std::size_t i = 0; i < so.marker_ids.size(); ++i) {
+      pts[so.marker_ids[i]] = {so.markers_body[i].x(), so.markers_body[i].y(), so.markers_body[i].z()};
+    }
+    io::WriteJson(dir.Path(trial::kTargetModelFile),
+                  io::Json{{"points", pts}, {"marker_radius_m", so.marker_radius_m}});
+  }
+  WriteAttitudeTruth(sim, dir, &sum);
+  WriteTurretLogs(sim, dir, &sum);
+
+  const std::string video_rel = trial::CameraFile(kAttitudeCamera, opt.format == "mkv" ? "video.mkv" : "%06d.png");
+  if (opt.video) {
+    video::FrameSink sink(dir.Path(video_rel), so.camera.width_px, so.camera.height_px, so.sensor.bit_depth, so.fps);
+    for (std::size_t k = 0; k < sim.frame_count(); ++k) {
+      sink.Write(sim.RenderFrame(k));
+      if (opt.progress) opt.progress(k + 1, sim.frame_count());
+    }
+    sink.Close();
+  }
+
+  WriteAttitudeManifest(sim, opt, dir, video_rel, sum);
   dir.Commit();
   return sum;
 }

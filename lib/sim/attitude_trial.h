@@ -19,6 +19,7 @@
 #include <string>
 
 #include "io/json_util.h"
+#include "io/options.h"
 #include "sim/attitude_scenario.h"
 
 namespace rk::sim {
@@ -32,6 +33,8 @@ struct AttitudeTrialWriteOptions {
   std::string epoch_utc = "2026-01-01T00:00:00Z";
   std::function<void(std::size_t done, std::size_t total)> progress;
 
+  // --force, --format (--out, --no-video, --name, --epoch-utc are registered by the app).
+  static const io::OptionTable<AttitudeTrialWriteOptions>& Table();
   bool Check(std::string* why) const;
 };
 

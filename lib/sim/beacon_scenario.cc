@@ -139,28 +139,51 @@ bool ParseOcclusion(const std::string& text, OcclusionInterval* occ, std::string
   return true;
 }
 
+const io::OptionTable<BeaconSimOptions>& BeaconSimOptions::Table() {
+  using O = BeaconSimOptions;
+  using io::Bounds;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Real("--duration", &O::duration_s, "s", Bounds::LeftOpen(0, 3600), "Trial length (s)")
+          .Real("--fps", &O::fps, "Hz", Bounds::LeftOpen(0, 1000), "Frame rate (Hz)")
+          .Real("--t0", &O::t0_s, "s", Bounds::Closed(-1e7, 1e7), "Time of frame 0 since the epoch (s)")
+          .Sub(&O::trajectory, TrajectoryOptions::Table())
+          .Count("--seed", &O::seed, "", Bounds::Any(), "Random seed (same seed, same trial)")
+          .Sub(&O::sensor, SensorOptions::Table())
+          .Real("--peak-dn", &O::peak_dn, "DN", Bounds::LeftOpen(0, 255),
+                "Brightest lamp amplitude above background (8-bit DN)")
+          .Real("--psf-sigma-px", &O::psf_sigma_px, "px", Bounds::Closed(0.3, 10), "Lamp PSF std (px)")
+          .Integer("--lamps", &O::lamps, "", Bounds::Closed(5, 64), "Lamps in the cluster (>= 5)")
+          .Real("--cluster-span-m", &O::cluster_span_m, "m", Bounds::Closed(0.001, 10), "Lamp cluster diameter (m)")
+          .Integer("--distractors", &O::distractors, "", Bounds::Closed(0, 50), "Bright glints in the image")
+          .Real("--distractor-margin-px", &O::distractor_margin_px, "px", Bounds::AtLeast(0),
+                "Glints start at least this far from the beacon (px)")
+          .Real("--range-noise-mm", &O::range_noise_mm, "mm", Bounds::Closed(0, 10000), "Range noise std (mm)")
+          .Real("--range-error-rate", &O::range_error_rate, "", Bounds::RightOpen(0, 1),
+                "Probability of a device-error row (status 255)")
+          .Real("--range-rate-hz", &O::range_rate_hz, "Hz", Bounds::LeftOpen(0, 1000), "Range log rate (Hz)")
+          .Real("--range-offset-s", &O::range_offset_s, "s", Bounds::Closed(-kSampleMarginS, kSampleMarginS),
+                "Range sample time offset from the frame grid (s)")
+          .Real("--turret-rate-hz", &O::turret_rate_hz, "Hz", Bounds::LeftOpen(0, 10000), "Turret log rate (Hz)")
+          .Real("--turret-offset-s", &O::turret_offset_s, "s", Bounds::Closed(-kSampleMarginS, kSampleMarginS),
+                "Turret sample time offset from the frame grid (s)")
+          .Real("--turret-noise-deg", &O::turret_resolution_deg, "deg", Bounds::Closed(0, geo::RadToDeg(0.01)),
+                "Turret encoder quantisation step (deg), PTU-D48E 0.003; 0 = exact angles")
+          .Real("--turret-noise-std-deg", &O::turret_noise_deg, "deg", Bounds::Closed(0, geo::RadToDeg(0.01)),
+                "Extra Gaussian encoder noise std (deg)")
+          .Sub(&O::servo, TurretServoOptions::Table());
+  return table;
+}
+
 bool BeaconSimOptions::Check(std::string* why) const {
   auto fail = [&](const std::string& w) {
     if (why) *why = w;
     return false;
   };
+  if (!Table().Check(*this, why)) return false;
   if (camera.width_px < 32 || camera.height_px < 32) return fail("image must be at least 32x32 px");
-  if (!trajectory.Check(why)) return false;
-  if (!servo.Check(why)) return false;
-  if (!(duration_s > 0 && duration_s <= 3600)) return fail("duration must be in (0, 3600] s");
-  if (!(fps > 0 && fps <= 1000)) return fail("fps must be in (0, 1000] Hz");
+  if (!trajectory.Check(why) || !sensor.Check(why) || !servo.Check(why)) return false;
   if (duration_s * fps < 1.0 - 1e-9) return fail("duration x fps must give at least one frame");
-  if (!std::isfinite(t0_s) || std::abs(t0_s) > 1e7) return fail("t0 must be a finite time in s");
-  if (lamps < 5 || lamps > 64) return fail("lamps must be in [5, 64]");
-  if (!(cluster_span_m >= 0.001 && cluster_span_m <= 10)) return fail("cluster span must be in [0.001, 10] m");
-  if (!(psf_sigma_px >= 0.3 && psf_sigma_px <= 10)) return fail("PSF sigma must be in [0.3, 10] px");
-  if (!(peak_dn > 0 && peak_dn <= 255)) return fail("peak must be in (0, 255] DN (8-bit scale)");
-  if (!(sensor.background_dn >= 0 && sensor.background_dn <= 255)) return fail("background must be in [0, 255] DN");
-  if (!(sensor.read_noise_dn >= 0 && sensor.read_noise_dn <= 100)) return fail("read noise must be in [0, 100] DN");
-  if (!(sensor.gain_e_per_dn >= 0 && sensor.gain_e_per_dn <= 1e6)) return fail("gain must be in [0, 1e6] e-/DN");
-  if (sensor.bit_depth != 8 && sensor.bit_depth != 16) return fail("bit depth must be 8 or 16");
-  if (distractors < 0 || distractors > 50) return fail("distractors must be in [0, 50]");
-  if (!(distractor_margin_px >= 0)) return fail("distractor margin must be >= 0 px");
   for (const auto& o : occlusions) {
     if (!(o.start_s >= 0 && o.duration_s > 0 && std::isfinite(o.start_s + o.duration_s))) {
       return fail("occlusion intervals need start >= 0 and duration > 0");
@@ -171,17 +194,14 @@ bool BeaconSimOptions::Check(std::string* why) const {
       return fail("servo holds need start >= 0, duration > 0 and must end within 1 s after the trial");
     }
   }
-  if (!(turret_rate_hz > 0 && turret_rate_hz <= 10000)) return fail("turret rate must be in (0, 10000] Hz");
-  if (!(std::abs(turret_offset_s) <= kSampleMarginS)) return fail("turret offset must be in [-0.5, 0.5] s");
-  if (!(turret_resolution_rad >= 0 && turret_resolution_rad <= 0.01)) {
-    return fail("turret resolution must be in [0, 0.57] deg");
-  }
-  if (!(turret_noise_rad >= 0 && turret_noise_rad <= 0.01)) return fail("turret noise must be in [0, 0.57] deg");
-  if (!(range_rate_hz > 0 && range_rate_hz <= 1000)) return fail("range rate must be in (0, 1000] Hz");
-  if (!(std::abs(range_offset_s) <= kSampleMarginS)) return fail("range offset must be in [-0.5, 0.5] s");
-  if (!(range_noise_m >= 0 && range_noise_m <= 10)) return fail("range noise must be in [0, 10000] mm");
-  if (!(range_error_rate >= 0 && range_error_rate < 1)) return fail("range error rate must be in [0, 1)");
   return true;
+}
+
+io::Json BeaconSimOptions::ToJson() const {
+  const io::Json sim = BeaconSimOptionsToJson(*this);
+  io::Json j = Table().ToJson(*this);
+  for (const char* key : {"camera_preset", "camera", "trajectory", "occlusions", "servo_holds"}) j[key] = sim[key];
+  return j;
 }
 
 io::Json BeaconSimOptionsToJson(const BeaconSimOptions& o) {
@@ -194,7 +214,7 @@ io::Json BeaconSimOptionsToJson(const BeaconSimOptions& o) {
                      {"speed_mps", o.trajectory.speed_mps},
                      {"azimuth_deg", RadToDeg(o.trajectory.azimuth_rad)},
                      {"elevation_deg", RadToDeg(o.trajectory.elevation_rad)},
-                     {"max_elevation_deg", RadToDeg(o.trajectory.max_elevation_rad)},
+                     {"max_elevation_deg", RadToDeg(o.trajectory.max_elevation_rad())},
                      {"turn_rate_deg_s", RadToDeg(o.trajectory.turn_rate_rad_s)},
                      {"t_mid_s", o.t0_s + 0.5 * o.duration_s}};
   j["duration_s"] = o.duration_s;
@@ -217,15 +237,15 @@ io::Json BeaconSimOptionsToJson(const BeaconSimOptions& o) {
   for (const auto& x : o.servo_holds) holds.push_back({{"start_s", x.start_s}, {"duration_s", x.duration_s}});
   j["servo_holds"] = holds;
   j["turret_lag_s"] = o.servo.lag_s;
-  j["jitter_arcsec"] = o.servo.jitter_rms_rad * geo::kArcsecPerRad;
+  j["jitter_arcsec"] = o.servo.jitter_rms_rad() * geo::kArcsecPerRad;
   j["jitter_band_hz"] = {o.servo.jitter_min_hz, o.servo.jitter_max_hz};
   j["turret_rate_hz"] = o.turret_rate_hz;
   j["turret_offset_s"] = o.turret_offset_s;
-  j["turret_resolution_deg"] = RadToDeg(o.turret_resolution_rad);
-  j["turret_noise_deg"] = RadToDeg(o.turret_noise_rad);
+  j["turret_resolution_deg"] = RadToDeg(o.turret_resolution_rad());
+  j["turret_noise_deg"] = RadToDeg(o.turret_noise_rad());
   j["range_rate_hz"] = o.range_rate_hz;
   j["range_offset_s"] = o.range_offset_s;
-  j["range_noise_mm"] = o.range_noise_m * 1e3;
+  j["range_noise_mm"] = o.range_noise_m() * 1e3;
   j["range_error_rate"] = o.range_error_rate;
   j["seed"] = o.seed;
   return j;
@@ -383,9 +403,9 @@ cv::Mat BeaconSimulator::RenderFrame(std::size_t k) const {
 std::vector<TurretSample> BeaconSimulator::TurretLog() const {
   std::mt19937_64 rng = RandomStream(opt_.seed, 4);
   std::normal_distribution<double> normal(0.0, 1.0);
-  const double q = opt_.turret_resolution_rad;
+  const double q = opt_.turret_resolution_rad();
   auto record = [&](double v) {
-    if (opt_.turret_noise_rad > 0) v += opt_.turret_noise_rad * normal(rng);
+    if (opt_.turret_noise_rad() > 0) v += opt_.turret_noise_rad() * normal(rng);
     if (q > 0) v = q * std::round(v / q);
     return v;
   };
@@ -412,7 +432,7 @@ std::vector<RangeSample> BeaconSimulator::RangeLog() const {
     RangeSample s;
     s.t_s = t;
     s.true_range_m = trajectory_.PositionEnu(t).norm();
-    const double noise = opt_.range_noise_m * normal(rng);  // drawn every row: error rows do not shift the stream
+    const double noise = opt_.range_noise_m() * normal(rng);  // drawn every row: error rows do not shift the stream
     if (uniform(rng) < opt_.range_error_rate) {
       s.range_m = std::nan("");
       s.status = 255;

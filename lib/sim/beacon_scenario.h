@@ -42,7 +42,9 @@
 #include <opencv2/core.hpp>
 
 #include "camera/camera_model.h"
+#include "geo/angles.h"
 #include "io/json_util.h"
+#include "io/options.h"
 #include "sim/render.h"
 #include "sim/trajectory.h"
 #include "sim/turret_servo.h"
@@ -90,17 +92,28 @@ struct BeaconSimOptions {
   TurretServoOptions servo;
   double turret_rate_hz = 50.0;        // turret log rate (Hz), (0, 10000]
   double turret_offset_s = 0.0037;     // turret log time offset from the frame grid (s)
-  double turret_resolution_rad = 5.235987755982989e-05;  // encoder quantisation step (rad), default 0.003°; 0 = none
-  double turret_noise_rad = 0.0;       // extra Gaussian encoder noise std (rad)
+  double turret_resolution_deg = 0.003;  // encoder quantisation step (deg), PTU-D48E; 0 = none
+  double turret_noise_deg = 0.0;       // extra Gaussian encoder noise std (deg)
 
   double range_rate_hz = 5.0;          // rangefinder rate (Hz), (0, 1000]
   double range_offset_s = 0.071;       // range log time offset from the frame grid (s)
-  double range_noise_m = 0.35e-3;      // Gaussian range noise std (m), [0, 10]
+  double range_noise_mm = 0.35;        // Gaussian range noise std (mm), [0, 10000]
   double range_error_rate = 0.01;      // probability of a device-error row, [0, 1)
 
   std::uint64_t seed = 1;
 
+  double turret_resolution_rad() const { return geo::DegToRad(turret_resolution_deg); }
+  double turret_noise_rad() const { return geo::DegToRad(turret_noise_deg); }
+  double range_noise_m() const { return range_noise_mm * 1e-3; }
+
+  // Every number option, with the trajectory, sensor and servo tables. Not in it: the camera, the
+  // occlusions and servo holds (lists), and the trajectory's kind and geometry (rk-sim beacon's
+  // --trajectory selects DefaultTrajectoryOptions; --range-m ... are optional values).
+  static const io::OptionTable<BeaconSimOptions>& Table();
+  // Table().Check, then the camera size, the trajectory and servo rules, the frame count, the intervals.
   bool Check(std::string* why) const;
+  // The run report's "options": Table().ToJson plus the camera, the resolved trajectory and the intervals.
+  io::Json ToJson() const;
 };
 io::Json BeaconSimOptionsToJson(const BeaconSimOptions& opt);
 

@@ -25,6 +25,15 @@ constexpr const char* kBeaconCamera = "az";  // the camera's name in the manifes
 
 }  // namespace
 
+const io::OptionTable<TrialWriteOptions>& TrialWriteOptions::Table() {
+  static const io::OptionTable<TrialWriteOptions> table =
+      io::OptionTable<TrialWriteOptions>()
+          .Flag("--force", &TrialWriteOptions::force, "Replace an existing non-empty --out folder")
+          .Choice("--format", &TrialWriteOptions::format, {{"mkv", "mkv"}, {"png", "png"}},
+                  "Video: mkv (az/video.mkv, FFV1) or png (az/%06d.png)");
+  return table;
+}
+
 bool TrialWriteOptions::Check(std::string* why) const {
   auto fail = [&](const std::string& w) {
     if (why) *why = w;
@@ -54,21 +63,11 @@ io::Json TrialSummary::ToJson() const {
   return j;
 }
 
-TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOptions& opt) {
-  std::string why;
-  if (!opt.Check(&why)) throw UsageError(why);
-  const BeaconSimOptions& so = sim.options();
+namespace {
 
-  TrialFolder folder(opt.out_dir, opt.force);
-  const std::string stem = fs::path(folder.out()).filename().string();
-  const fs::path root(folder.Path(""));
-  io::MakeDirectories((root / kBeaconCamera).string());
-  io::MakeDirectories((root / "truth").string());
-
-  TrialSummary sum;
-  // Camera model and frame times.
-  io::WriteJson((root / trial::CameraFile(kBeaconCamera, trial::kCameraModelFile)).string(),
-                camera::CameraModelToJson(so.camera));
+// Frame times (camera folder) and truth/beacon.csv, truth/target.csv; the frame counts and extremes of `sum`.
+void WriteFrameTruth(const BeaconSimulator& sim, const fs::path& root, TrialSummary* out) {
+  TrialSummary& sum = *out;
   io::CsvWriter frames_csv({"frame", "t_s"});
   io::CsvWriter beacon_csv({"frame", "t_s", "x_px", "y_px", "visible", "distractor_min_dist_px"});
   io::CsvWriter target_csv(
@@ -113,8 +112,11 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
   frames_csv.Write((root / trial::CameraFile(kBeaconCamera, trial::kFramesFile)).string());
   beacon_csv.Write((root / "truth" / "beacon.csv").string());
   target_csv.Write((root / "truth" / "target.csv").string());
+}
 
-  // Turret and range logs (recorded and true).
+// Turret and range logs, recorded (trial root) and true (truth/); their row counts in `sum`.
+void WriteLogs(const BeaconSimulator& sim, const fs::path& root, TrialSummary* out) {
+  TrialSummary& sum = *out;
   io::CsvWriter turret_csv({"t_s", "az_deg", "el_deg"}), turret_truth({"t_s", "az_deg", "el_deg"});
   for (const TurretSample& s : sim.TurretLog()) {
     turret_csv.Add(s.t_s, kTimeDecimals).Add(geo::RadToDeg(s.az_rad), kAngleDecimals).Add(geo::RadToDeg(s.el_rad), kAngleDecimals).EndRow();
@@ -141,8 +143,11 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
   }
   range_csv.Write((root / trial::kRangeFile).string());
   range_truth.Write((root / "truth" / "range.csv").string());
+}
 
-  // Video.
+// The rendered frames; returns the video's path in the trial folder.
+std::string WriteVideo(const BeaconSimulator& sim, const TrialWriteOptions& opt, const fs::path& root) {
+  const BeaconSimOptions& so = sim.options();
   const std::string video_rel = trial::CameraFile(kBeaconCamera, opt.format == "mkv" ? "video.mkv" : "%06d.png");
   {
     video::FrameSink sink((root / video_rel).string(), so.camera.width_px, so.camera.height_px, so.sensor.bit_depth,
@@ -153,8 +158,12 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
     }
     sink.Close();
   }
+  return video_rel;
+}
 
-  // Manifest.
+void WriteBeaconManifest(const BeaconSimulator& sim, const TrialWriteOptions& opt, const fs::path& root,
+                         const std::string& stem, const std::string& video_rel, const TrialSummary& sum) {
+  const BeaconSimOptions& so = sim.options();
   trial::Manifest m;
   m.name = opt.name.empty() ? stem : opt.name;
   m.epoch_utc = opt.epoch_utc;
@@ -174,7 +183,28 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
   simj["summary"] = sum.ToJson();
   m.extra["sim"] = simj;
   trial::WriteManifest((root / trial::kManifestFile).string(), m);
+}
 
+}  // namespace
+
+TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOptions& opt) {
+  std::string why;
+  if (!opt.Check(&why)) throw UsageError(why);
+
+  TrialFolder folder(opt.out_dir, opt.force);
+  const std::string stem = fs::path(folder.out()).filename().string();
+  const fs::path root(folder.Path(""));
+  io::MakeDirectories((root / kBeaconCamera).string());
+  io::MakeDirectories((root / "truth").string());
+
+  TrialSummary sum;
+  // Camera model and frame times.
+  io::WriteJson((root / trial::CameraFile(kBeaconCamera, trial::kCameraModelFile)).string(),
+                camera::CameraModelToJson(sim.options().camera));
+  WriteFrameTruth(sim, root, &sum);
+  WriteLogs(sim, root, &sum);
+  const std::string video_rel = WriteVideo(sim, opt, root);
+  WriteBeaconManifest(sim, opt, root, stem, video_rel, sum);
   folder.Commit();
   return sum;
 }

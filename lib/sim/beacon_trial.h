@@ -13,6 +13,7 @@
 #include <string>
 
 #include "io/json_util.h"
+#include "io/options.h"
 #include "sim/beacon_scenario.h"
 
 namespace rk::sim {
@@ -26,6 +27,8 @@ struct TrialWriteOptions {
   double station_lat_deg = 0.0, station_lon_deg = 0.0, station_h_m = 0.0;
   std::function<void(std::size_t done, std::size_t total)> progress;  // optional, called per frame
 
+  // --force, --format of rk-sim beacon (--out, --name, --epoch-utc are registered by the app).
+  static const io::OptionTable<TrialWriteOptions>& Table();
   bool Check(std::string* why) const;
 };
 

@@ -74,24 +74,53 @@ const std::array<std::string, kPoseDof>& PoseAccelColumns() {
 }
 bool PoseIsAngle(int component) { return component >= kPoseYaw; }
 
+const io::OptionTable<PoseTrackOptions>& PoseTrackOptions::Table() {
+  using O = PoseTrackOptions;
+  using io::Bounds;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Choice("--scenario", &O::scenario, {PoseScenario::kTurntable, PoseScenario::kHead}, PoseScenarioName,
+                  "turntable (seed 000: yaw at 10 deg/s, 20 fps, 0-9 s) or head (maneuvering 6-DOF head motion)")
+          .Real("--fps", &O::fps, "Hz", Bounds::LeftOpen(0, 1000), "Sample rate (Hz)")
+          .Real("--t0", &O::t0_s, "s", Bounds::AtLeast(0), "Time of sample 0 since the epoch (s)")
+          .Count("--seed", &O::seed, "", Bounds::Any(), "Random seed (same seed, same files)")
+          .Real("--noise-deg", &O::noise_deg, "deg", Bounds::Closed(0, 10),
+                "Measurement noise std of the three angles (deg)")
+          .Real("--noise-m", &O::noise_position_m, "m", Bounds::Closed(0, 1), "Measurement noise std of x, y, z (m)")
+          .Real("--dropout", &O::dropout, "", Bounds::RightOpen(0, 1),
+                "Probability that a measurement row is missing (all values empty)")
+          .Real("--dropout-value", &O::dropout_value, "", Bounds::RightOpen(0, 1),
+                "Probability that a single measured value is missing");
+  return table;
+}
+
 bool PoseTrackOptions::Check(std::string* why) const {
   auto fail = [&](const std::string& w) {
     if (why) *why = w;
     return false;
   };
+  if (!Table().Check(*this, why)) return false;
+  if (!std::isfinite(t0_s)) return fail("--t0 must be finite");
   if (!(duration_s > 0 && duration_s <= 3600)) return fail("duration must be in (0, 3600] s");
-  if (!(fps > 0 && fps <= 1000)) return fail("fps must be in (0, 1000] Hz");
   if (std::floor(duration_s * fps + kGridEps) < 2) return fail("duration x fps gives fewer than 3 samples");
-  if (!(std::isfinite(t0_s) && t0_s >= 0)) return fail("t0 must be a finite time >= 0 s");
-  if (!(noise_angle_rad >= 0 && noise_angle_rad <= geo::DegToRad(10.0))) {
-    return fail("angle noise must be in [0, 10] deg");
-  }
-  if (!(noise_position_m >= 0 && noise_position_m <= 1.0)) return fail("position noise must be in [0, 1] m");
   if (!(std::abs(rate_rad_s) <= geo::DegToRad(1000.0))) return fail("turntable rate must be in [-1000, 1000] deg/s");
   if (!(yaw0_rad >= 0 && yaw0_rad < geo::kTwoPi)) return fail("turntable initial yaw must be in [0, 360) deg");
-  if (!(dropout >= 0 && dropout < 1)) return fail("dropout must be in [0, 1)");
-  if (!(dropout_value >= 0 && dropout_value < 1)) return fail("dropout-value must be in [0, 1)");
   return true;
+}
+
+io::Json PoseTrackOptions::ToJson() const {
+  const io::Json sim = PoseTrackOptionsToJson(*this);
+  io::Json j = Table().ToJson(*this);
+  for (const char* key : {"duration_s", "rate_deg_s", "yaw0_deg"}) {
+    if (sim.contains(key)) j[key] = sim[key];
+  }
+  return j;
+}
+
+const io::OptionTable<PoseTrackWriteOptions>& PoseTrackWriteOptions::Table() {
+  static const io::OptionTable<PoseTrackWriteOptions> table = io::OptionTable<PoseTrackWriteOptions>().Flag(
+      "--force", &PoseTrackWriteOptions::force, "Replace an existing non-empty --out folder");
+  return table;
 }
 
 PoseTrackOptions DefaultPoseTrackOptions(PoseScenario scenario) {
@@ -107,7 +136,7 @@ io::Json PoseTrackOptionsToJson(const PoseTrackOptions& opt) {
   j["duration_s"] = opt.duration_s;
   j["fps"] = opt.fps;
   j["t0_s"] = opt.t0_s;
-  j["noise_deg"] = geo::RadToDeg(opt.noise_angle_rad);
+  j["noise_deg"] = geo::RadToDeg(opt.noise_angle_rad());
   j["noise_m"] = opt.noise_position_m;
   if (opt.scenario == PoseScenario::kTurntable) {
     j["rate_deg_s"] = geo::RadToDeg(opt.rate_rad_s);
@@ -178,7 +207,7 @@ PoseTrackSimulator::PoseTrackSimulator(PoseTrackOptions opt) : opt_(std::move(op
     m.t_s = sample_t_s_[k];
     m.value = TruthAt(m.t_s).value;
     for (int c = 0; c < kPoseDof; ++c) {
-      m.value[c] += (PoseIsAngle(c) ? opt_.noise_angle_rad : opt_.noise_position_m) * gauss(noise_rng);
+      m.value[c] += (PoseIsAngle(c) ? opt_.noise_angle_rad() : opt_.noise_position_m) * gauss(noise_rng);
     }
     m.row_missing = u01(drop_rng) < opt_.dropout;
     for (int c = 0; c < kPoseDof; ++c) {
@@ -230,16 +259,11 @@ io::Json PoseTrackSummary::ToJson() const {
   return j;
 }
 
-PoseTrackSummary WritePoseTrack(const PoseTrackSimulator& sim, const PoseTrackWriteOptions& opt) {
-  std::string why;
-  if (!opt.Check(&why)) throw UsageError(why);
-  const PoseTrackOptions& so = sim.options();
+namespace {
 
-  TrialFolder folder(opt.out_dir, opt.force);
-  const std::string stem = fs::path(folder.out()).filename().string();
-  const fs::path root(folder.Path(""));
-
-  PoseTrackSummary sum;
+// measurements.csv; the sample and missing counts of `sum`.
+io::CsvWriter MeasurementsCsv(const PoseTrackSimulator& sim, PoseTrackSummary* out) {
+  PoseTrackSummary& sum = *out;
   std::vector<std::string> meas_cols{"t_s"};
   for (const auto& c : PoseColumns()) meas_cols.push_back(c);
   io::CsvWriter meas_csv(meas_cols);
@@ -258,7 +282,12 @@ PoseTrackSummary WritePoseTrack(const PoseTrackSimulator& sim, const PoseTrackWr
   }
   sum.samples = static_cast<std::int64_t>(sim.sample_count());
   sum.mid_times = static_cast<std::int64_t>(sim.mid_times().size());
+  return meas_csv;
+}
 
+// truth.csv (sample and mid rows), truth_sample.csv, truth_mid.csv; the yaw wraps and largest rates of `sum`.
+void WriteTruth(const PoseTrackSimulator& sim, const fs::path& root, PoseTrackSummary* out) {
+  PoseTrackSummary& sum = *out;
   // Truth: merged (kind sample/mid, time order), and split by kind.
   std::vector<std::string> value_cols;
   for (int c = 0; c < kPoseDof; ++c) value_cols.push_back(PoseColumns()[c]);
@@ -309,12 +338,14 @@ PoseTrackSummary WritePoseTrack(const PoseTrackSimulator& sim, const PoseTrackWr
       mid_csv.EndRow();
     }
   }
-  meas_csv.Write((root / "measurements.csv").string());
   truth_csv.Write((root / "truth.csv").string());
   sample_csv.Write((root / "truth_sample.csv").string());
   mid_csv.Write((root / "truth_mid.csv").string());
+}
 
-  // scenario.json: everything needed to reproduce and to interpret the files.
+// scenario.json: everything needed to reproduce and to interpret the files.
+io::Json PoseScenarioJson(const PoseTrackSimulator& sim, const PoseTrackSummary& sum) {
+  const PoseTrackOptions& so = sim.options();
   io::Json j;
   j["generator"] = "rk-sim posetrack";
   j["scenario"] = PoseScenarioName(so.scenario);
@@ -338,16 +369,29 @@ PoseTrackSummary WritePoseTrack(const PoseTrackSimulator& sim, const PoseTrackWr
   j["noise_std"] = {{"x_m", so.noise_position_m},
                     {"y_m", so.noise_position_m},
                     {"z_m", so.noise_position_m},
-                    {"yaw_deg", geo::RadToDeg(so.noise_angle_rad)},
-                    {"pitch_deg", geo::RadToDeg(so.noise_angle_rad)},
-                    {"roll_deg", geo::RadToDeg(so.noise_angle_rad)}};
+                    {"yaw_deg", geo::RadToDeg(so.noise_angle_rad())},
+                    {"pitch_deg", geo::RadToDeg(so.noise_angle_rad())},
+                    {"roll_deg", geo::RadToDeg(so.noise_angle_rad())}};
   j["files"] = {{"measurements", "measurements.csv"},
                 {"truth", "truth.csv"},
                 {"truth_sample", "truth_sample.csv"},
                 {"truth_mid", "truth_mid.csv"}};
   j["summary"] = sum.ToJson();
-  io::WriteJson((root / "scenario.json").string(), j);
+  return j;
+}
 
+}  // namespace
+
+PoseTrackSummary WritePoseTrack(const PoseTrackSimulator& sim, const PoseTrackWriteOptions& opt) {
+  std::string why;
+  if (!opt.Check(&why)) throw UsageError(why);
+  TrialFolder folder(opt.out_dir, opt.force);
+  const fs::path root(folder.Path(""));
+  PoseTrackSummary sum;
+  const io::CsvWriter meas_csv = MeasurementsCsv(sim, &sum);
+  meas_csv.Write((root / "measurements.csv").string());
+  WriteTruth(sim, root, &sum);
+  io::WriteJson((root / "scenario.json").string(), PoseScenarioJson(sim, sum));
   folder.Commit();
   return sum;
 }

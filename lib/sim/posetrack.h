@@ -41,6 +41,7 @@
 
 #include "geo/angles.h"
 #include "io/json_util.h"
+#include "io/options.h"
 
 namespace rk::sim {
 
@@ -66,7 +67,7 @@ struct PoseTrackOptions {
   double duration_s = 9.0;   // trial length (s), (0, 3600]; samples cover [t0, t0 + duration]
   double fps = 20.0;         // sample rate (Hz), (0, 1000]; at least 3 samples in all
   double t0_s = 0.0;         // time of sample 0 since the trial epoch (s), finite, >= 0
-  double noise_angle_rad = geo::DegToRad(0.0724);  // angle noise std (rad), [0, 10°]; seed 000 Table 1
+  double noise_deg = 0.0724;                        // angle noise std (deg), [0, 10]; seed 000 Table 1
   double noise_position_m = 0.5e-3;                 // position noise std (m), [0, 1]
   double rate_rad_s = geo::DegToRad(10.0);         // turntable yaw rate ω (rad/s), |ω| <= 1000°/s
   double yaw0_rad = geo::DegToRad(20.0);           // turntable yaw at t0 (rad), [0, 2π)
@@ -74,7 +75,14 @@ struct PoseTrackOptions {
   double dropout_value = 0.0;                       // probability of a missing value, [0, 1)
   std::uint64_t seed = 1;
 
+  double noise_angle_rad() const { return geo::DegToRad(noise_deg); }
+  // Every number and choice option; not in it: the scenario-dependent optional values --duration,
+  // --rate-deg-s, --yaw0-deg (registered by the app; DefaultPoseTrackOptions gives their defaults).
+  static const io::OptionTable<PoseTrackOptions>& Table();
+  // Table().Check, then the optional values and the sample count.
   bool Check(std::string* why) const;
+  // The run report's "options": Table().ToJson plus the duration (and the turntable's rate and yaw0).
+  io::Json ToJson() const;
 };
 // Defaults of a scenario: turntable 9 s, head 20 s; everything else as above.
 PoseTrackOptions DefaultPoseTrackOptions(PoseScenario scenario);
@@ -132,6 +140,7 @@ class PoseTrackSimulator {
 struct PoseTrackWriteOptions {
   std::string out_dir;  // folder to create
   bool force = false;   // replace an existing non-empty out_dir
+  static const io::OptionTable<PoseTrackWriteOptions>& Table();  // --force (--out is registered by the app)
   bool Check(std::string* why) const;
 };
 

@@ -87,34 +87,68 @@ Eigen::Vector3d TrueRadarMeasurement(const Eigen::Vector3d& target_enu, const Ei
   return Measure(frame, target_enu, platform_enu, R, attitude);
 }
 
+const io::OptionTable<RadarSimOptions>& RadarSimOptions::Table() {
+  using O = RadarSimOptions;
+  using io::Bounds;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Integer("--scenario", &O::scenario, "", Bounds::Closed(1, 3),
+                   "1 (attitude rates 2e-3 rad/s), 2 (slow attitude: 8e-4 rad/s), 3 (scenario 1 + "
+                   "Poisson clutter, mean 5 per radar per scan)")
+          .Integer("--steps", &O::steps, "", Bounds::Closed(1, 100000), "Scans per radar")
+          .Real("--dt", &O::dt_s, "s", Bounds::LeftOpen(0, 3600), "Scan interval (s)")
+          .Real("--t0", &O::t0_s, "s", Bounds::AtLeast(0), "Time of scan 0 since the epoch (s)")
+          .Integer("--targets", &O::targets, "", Bounds::Closed(0, 100),
+                   "Number of targets (the first five are the paper's; more are random)")
+          .Real("--pd", &O::detection_probability, "", Bounds::LeftOpen(0, 1),
+                "Detection probability of each target per scan")
+          .Count("--seed", &O::seed, "", Bounds::Any(), "Random seed (same seed, same files)")
+          .Real("--time-offset-b", &O::time_offset_b_s, "s", Bounds::Any(),
+                "Radar b scans this many seconds after radar a")
+          .Real("--nav-rate", &O::nav_rate_hz, "Hz", Bounds::Closed(0, 1000),
+                "Nav log rate (Hz); 0 = nav rows at the plot times")
+          .Real("--attitude-noise-deg", &O::attitude_noise_deg, "deg", Bounds::RightOpen(0, geo::RadToDeg(0.1)),
+                "1-sigma noise of the nav attitude angles (deg)")
+          .Choice("--index-unit", &O::index_unit, {{RadarIndexUnit::kStep, "step"}, {RadarIndexUnit::kSecond, "second"}},
+                  "Reading of k in the paper's platform motion s(k) and attitudes v(k): second (k = t - t0 in s, "
+                  "the paper's m/s and rad/s) or step (k = scan index)")
+          .Real("--clutter-margin-m", &O::clutter_margin_m, "m", Bounds::AtLeast(0),
+                "Clutter box margin in range around the targets (m)")
+          .Real("--clutter-margin-deg", &O::clutter_margin_deg, "deg", Bounds::RightOpen(0, 180),
+                "Clutter box margin in azimuth and elevation around the targets (deg)");
+  return table;
+}
+
+const io::OptionTable<RadarTrialWriteOptions>& RadarTrialWriteOptions::Table() {
+  static const io::OptionTable<RadarTrialWriteOptions> table = io::OptionTable<RadarTrialWriteOptions>().Flag(
+      "--force", &RadarTrialWriteOptions::force, "Replace an existing non-empty --out folder");
+  return table;
+}
+
 bool RadarSimOptions::Check(std::string* why) const {
   auto fail = [&](const std::string& w) {
     if (why) *why = w;
     return false;
   };
-  if (scenario < 1 || scenario > 3) return fail("scenario must be 1, 2 or 3");
-  if (steps < 1 || steps > 100000) return fail("steps must be in [1, 100000]");
-  if (!(dt_s > 0 && dt_s <= 3600)) return fail("scan interval must be in (0, 3600] s");
-  if (!(t0_s >= 0 && std::isfinite(t0_s))) return fail("t0 must be a finite time >= 0 s");
-  if (targets < 0 || targets > 100) return fail("targets must be in [0, 100]");
+  if (!Table().Check(*this, why)) return false;
+  if (!std::isfinite(t0_s)) return fail("--t0 must be finite");
   if (!(std::isfinite(clutter_rate) && clutter_rate <= 1000)) return fail("clutter rate must be <= 1000 per scan");
-  if (!(detection_probability > 0 && detection_probability <= 1)) {
-    return fail("detection probability must be in (0, 1]");
-  }
   if (!(origin_lat_deg >= -89 && origin_lat_deg <= 89)) return fail("origin latitude must be in [-89, 89] deg");
   if (!std::isfinite(origin_lon_deg) || !(std::abs(origin_h_m) <= 1e5)) return fail("origin longitude/height invalid");
   if (!(std::abs(time_offset_b_s) < 0.5 * dt_s)) return fail("radar b time offset must be below half the scan interval");
   if (t0_s + std::min(0.0, time_offset_b_s) < 0) return fail("t0 + radar b time offset must be >= 0 s");
-  if (!(nav_rate_hz >= 0 && nav_rate_hz <= 1000)) return fail("nav rate must be in [0, 1000] Hz");
-  if (!(attitude_noise_rad >= 0 && attitude_noise_rad < 0.1)) return fail("attitude noise must be in [0, 5.7] deg");
-  if (!(clutter_margin_m >= 0 && clutter_margin_rad >= 0 && clutter_margin_rad < geo::kPi)) {
-    return fail("clutter margins must be >= 0 (angle < 180 deg)");
-  }
   if (names[0].empty() || names[1].empty() || names[0] == names[1]) return fail("radar names must be two distinct names");
   for (const auto& n : names) {
     if (n.find_first_of(",\"\n\r") != std::string::npos) return fail("radar names must not contain , \" or line breaks");
   }
   return true;
+}
+
+io::Json RadarSimOptions::ToJson() const {
+  const io::Json sim = RadarSimOptionsToJson(*this);
+  io::Json j = Table().ToJson(*this);
+  for (const char* key : {"clutter_rate", "origin", "names"}) j[key] = sim[key];
+  return j;
 }
 
 io::Json RadarSimOptionsToJson(const RadarSimOptions& o) {
@@ -129,29 +163,29 @@ io::Json RadarSimOptionsToJson(const RadarSimOptions& o) {
   j["origin"] = {{"lat_deg", o.origin_lat_deg}, {"lon_deg", o.origin_lon_deg}, {"h_m", o.origin_h_m}};
   j["time_offset_b_s"] = o.time_offset_b_s;
   j["nav_rate_hz"] = o.nav_rate_hz;
-  j["attitude_noise_deg"] = geo::RadToDeg(o.attitude_noise_rad);
+  j["attitude_noise_deg"] = geo::RadToDeg(o.attitude_noise_rad());
   j["index_unit"] = o.index_unit == RadarIndexUnit::kStep ? "step" : "second";
   j["clutter_margin_m"] = o.clutter_margin_m;
-  j["clutter_margin_deg"] = geo::RadToDeg(o.clutter_margin_rad);
+  j["clutter_margin_deg"] = geo::RadToDeg(o.clutter_margin_rad());
   j["names"] = {o.names[0], o.names[1]};
   j["seed"] = o.seed;
   return j;
 }
 
-RadarSimulator::RadarSimulator(RadarSimOptions opt) : opt_(std::move(opt)) {
-  std::string why;
-  if (!opt_.Check(&why)) throw UsageError(why);
+namespace {
 
-  // Platforms (seed 002 §4.1).
-  RadarPlatformSpec& a = platforms_[0];
+// The two platforms of seed 002 §4.1: positions, motion, biases; attitude rates per scenario.
+std::array<RadarPlatformSpec, 2> PaperPlatforms(int scenario) {
+  std::array<RadarPlatformSpec, 2> platforms;
+  RadarPlatformSpec& a = platforms[0];
   a.p0_enu = Eigen::Vector3d(-10000, -20000, 40000);
   a.p_rate = Eigen::Vector3d(0, 200, 0);
   a.bias = {1200.0, 0.0105, 0.0035, 0.0105, 0.0035, 0.0035};
-  RadarPlatformSpec& b = platforms_[1];
+  RadarPlatformSpec& b = platforms[1];
   b.p0_enu = Eigen::Vector3d(20000, 20000, 20000);
   b.p_rate = Eigen::Vector3d(10, 8, 0);
   b.bias = {1000.0, 0.0087, 0.0047, 0.0087, 0.0047, 0.0037};
-  if (opt_.scenario == 2) {
+  if (scenario == 2) {
     a.att0 = Eigen::Vector3d(0, 0.01, 0.01);
     a.att_rate = Eigen::Vector3d(8e-4, 8e-4, 8e-4);
     b.att_rate = Eigen::Vector3d(8e-4, 4e-4, 4e-4);
@@ -160,16 +194,20 @@ RadarSimulator::RadarSimulator(RadarSimOptions opt) : opt_(std::move(opt)) {
     a.att_rate = Eigen::Vector3d(0.002, 0.002, 0.002);
     b.att_rate = Eigen::Vector3d(0.002, 0.001, 0.001);
   }
+  return platforms;
+}
 
-  // Targets.
+// The paper's five targets, then random ones (stream 1).
+std::vector<RadarTargetSpec> MakeTargets(const RadarSimOptions& opt) {
+  std::vector<RadarTargetSpec> targets;
   const double paper[kPaperTargets][6] = {{10000, 55, 1000, 150, 50000, 0},
                                           {9000, 50, 900, 150, 50000, 0},
                                           {1000, 250, 3000, -10, 10000, 0},
                                           {15000, -10, 500, 50, 15000, 0},
                                           {3000, 300, 3600, 400, 20000, 0}};
-  std::mt19937_64 rng_targets = SplitSeedStream(opt_.seed, 1);
+  std::mt19937_64 rng_targets = SplitSeedStream(opt.seed, 1);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
-  for (int i = 0; i < opt_.targets; ++i) {
+  for (int i = 0; i < opt.targets; ++i) {
     RadarTargetSpec t;
     if (i < kPaperTargets) {
       t.p0_enu = Eigen::Vector3d(paper[i][0], paper[i][2], paper[i][4]);
@@ -181,14 +219,64 @@ RadarSimulator::RadarSimulator(RadarSimOptions opt) : opt_(std::move(opt)) {
       const double dir = geo::kTwoPi * u01(rng_targets);
       t.v_enu = Eigen::Vector3d(speed * std::sin(dir), speed * std::cos(dir), 0);
     }
-    targets_.push_back(t);
+    targets.push_back(t);
   }
+  return targets;
+}
 
+// Where a scan's clutter falls: around the true measurements of the targets (range, elevation, azimuth
+// offsets from their circular mean a_mid) widened by the margins, or a fixed box without targets.
+struct ClutterBox {
+  double r_lo, r_hi, e_lo, e_hi, a_lo, a_hi, a_mid;
+};
+ClutterBox ClutterBoxOf(const RadarSimOptions& opt, double rmin, double rmax, double emin, double emax, double ss,
+                        double cs, const std::vector<double>& az_true) {
+  double r_lo = kNoTargetMinRangeM, r_hi = kNoTargetMaxRangeM, e_lo = kNoTargetMinElRad, e_hi = kNoTargetMaxElRad;
+  double a_lo = 0, a_hi = geo::kTwoPi, a_mid = 0;
+  if (opt.targets > 0) {
+    r_lo = std::max(1.0, rmin - opt.clutter_margin_m);
+    r_hi = rmax + opt.clutter_margin_m;
+    e_lo = std::max(-geo::kPi / 2, emin - opt.clutter_margin_rad());
+    e_hi = std::min(geo::kPi / 2, emax + opt.clutter_margin_rad());
+    a_mid = std::atan2(ss, cs);
+    double off_lo = INFINITY, off_hi = -INFINITY;
+    for (double az : az_true) {
+      const double off = geo::WrapPi(az - a_mid);
+      off_lo = std::min(off_lo, off);
+      off_hi = std::max(off_hi, off);
+    }
+    a_lo = off_lo - opt.clutter_margin_rad();
+    a_hi = off_hi + opt.clutter_margin_rad();
+    if (a_hi - a_lo >= geo::kTwoPi) {
+      a_lo = 0;
+      a_hi = geo::kTwoPi;
+      a_mid = 0;
+    }
+  }
+  return {r_lo, r_hi, e_lo, e_hi, a_lo, a_hi, a_mid};
+}
+
+}  // namespace
+
+RadarSimulator::RadarSimulator(RadarSimOptions opt) : opt_(std::move(opt)) {
+  std::string why;
+  if (!opt_.Check(&why)) throw UsageError(why);
+  platforms_ = PaperPlatforms(opt_.scenario);
+  targets_ = MakeTargets(opt_);
+  // One normal distribution for the plot noise and the nav noise: it keeps the second value of each
+  // pair it draws, and the nav's first draw may be the plots' last one.
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  SimulateScans(&gauss);
+  SimulateNav(&gauss);
+}
+
+void RadarSimulator::SimulateScans(std::normal_distribution<double>* gauss_noise) {
+  std::normal_distribution<double>& gauss = *gauss_noise;
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
   const CommonFrame frame(opt_.origin_lat_deg, opt_.origin_lon_deg, opt_.origin_h_m);
   std::array<std::mt19937_64, 2> rng_noise{SplitSeedStream(opt_.seed, 2), SplitSeedStream(opt_.seed, 3)};
   std::mt19937_64 rng_detect = SplitSeedStream(opt_.seed, 4), rng_clutter = SplitSeedStream(opt_.seed, 5),
-                  rng_shuffle = SplitSeedStream(opt_.seed, 6), rng_nav = SplitSeedStream(opt_.seed, 7);
-  std::normal_distribution<double> gauss(0.0, 1.0);
+                  rng_shuffle = SplitSeedStream(opt_.seed, 6);
   std::poisson_distribution<int> poisson(std::max(opt_.ClutterRate(), 1e-300));
   const bool clutter = opt_.ClutterRate() > 0;
 
@@ -232,28 +320,8 @@ RadarSimulator::RadarSimulator(RadarSimOptions opt) : opt_(std::move(opt)) {
         scan.push_back(p);
       }
       if (clutter) {
-        double r_lo = kNoTargetMinRangeM, r_hi = kNoTargetMaxRangeM, e_lo = kNoTargetMinElRad, e_hi = kNoTargetMaxElRad;
-        double a_lo = 0, a_hi = geo::kTwoPi, a_mid = 0;
-        if (opt_.targets > 0) {
-          r_lo = std::max(1.0, rmin - opt_.clutter_margin_m);
-          r_hi = rmax + opt_.clutter_margin_m;
-          e_lo = std::max(-geo::kPi / 2, emin - opt_.clutter_margin_rad);
-          e_hi = std::min(geo::kPi / 2, emax + opt_.clutter_margin_rad);
-          a_mid = std::atan2(ss, cs);
-          double off_lo = INFINITY, off_hi = -INFINITY;
-          for (double az : az_true) {
-            const double off = geo::WrapPi(az - a_mid);
-            off_lo = std::min(off_lo, off);
-            off_hi = std::max(off_hi, off);
-          }
-          a_lo = off_lo - opt_.clutter_margin_rad;
-          a_hi = off_hi + opt_.clutter_margin_rad;
-          if (a_hi - a_lo >= geo::kTwoPi) {
-            a_lo = 0;
-            a_hi = geo::kTwoPi;
-            a_mid = 0;
-          }
-        }
+        const auto [r_lo, r_hi, e_lo, e_hi, a_lo, a_hi, a_mid] =
+            ClutterBoxOf(opt_, rmin, rmax, emin, emax, ss, cs, az_true);
         const int n = poisson(rng_clutter);
         for (int c = 0; c < n; ++c) {
           SimRadarPlot p;
@@ -272,8 +340,12 @@ RadarSimulator::RadarSimulator(RadarSimOptions opt) : opt_(std::move(opt)) {
   }
   std::stable_sort(plots_.begin(), plots_.end(),
                    [](const SimRadarPlot& x, const SimRadarPlot& y) { return x.t_s < y.t_s; });
+}
 
-  // Nav.
+void RadarSimulator::SimulateNav(std::normal_distribution<double>* gauss_noise) {
+  std::normal_distribution<double>& gauss = *gauss_noise;
+  const CommonFrame frame(opt_.origin_lat_deg, opt_.origin_lon_deg, opt_.origin_h_m);
+  std::mt19937_64 rng_nav = SplitSeedStream(opt_.seed, 7);
   std::vector<std::pair<double, int>> nav_times;
   if (opt_.nav_rate_hz > 0) {
     double tmin = INFINITY, tmax = -INFINITY;
@@ -304,12 +376,11 @@ RadarSimulator::RadarSimulator(RadarSimOptions opt) : opt_(std::move(opt)) {
     const Eigen::Vector3d att = PlatformAttitude(r, t);
     const auto& bias = platforms_[r].bias;
     const double n0 = gauss(rng_nav), n1 = gauss(rng_nav), n2 = gauss(rng_nav);
-    row.yaw_rad = att[0] + bias[3] + opt_.attitude_noise_rad * n0;
-    row.pitch_rad = att[1] + bias[4] + opt_.attitude_noise_rad * n1;
-    row.roll_rad = att[2] + bias[5] + opt_.attitude_noise_rad * n2;
+    row.yaw_rad = att[0] + bias[3] + opt_.attitude_noise_rad() * n0;
+    row.pitch_rad = att[1] + bias[4] + opt_.attitude_noise_rad() * n1;
+    row.roll_rad = att[2] + bias[5] + opt_.attitude_noise_rad() * n2;
     nav_.push_back(row);
-  }
-}
+  }}
 
 double RadarSimulator::Kappa(double t_s) const {
   const double dt = t_s - opt_.t0_s;
@@ -350,13 +421,13 @@ io::Json RadarTrialSummary::ToJson() const {
   return j;
 }
 
-RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWriteOptions& opt) {
-  const RadarSimOptions& so = sim.options();
-  TrialFolder folder(opt.out_dir, opt.force);
-  folder.MakeSubfolder("truth");
-  RadarTrialSummary sum;
-  sum.min_range_m = INFINITY;
+namespace {
 
+// plots.csv; the plot counts and the range extremes of the target plots in `sum`.
+io::CsvWriter PlotsCsv(const RadarSimulator& sim, RadarTrialSummary* out) {
+  const RadarSimOptions& so = sim.options();
+  RadarTrialSummary& sum = *out;
+  sum.min_range_m = INFINITY;
   io::CsvWriter plots({"t_s", "radar", "range_m", "az_deg", "el_deg", "track_id"});
   for (const SimRadarPlot& p : sim.plots()) {
     plots.Add(p.t_s, kTimeDecimals).Add(so.names[p.radar]).Add(p.range_m, kRangeDecimals);
@@ -376,7 +447,11 @@ RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWri
   sum.clutter_plots = sim.clutter_plots();
   sum.missed_detections = sim.missed_detections();
   sum.elevation_clamped = sim.elevation_clamped();
+  return plots;
+}
 
+io::CsvWriter NavCsv(const RadarSimulator& sim, RadarTrialSummary* out) {
+  const RadarSimOptions& so = sim.options();
   io::CsvWriter nav({"t_s", "radar", "lat_deg", "lon_deg", "h_m", "yaw_deg", "pitch_deg", "roll_deg"});
   for (const SimNavRow& n : sim.nav()) {
     nav.Add(n.t_s, kTimeDecimals).Add(so.names[n.radar]).Add(n.lat_deg, kLatLonDecimals).Add(n.lon_deg, kLatLonDecimals);
@@ -385,8 +460,14 @@ RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWri
     nav.Add(geo::WrapDeg180(geo::RadToDeg(n.roll_rad)), kAngleDecimals);
     nav.EndRow();
   }
-  sum.nav_rows = static_cast<std::int64_t>(sim.nav().size());
+  out->nav_rows = static_cast<std::int64_t>(sim.nav().size());
+  return nav;
+}
 
+// truth/biases.csv, truth/targets.csv, truth/platforms.csv; the largest |pitch| in `sum`.
+void WriteTruthTables(const RadarSimulator& sim, const TrialFolder& folder, RadarTrialSummary* out) {
+  const RadarSimOptions& so = sim.options();
+  RadarTrialSummary& sum = *out;
   // Truth: biases per scan (file units, the columns rk-register writes), targets, platforms.
   static const char* const kSuffix[6] = {"range_m", "az_deg", "el_deg", "yaw_deg", "pitch_deg", "roll_deg"};
   std::vector<std::string> bias_cols{"t_s"};
@@ -424,13 +505,14 @@ RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWri
       platforms.Add(geo::WrapDeg180(geo::RadToDeg(att[2])), kAngleDecimals).EndRow();
     }
   }
-
-  plots.Write(folder.Path(trial::kRadarPlotsFile));
-  nav.Write(folder.Path(trial::kRadarNavFile));
   biases.Write(folder.Path("truth/biases.csv"));
   targets.Write(folder.Path("truth/targets.csv"));
   platforms.Write(folder.Path("truth/platforms.csv"));
+}
 
+// scenario.json: the options, the platforms' biases and motion, the targets, the files, the summary.
+io::Json RadarScenarioJson(const RadarSimulator& sim, const RadarTrialSummary& sum) {
+  const RadarSimOptions& so = sim.options();
   io::Json j;
   j["generator"] = "rk-sim radar";
   j["seed_paper"] = "002 (Deng et al. 2024), section 4.1";
@@ -472,7 +554,20 @@ RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWri
                 {"truth_targets", "truth/targets.csv"},
                 {"truth_platforms", "truth/platforms.csv"}};
   j["summary"] = sum.ToJson();
-  io::WriteJson(folder.Path("scenario.json"), j);
+  return j;
+}
+
+}  // namespace
+
+RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWriteOptions& opt) {
+  const RadarSimOptions& so = sim.options();
+  TrialFolder folder(opt.out_dir, opt.force);
+  folder.MakeSubfolder("truth");
+  RadarTrialSummary sum;
+  PlotsCsv(sim, &sum).Write(folder.Path(trial::kRadarPlotsFile));
+  NavCsv(sim, &sum).Write(folder.Path(trial::kRadarNavFile));
+  WriteTruthTables(sim, folder, &sum);
+  io::WriteJson(folder.Path("scenario.json"), RadarScenarioJson(sim, sum));
 
   // Trial manifest (SPEC.md §6), so that rk-run processes the folder like a recorded trial; the station is the
   // origin of the common frame.

@@ -43,10 +43,13 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <random>
 #include <string>
 #include <vector>
 
+#include "geo/angles.h"
 #include "io/json_util.h"
+#include "io/options.h"
 
 namespace rk::sim {
 
@@ -77,14 +80,23 @@ struct RadarSimOptions {
   double origin_lat_deg = 25.0, origin_lon_deg = 110.0, origin_h_m = 0.0;
   double time_offset_b_s = 0.0;      // radar b's scans at t_k + offset, |offset| < dt/2
   double nav_rate_hz = 0.0;          // 0: nav rows at the plot times; > 0: a regular nav log at this rate
-  double attitude_noise_rad = 0.0;   // 1-sigma noise of the nav attitude angles (not in the paper)
+  double attitude_noise_deg = 0.0;   // 1-sigma noise of the nav attitude angles (not in the paper)
   RadarIndexUnit index_unit = RadarIndexUnit::kSecond;
   double clutter_margin_m = 20000.0;
-  double clutter_margin_rad = 0.0873;  // 5°
+  double clutter_margin_deg = 5.0;
   std::array<std::string, 2> names{"a", "b"};
   std::uint64_t seed = 1;
+
+  // Every number and choice option; not in it: --clutter (negative = the scenario's default),
+  // --origin and --names (composite values), registered by the app.
+  static const io::OptionTable<RadarSimOptions>& Table();
+  // Table().Check, then the clutter rate, the origin, radar b's offset and the names.
   bool Check(std::string* why) const;
+  // The run report's "options": Table().ToJson plus the resolved clutter rate, the origin and the names.
+  io::Json ToJson() const;
   double ClutterRate() const { return clutter_rate >= 0 ? clutter_rate : (scenario == 3 ? 5.0 : 0.0); }
+  double attitude_noise_rad() const { return geo::DegToRad(attitude_noise_deg); }
+  double clutter_margin_rad() const { return geo::DegToRad(clutter_margin_deg); }
 };
 io::Json RadarSimOptionsToJson(const RadarSimOptions& opt);
 
@@ -131,6 +143,9 @@ class RadarSimulator {
   std::int64_t elevation_clamped() const { return el_clamped_; }
 
  private:
+  void SimulateScans(std::normal_distribution<double>* gauss);  // plots_ and the counts, scan by scan
+  void SimulateNav(std::normal_distribution<double>* gauss);    // nav_
+
   RadarSimOptions opt_;
   std::array<RadarPlatformSpec, 2> platforms_;
   std::vector<RadarTargetSpec> targets_;
@@ -143,6 +158,8 @@ struct RadarTrialWriteOptions {
   std::string out_dir;
   bool force = false;
   std::string epoch_utc = "2026-01-01T00:00:00Z";  // trial epoch written to trial.json (t_s = 0)
+
+  static const io::OptionTable<RadarTrialWriteOptions>& Table();  // --force (--out is registered by the app)
 };
 
 struct RadarTrialSummary {

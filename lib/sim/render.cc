@@ -5,6 +5,28 @@
 #include <vector>
 
 namespace rk::sim {
+
+const io::OptionTable<SensorOptions>& SensorOptions::Table() {
+  static const io::OptionTable<SensorOptions> table =
+      io::OptionTable<SensorOptions>()
+          .Choice("--bit-depth", &SensorOptions::bit_depth, {{8, "8"}, {16, "16"}}, "8 or 16 (16-bit: every DN x256)")
+          .Real("--background-dn", &SensorOptions::background_dn, "DN", io::Bounds::Closed(0.0, 255.0),
+                "Background level (8-bit DN)")
+          .Real("--read-noise-dn", &SensorOptions::read_noise_dn, "DN", io::Bounds::Closed(0.0, 100.0),
+                "Read noise std (8-bit DN)")
+          .Real("--gain-e-per-dn", &SensorOptions::gain_e_per_dn, "e-/DN", io::Bounds::Closed(0.0, 1e6),
+                "Photo-electrons per 8-bit DN (shot noise); 0 = none");
+  return table;
+}
+
+bool SensorOptions::Check(std::string* why) const {
+  if (!Table().Check(*this, why)) return false;
+  if (bit_depth != 8 && bit_depth != 16) {
+    if (why) *why = "--bit-depth must be 8 or 16";
+    return false;
+  }
+  return true;
+}
 namespace {
 
 // Fraction of a unit 1-D Gaussian (mean mu, std s) falling in [a, b).

@@ -10,6 +10,9 @@
 #include <opencv2/core.hpp>
 #include <random>
 #include <span>
+#include <string>
+
+#include "io/options.h"
 
 namespace rk::sim {
 
@@ -28,6 +31,11 @@ struct SensorOptions {
   double read_noise_dn = 2.0;     // Gaussian read noise, std (DN)
   double gain_e_per_dn = 40.0;    // photo-electrons per DN; shot noise std = sqrt(signal / gain) DN; 0 = no shot noise
   int bit_depth = 8;              // 8 or 16
+
+  // --bit-depth, --background-dn, --read-noise-dn, --gain-e-per-dn (8-bit DN scale).
+  static const io::OptionTable<SensorOptions>& Table();
+  // Table().Check, and a bit depth of 8 or 16 (the CLI refuses other values when it parses them).
+  bool Check(std::string* why) const;
 };
 
 // Signal (DN, CV_32FC1, background not included) → CV_8UC1 / CV_16UC1 frame with

@@ -19,6 +19,10 @@ struct SilhouetteRenderOptions : target::SilhouetteScene {
   // Background (unused: the sky is the signal), read noise 1 DN, 100 e-/DN, 8 bit: seed 004's 11 µm pixels
   // hold ~25 000 e- over the 8-bit range, so the shot noise of a 180-DN sky is 1.3 DN (total 1.7 DN).
   SensorOptions sensor{0.0, 1.0, 100.0, 8};
+
+  // rk-sim theodolite's image options (the sensor's under their own names: --gain, no background).
+  static const io::OptionTable<SilhouetteRenderOptions>& Table();
+  // Table().Check, the sky/body contrast, finite levels and the bit depth.
   bool Check(std::string* why) const;
 };
 

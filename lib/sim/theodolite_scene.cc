@@ -36,30 +36,62 @@ camera::CameraModel Seed004Camera() {
   return c;
 }
 
+const io::OptionTable<TheodoliteSimOptions>& TheodoliteSimOptions::Table() {
+  using O = TheodoliteSimOptions;
+  using io::Bounds;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Real("--length-m", [](O& o) -> double& { return o.shape.length_m; }, "m", Bounds::Positive(),
+                "Target length, nose tip to tail plane (m)")
+          .Real("--diameter-m", [](O& o) -> double& { return o.shape.diameter_m; }, "m", Bounds::Positive(),
+                "Target diameter (m)")
+          .Real("--nose-length-m", [](O& o) -> double& { return o.shape.nose_length_m; }, "m", Bounds::Positive(),
+                "Conical nose length (m), for the images")
+          .Real("--range-m", &O::range_m, "m", Bounds::Closed(10, 1e6), "Range to the target mid-point at mid-trial (m)")
+          .Real("--az-deg", &O::az_deg, "deg", Bounds::Any(), "Azimuth of the target at mid-trial (deg)")
+          .Real("--el-deg", &O::el_deg, "deg", Bounds::Closed(-10, 89),
+                "Elevation of the target at mid-trial = theodolite elevation (deg)")
+          .Real("--yaw-deg", &O::yaw_deg, "deg", Bounds::Any(), "Axis yaw at mid-trial (deg, clockwise from north)")
+          .Real("--pitch-deg", &O::pitch_deg, "deg", Bounds::Closed(-90, 90), "Axis pitch at mid-trial (deg)")
+          .Real("--speed-mps", &O::speed_mps, "m/s", Bounds::Any(), "Speed along the axis (m/s)")
+          .Real("--yaw-rate-deg-s", &O::yaw_rate_deg_s, "deg/s", Bounds::Any(), "Yaw rate (deg/s)")
+          .Real("--pitch-rate-deg-s", &O::pitch_rate_deg_s, "deg/s", Bounds::Any(), "Pitch rate (deg/s)")
+          .Real("--duration", &O::duration_s, "s", Bounds::Closed(0, 3600),
+                "Trial length (s); frames at t0 + k/fps over [t0, t0 + duration]")
+          .Real("--fps", &O::fps, "Hz", Bounds::LeftOpen(0, 1000), "Frame rate (Hz)")
+          .Real("--t0", &O::t0_s, "s", Bounds::Any(), "Time of frame 0 since the epoch (s)")
+          .Real("--track-error-px", &O::track_error_px, "px", Bounds::Closed(0, 1e4),
+                "Amplitude of the theodolite tracking error in the image (px)")
+          .Real("--theodolite-rate-hz", &O::theodolite_rate_hz, "Hz", Bounds::LeftOpen(0, 10000),
+                "Theodolite log rate (Hz)")
+          .Real("--theodolite-offset", &O::theodolite_offset_s, "s", Bounds::Any(),
+                "Theodolite log time offset from the frame grid (s)")
+          .Real("--angle-bias-arcsec", &O::angle_bias_arcsec, "arcsec", Bounds::AtLeast(0),
+                "Std of the per-trial bias of each theodolite angle (arcsec)")
+          .Real("--angle-noise-arcsec", &O::angle_noise_arcsec, "arcsec", Bounds::AtLeast(0),
+                "Std of the per-sample noise of each angle (arcsec)")
+          .Real("--encoder-step-arcsec", &O::encoder_step_arcsec, "arcsec", Bounds::AtLeast(0),
+                "Quantisation of the recorded angles (arcsec); 0 = none")
+          .Real("--point-noise-px", &O::point_noise_px, "px", Bounds::AtLeast(0),
+                "Gaussian noise added to the written image points (px)")
+          .Flag("--quantise", &O::quantise,
+                "Round the written image points to whole pixels (the paper's 1-pixel reading)")
+          .Count("--seed", &O::seed, "", Bounds::Any(), "Random seed (same seed, same files)");
+  return table;
+}
+
 bool TheodoliteSimOptions::Check(std::string* why) const {
   auto fail = [&](const std::string& w) {
     *why = w;
     return false;
   };
-  if (!(shape.length_m > 0.0 && std::isfinite(shape.length_m))) return fail("--length-m must be > 0");
-  if (!(shape.diameter_m > 0.0 && std::isfinite(shape.diameter_m))) return fail("--diameter-m must be > 0");
-  if (!(shape.nose_length_m > 0.0 && shape.nose_length_m < shape.length_m))
-    return fail("--nose-length-m must be in (0, length)");
-  if (!(range_m >= 10.0 && range_m <= 1e6)) return fail("--range-m must be in [10, 1e6] m");
-  if (!(el_deg >= -10.0 && el_deg <= 89.0)) return fail("--el-deg must be in [-10, 89]");
-  if (!(pitch_deg >= -90.0 && pitch_deg <= 90.0)) return fail("--pitch-deg must be in [-90, 90]");
-  for (double v : {az_deg, yaw_deg, speed_mps, yaw_rate_deg_s, pitch_rate_deg_s, t0_s}) {
-    if (!std::isfinite(v)) return fail("angles, rates, speed and --t0 must be finite");
+  if (!Table().Check(*this, why)) return false;
+  for (double v : {shape.length_m, shape.diameter_m, az_deg, yaw_deg, speed_mps, yaw_rate_deg_s, pitch_rate_deg_s,
+                   t0_s, theodolite_offset_s, angle_bias_arcsec, angle_noise_arcsec, encoder_step_arcsec,
+                   point_noise_px}) {
+    if (!std::isfinite(v)) return fail("sizes, angles, rates, speed, times, noise and step options must be finite");
   }
-  if (!(duration_s >= 0.0 && duration_s <= 3600.0)) return fail("--duration must be in [0, 3600] s");
-  if (!(fps > 0.0 && fps <= 1000.0)) return fail("--fps must be in (0, 1000]");
-  if (!(track_error_px >= 0.0 && track_error_px <= 1e4)) return fail("--track-error-px must be in [0, 1e4]");
-  if (!(theodolite_rate_hz > 0.0 && theodolite_rate_hz <= 10000.0))
-    return fail("--theodolite-rate-hz must be in (0, 10000]");
-  if (!std::isfinite(theodolite_offset_s)) return fail("--theodolite-offset must be finite");
-  for (double v : {angle_bias_arcsec, angle_noise_arcsec, encoder_step_arcsec, point_noise_px}) {
-    if (!(v >= 0.0 && std::isfinite(v))) return fail("noise, bias and step options must be >= 0");
-  }
+  if (!(shape.nose_length_m < shape.length_m)) return fail("--nose-length-m must be in (0, length)");
   return true;
 }
 

@@ -26,6 +26,7 @@
 
 #include "camera/camera_model.h"
 #include "io/json_util.h"
+#include "io/options.h"
 #include "target/cylinder.h"
 
 namespace rk::sim {
@@ -57,6 +58,10 @@ struct TheodoliteSimOptions {
   bool quantise = false;            // round the written image points to whole pixels
   std::uint64_t seed = 1;
 
+  // Every number option and --quantise (the target shape's too); not in it: the camera (--camera,
+  // --sensor-px) and --angle-budget (sets the angle bias and noise), registered by the app.
+  static const io::OptionTable<TheodoliteSimOptions>& Table();
+  // Table().Check, then finite values, the nose inside the target.
   bool Check(std::string* why) const;
 };
 io::Json TheodoliteSimOptionsToJson(const TheodoliteSimOptions& opt);

@@ -30,6 +30,15 @@ std::mt19937_64 FrameStream(std::uint64_t seed, std::int64_t k) {
 
 }  // namespace
 
+const io::OptionTable<TheodoliteWriteOptions>& TheodoliteWriteOptions::Table() {
+  static const io::OptionTable<TheodoliteWriteOptions> table =
+      io::OptionTable<TheodoliteWriteOptions>()
+          .Flag("--force", &TheodoliteWriteOptions::force, "Replace an existing non-empty --out folder")
+          .Choice("--images", &TheodoliteWriteOptions::images, {{"none", "none"}, {"png", "png"}, {"mkv", "mkv"}},
+                  "Rendered frames: none, png (theo/%06d.png) or mkv (theo/video.mkv, FFV1)");
+  return table;
+}
+
 bool TheodoliteWriteOptions::Check(std::string* why) const {
   if (out_dir.empty() || out_dir == "-") {
     *why = "--out must name a folder";

@@ -19,6 +19,7 @@
 #include <string>
 
 #include "io/json_util.h"
+#include "io/options.h"
 #include "sim/theodolite_render.h"
 #include "sim/theodolite_scene.h"
 
@@ -32,6 +33,8 @@ struct TheodoliteWriteOptions {
   std::string name;                                // manifest name; default: the folder's name
   std::string epoch_utc = "2026-01-01T00:00:00Z";
   std::function<void(std::size_t done, std::size_t total)> progress;
+  // --force, --images (the render options have their own table, last in --help).
+  static const io::OptionTable<TheodoliteWriteOptions>& Table();
   bool Check(std::string* why) const;
 };
 

@@ -34,7 +34,15 @@ std::string TrajectoryKindName(TrajectoryKind kind) {
   return "?";
 }
 
+const io::OptionTable<TrajectoryOptions>& TrajectoryOptions::Table() {
+  static const io::OptionTable<TrajectoryOptions> table = io::OptionTable<TrajectoryOptions>().Real(
+      "--max-el-deg", &TrajectoryOptions::max_elevation_deg, "deg", io::Bounds::LeftOpen(0.0, 85.0),
+      "overhead: elevation at closest approach (deg)");
+  return table;
+}
+
 bool TrajectoryOptions::Check(std::string* why) const {
+  if (!Table().Check(*this, why)) return false;
   auto fail = [&](const std::string& w) {
     if (why) *why = w;
     return false;
@@ -45,9 +53,6 @@ bool TrajectoryOptions::Check(std::string* why) const {
   if (!std::isfinite(azimuth_rad)) return fail("azimuth must be finite");
   if (!(elevation_rad >= geo::DegToRad(-10.0) && elevation_rad <= geo::DegToRad(80.0))) {
     return fail("elevation must be in [-10, 80] deg");
-  }
-  if (!(max_elevation_rad > 0.0 && max_elevation_rad <= geo::DegToRad(85.0))) {
-    return fail("overhead maximum elevation must be in (0, 85] deg");
   }
   if (!std::isfinite(t_mid_s)) return fail("t_mid must be finite");
   if (kind == TrajectoryKind::kTurning) {
@@ -65,8 +70,8 @@ Trajectory::Trajectory(const TrajectoryOptions& opt) : opt_(opt) {
   const Eigen::Vector3d los_h(std::sin(a), std::cos(a), 0.0);
   along_enu_ = (los_h + right_enu_).normalized();  // 45° to the line of sight
   if (opt.kind == TrajectoryKind::kOverhead) {
-    const double h = opt.range_m * std::sin(opt.max_elevation_rad);
-    const double d = opt.range_m * std::cos(opt.max_elevation_rad);
+    const double h = opt.range_m * std::sin(opt.max_elevation_rad());
+    const double d = opt.range_m * std::cos(opt.max_elevation_rad());
     centre_enu_ = d * los_h + Eigen::Vector3d(0, 0, h);
   } else {
     centre_enu_ = opt.range_m * geo::DirectionFromAzEl(a, opt.elevation_rad);

@@ -29,6 +29,9 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "geo/angles.h"
+#include "io/options.h"
+
 namespace rk::sim {
 
 enum class TrajectoryKind { kDefault, kStraight, kTurning, kOverhead, kStatic };
@@ -43,10 +46,16 @@ struct TrajectoryOptions {
   double speed_mps = 2.7;              // peak (default) or constant speed (m/s), [0, 1000]
   double azimuth_rad = 0.5235987755982988;   // nominal azimuth A0 (rad), clockwise from north
   double elevation_rad = 0.0872664625997165;  // nominal elevation E0 (rad), [-0.2, 1.4]; unused by overhead
-  double max_elevation_rad = 1.3962634015954636;  // overhead: elevation at closest approach (rad), (0, 1.45]
+  double max_elevation_deg = 80.0;     // overhead: elevation at closest approach (deg), (0, 85]
   double turn_rate_rad_s = 0.1;        // turning: ω (rad/s), > 0
   double t_mid_s = 6.0;                // time of closest approach / centre of the motion (s)
 
+  double max_elevation_rad() const { return geo::DegToRad(max_elevation_deg); }
+
+  // The options a command line sets (--max-el-deg); the kind and the nominal geometry come from
+  // DefaultTrajectoryOptions (rk-sim beacon's --trajectory, --range-m, ... are optional values).
+  static const io::OptionTable<TrajectoryOptions>& Table();
+  // Table().Check, then the rules between options (speed, turn radius).
   bool Check(std::string* why) const;
 };
 

@@ -14,15 +14,25 @@ constexpr int kJitterTones = 8;
 
 }  // namespace
 
+const io::OptionTable<TurretServoOptions>& TurretServoOptions::Table() {
+  static const io::OptionTable<TurretServoOptions> table =
+      io::OptionTable<TurretServoOptions>()
+          .Real("--turret-lag-s", &TurretServoOptions::lag_s, "s", io::Bounds::Closed(0.0, 2.0),
+                "Turret servo time constant (s); 0 = no lag")
+          .Real("--jitter-arcsec", &TurretServoOptions::jitter_arcsec, "arcsec",
+                io::Bounds::Closed(0.0, 0.01 * geo::kArcsecPerRad), "Turret jitter RMS per axis (arcsec); 0 = none")
+          .Real("--jitter-min-hz", &TurretServoOptions::jitter_min_hz, "Hz", io::Bounds::Positive(),
+                "Lowest jitter frequency (Hz)")
+          .Real("--jitter-max-hz", &TurretServoOptions::jitter_max_hz, "Hz", io::Bounds::LeftOpen(0.0, 100.0),
+                "Highest jitter frequency (Hz)");
+  return table;
+}
+
 bool TurretServoOptions::Check(std::string* why) const {
-  auto fail = [&](const std::string& w) {
-    if (why) *why = w;
+  if (!Table().Check(*this, why)) return false;
+  if (!(jitter_max_hz >= jitter_min_hz)) {
+    if (why) *why = "--jitter-max-hz must be >= --jitter-min-hz";
     return false;
-  };
-  if (!(lag_s >= 0.0 && lag_s <= 2.0)) return fail("turret lag must be in [0, 2] s");
-  if (!(jitter_rms_rad >= 0.0 && jitter_rms_rad <= 0.01)) return fail("turret jitter must be in [0, 0.01] rad");
-  if (!(jitter_min_hz > 0.0 && jitter_max_hz >= jitter_min_hz && jitter_max_hz <= 100.0)) {
-    return fail("jitter band must satisfy 0 < min <= max <= 100 Hz");
   }
   return true;
 }
@@ -77,7 +87,7 @@ TurretServo::TurretServo(const TurretServoOptions& opt, const std::function<Eige
     f_el_.push_back(freq(rng));
     ph_el_.push_back(phase(rng));
   }
-  amp_rad_ = opt.jitter_rms_rad * std::sqrt(2.0 / kJitterTones);
+  amp_rad_ = opt.jitter_rms_rad() * std::sqrt(2.0 / kJitterTones);
 }
 
 double TurretServo::Interp(const std::vector<double>& x, const std::vector<double>& dx, double t_s) const {

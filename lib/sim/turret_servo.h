@@ -23,16 +23,22 @@
 
 #include <Eigen/Core>
 
+#include "geo/angles.h"
 #include "geo/line_of_sight.h"
+#include "io/options.h"
 
 namespace rk::sim {
 
 struct TurretServoOptions {
   double lag_s = 0.15;                       // first-order time constant τ (s), [0, 2]; 0 = no lag
-  double jitter_rms_rad = 2.42406840554768e-05;  // J: RMS jitter per axis (rad), default 5″; [0, 0.01]
+  double jitter_arcsec = 5.0;                // J: RMS jitter per axis (arcsec), [0, 0.01 rad]
   double jitter_min_hz = 0.5;                // lowest jitter tone (Hz)
   double jitter_max_hz = 5.0;                // highest jitter tone (Hz)
 
+  double jitter_rms_rad() const { return jitter_arcsec / geo::kArcsecPerRad; }
+
+  static const io::OptionTable<TurretServoOptions>& Table();
+  // Table().Check, then min <= max of the jitter band.
   bool Check(std::string* why) const;
 };
 

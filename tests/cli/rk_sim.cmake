@@ -37,3 +37,5 @@ rk_cli_script(rk_sim/rk_sim_unwritable_out)
 rk_cli_test(rk_sim_bad_servo_hold COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/sim_bad_hold "servo-hold" --
   ${RK_SIM} beacon --out ${RK_CLI_DATA}/sim_bad_hold --preset small --duration 0.5 --servo-hold 0.2)
 rk_cli_script(rk_sim/rk_sim_servo_hold_report)
+# Options from the tables (issue 16 item 1): one message form per subcommand and nested table, report keys.
+rk_cli_script(rk_sim/rk_sim_option_bounds)

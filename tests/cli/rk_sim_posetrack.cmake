@@ -10,7 +10,7 @@ rk_cli_script(rk_sim_posetrack/rk_sim_posetrack_head)
 # Bad usage → 2, nothing written.
 rk_cli_test(rk_sim_posetrack_unknown_scenario COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/pt_bad1 "scenario" --
   $<TARGET_FILE:rk-sim> posetrack --out ${RK_CLI_DATA}/pt_bad1 --scenario spin)
-rk_cli_test(rk_sim_posetrack_bad_noise COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/pt_bad2 "noise" --
+rk_cli_test(rk_sim_posetrack_bad_noise COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/pt_bad2 "--noise-deg must be in" --
   $<TARGET_FILE:rk-sim> posetrack --out ${RK_CLI_DATA}/pt_bad2 --noise-deg -1)
 rk_cli_test(rk_sim_posetrack_rate_with_head COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/pt_bad3 "turntable only" --
   $<TARGET_FILE:rk-sim> posetrack --out ${RK_CLI_DATA}/pt_bad3 --scenario head --rate-deg-s 5)

@@ -8,7 +8,7 @@ rk_cli_script(rk_sim_radar/rk_sim_radar_options)
 
 rk_cli_test(rk_sim_radar_bad_scenario COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/radar_bad1 "scenario" --
   $<TARGET_FILE:rk-sim> radar --out ${RK_CLI_DATA}/radar_bad1 --scenario 4)
-rk_cli_test(rk_sim_radar_bad_pd COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/radar_bad2 "detection probability" --
+rk_cli_test(rk_sim_radar_bad_pd COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/radar_bad2 "--pd must be in" --
   $<TARGET_FILE:rk-sim> radar --out ${RK_CLI_DATA}/radar_bad2 --pd 0)
 rk_cli_test(rk_sim_radar_bad_offset COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/radar_bad3 "half the scan interval" --
   $<TARGET_FILE:rk-sim> radar --out ${RK_CLI_DATA}/radar_bad3 --time-offset-b 3)

@@ -160,5 +160,24 @@ TEST(OptionTable, NestedTablesFlagsCountsAndAliases) {
   EXPECT_THROW(app2.parse(bad), CLI::ParseError);
 }
 
+// Options registered by hand between table options keep their place in --help: the hook for a flag runs
+// just before that table option is registered.
+TEST(OptionTable, HandOptionsBetweenTableOptionsKeepTheHelpOrder) {
+  Demo d;
+  std::string path;
+  CLI::App app{"demo", "demo"};
+  cli::AddOptions(&app, &d, Demo::Table(), {{"--window", [&] { app.add_option("--path", path, "A file"); }}});
+  std::vector<std::string> names;
+  for (const CLI::Option* o : app.get_options()) {
+    if (o->get_lnames().size() == 1) names.push_back("--" + o->get_lnames()[0]);
+  }
+  const std::vector<std::string> want = {"--help", "--max-gap", "--ratio", "--path", "--window", "--mode"};
+  EXPECT_EQ(names, want);
+  std::vector<std::string> args = {"f.csv", "--path", "5", "--window"};  // reversed
+  app.parse(args);
+  EXPECT_EQ(path, "f.csv");
+  EXPECT_EQ(d.window, 5);
+}
+
 }  // namespace
 }  // namespace rk::io

@@ -71,9 +71,9 @@ TEST(AttitudeSim, TruthPointsAreTheProjectedModelAtTheTrueBoresight) {
 
 TEST(AttitudeSim, YawAndRollWrapInsideTheRun) {
   AttitudeSimOptions o = Quick();
-  o.yaw0_rad = DegToRad(355.0);
-  o.roll0_rad = DegToRad(177.0);
-  o.path_angle_rad = 0.0;
+  o.yaw0_deg = 355.0;
+  o.roll0_deg = 177.0;
+  o.path_angle_deg = 0.0;
   const AttitudeSimulator sim(o);
   bool yaw_lo = false, yaw_hi = false, roll_pos = false, roll_neg = false;
   for (const auto& f : sim.frames()) {
@@ -143,7 +143,7 @@ TEST(AttitudeSim, TurretLogIsQuantisedTrueBoresight) {
   const AttitudeSimulator sim(Quick(2.0));
   const auto log = sim.TurretLog();
   ASSERT_GT(log.size(), 100u);
-  const double q = sim.options().turret_resolution_rad;
+  const double q = sim.options().turret_resolution_rad();
   for (const auto& s : log) {
     EXPECT_LE(std::abs(geo::AngleDiff(s.az_rad, s.true_az_rad)), 0.5 * q + 1e-12);
     EXPECT_LE(std::abs(s.el_rad - s.true_el_rad), 0.5 * q + 1e-12);

@@ -86,7 +86,7 @@ TEST(BeaconScenario, TruthCentreIsTheGreyCentroidOfTheNoiseFreeImage) {
 TEST(BeaconScenario, NoLagNoJitterPutsTheReferenceLampOnThePrincipalPoint) {
   BeaconSimOptions o = Small(TrajectoryKind::kStraight, 2.0);
   o.servo.lag_s = 0;
-  o.servo.jitter_rms_rad = 0;
+  o.servo.jitter_arcsec = 0;
   const BeaconSimulator sim(o);
   for (const FrameTruth& f : sim.frames()) {
     EXPECT_NEAR(f.lamps[0].x_px, o.camera.principal_point_px.x(), kPixelTolPx);
@@ -99,7 +99,7 @@ TEST(BeaconScenario, TurretLagsByTauTimesTheAngularRate) {
   BeaconSimOptions o = Small(TrajectoryKind::kStraight, 2.0);
   o.trajectory.elevation_rad = 0.0;
   o.servo.lag_s = 0.2;
-  o.servo.jitter_rms_rad = 0;
+  o.servo.jitter_arcsec = 0;
   const BeaconSimulator sim(o);
   const double t = o.t0_s + 1.0;  // closest approach: azimuth rate = v / R
   const double rate = o.trajectory.speed_mps / o.trajectory.range_m;
@@ -113,7 +113,7 @@ TEST(BeaconScenario, JitterHasTheRequestedRms) {
   BeaconSimOptions o = Small(TrajectoryKind::kStatic, 60.0);
   o.fps = 5;
   o.servo.lag_s = 0;
-  o.servo.jitter_rms_rad = 20.0 / geo::kArcsecPerRad;
+  o.servo.jitter_arcsec = 20.0;
   const BeaconSimulator sim(o);
   const geo::AzEl target = geo::AzElFromEnu(sim.TargetEnu(o.t0_s));
   double s2 = 0;
@@ -211,7 +211,7 @@ TEST(BeaconScenario, AzimuthCrossingNorthWraps) {
   for (const TurretSample& s : sim.TurretLog()) {
     EXPECT_GE(s.az_rad, 0.0);
     EXPECT_LT(s.az_rad, geo::kTwoPi);
-    EXPECT_LE(std::abs(geo::AngleDiff(s.az_rad, s.true_az_rad)), 0.5 * o.turret_resolution_rad + 1e-12);
+    EXPECT_LE(std::abs(geo::AngleDiff(s.az_rad, s.true_az_rad)), 0.5 * o.turret_resolution_rad() + 1e-12);
   }
 }
 
@@ -232,7 +232,7 @@ TEST(BeaconScenario, RangeNoiseAndErrorRowsMatchTheOptions) {
   BeaconSimOptions o = Small(TrajectoryKind::kDefault, 400.0);
   o.fps = 1;
   o.range_rate_hz = 50;
-  o.range_noise_m = 0.35e-3;
+  o.range_noise_mm = 0.35;
   o.range_error_rate = 0.02;
   const BeaconSimulator sim(o);
   const auto log = sim.RangeLog();
@@ -269,7 +269,7 @@ TEST(BeaconScenario, TurretLogIsQuantisedAndOffsetFromFrames) {
   const BeaconSimulator sim(o);
   const auto log = sim.TurretLog();
   ASSERT_GT(log.size(), 140u);
-  const double q = o.turret_resolution_rad;
+  const double q = o.turret_resolution_rad();
   for (std::size_t i = 0; i < log.size(); ++i) {
     EXPECT_NEAR(std::remainder(log[i].el_rad, q), 0.0, 1e-12);
     EXPECT_LE(std::abs(log[i].el_rad - log[i].true_el_rad), 0.5 * q + 1e-12);
@@ -307,7 +307,7 @@ TEST(BeaconScenario, OcclusionHidesTheLampsOnlyInItsInterval) {
 // so the image velocity reverses; outside the hold nothing changes.
 TEST(BeaconScenario, ServoHoldReversesTheImageMotion) {
   BeaconSimOptions o = Small(TrajectoryKind::kDefault, 4.0);
-  o.servo.jitter_rms_rad = 0.0;
+  o.servo.jitter_arcsec = 0.0;
   const BeaconSimulator plain(o);
   o.servo_holds.push_back({1.5, 0.3});  // frames 30..35 held
   const BeaconSimulator held(o);
@@ -412,7 +412,7 @@ TEST(BeaconScenario, CheckRejectsBadOptions) {
   EXPECT_FALSE(bad([](BeaconSimOptions&) {}));
   EXPECT_TRUE(bad([](BeaconSimOptions& o) { o.lamps = 4; }));
   EXPECT_TRUE(bad([](BeaconSimOptions& o) { o.sensor.bit_depth = 12; }));
-  EXPECT_TRUE(bad([](BeaconSimOptions& o) { o.range_noise_m = -1; }));
+  EXPECT_TRUE(bad([](BeaconSimOptions& o) { o.range_noise_mm = -1; }));
   EXPECT_TRUE(bad([](BeaconSimOptions& o) { o.range_error_rate = 1.0; }));
   EXPECT_TRUE(bad([](BeaconSimOptions& o) { o.trajectory.range_m = 10; }));
   EXPECT_TRUE(bad([](BeaconSimOptions& o) { o.trajectory.range_m = 20000; }));
@@ -441,6 +441,38 @@ TEST(BeaconScenario, CheckRejectsBadOptions) {
   } catch (const Error& e) {
     EXPECT_EQ(e.code(), ExitCode::kUsage);
   }
+}
+
+// The option tables give the messages (one form "--flag must be ... unit"); the nested tables of the
+// trajectory, sensor and servo are checked through the scenario's table.
+TEST(BeaconScenario, CheckNamesTheOptionFromTheTables) {
+  auto why_of = [](auto mutate) {
+    BeaconSimOptions o;
+    mutate(o);
+    std::string why;
+    EXPECT_FALSE(o.Check(&why));
+    return why;
+  };
+  EXPECT_EQ(why_of([](BeaconSimOptions& o) { o.fps = 0; }), "--fps must be in (0, 1000] Hz");
+  EXPECT_EQ(why_of([](BeaconSimOptions& o) { o.lamps = 65; }), "--lamps must be in [5, 64]");
+  EXPECT_EQ(why_of([](BeaconSimOptions& o) { o.range_noise_mm = -1; }), "--range-noise-mm must be in [0, 10000] mm");
+  EXPECT_EQ(why_of([](BeaconSimOptions& o) { o.trajectory.max_elevation_deg = 90; }),
+            "--max-el-deg must be in (0, 85] deg");
+  EXPECT_EQ(why_of([](BeaconSimOptions& o) { o.sensor.read_noise_dn = 101; }),
+            "--read-noise-dn must be in [0, 100] DN");
+  EXPECT_EQ(why_of([](BeaconSimOptions& o) { o.sensor.bit_depth = 12; }), "--bit-depth must be 8 or 16");
+  EXPECT_EQ(why_of([](BeaconSimOptions& o) { o.servo.lag_s = 3; }), "--turret-lag-s must be in [0, 2] s");
+  EXPECT_EQ(why_of([](BeaconSimOptions& o) { o.servo.jitter_min_hz = 6; }),
+            "--jitter-max-hz must be >= --jitter-min-hz");
+  // Report keys: from the flags, with the unit where the flag does not carry it.
+  const io::Json j = BeaconSimOptions{}.ToJson();
+  EXPECT_EQ(j.at("duration_s"), 10.0);
+  EXPECT_EQ(j.at("max_el_deg"), 80.0);
+  EXPECT_EQ(j.at("bit_depth"), "8");
+  EXPECT_EQ(j.at("jitter_arcsec"), 5.0);
+  EXPECT_EQ(j.at("seed"), 1u);
+  EXPECT_EQ(j.at("trajectory").at("kind"), "default");
+  EXPECT_TRUE(j.at("occlusions").is_array());
 }
 
 TEST(BeaconScenario, ParseOcclusion) {

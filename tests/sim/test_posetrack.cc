@@ -73,7 +73,7 @@ TEST(PoseTrack, MidTimesAreExactMidpoints) {
 
 TEST(PoseTrack, NoiseStdAndMeanMatchTheOptions) {
   PoseTrackOptions o = DefaultPoseTrackOptions(PoseScenario::kTurntable);
-  o.noise_angle_rad = geo::DegToRad(0.0724);
+  o.noise_deg = 0.0724;
   o.noise_position_m = 0.002;
   double s1[2] = {0, 0}, s2[2] = {0, 0};
   double n[2] = {0, 0};
@@ -84,7 +84,7 @@ TEST(PoseTrack, NoiseStdAndMeanMatchTheOptions) {
       const PoseTruth t = sim.TruthAt(m.t_s);
       for (int c = 0; c < kPoseDof; ++c) {
         const int g = PoseIsAngle(c) ? 1 : 0;
-        const double e = (m.value[c] - t.value[c]) / (g ? o.noise_angle_rad : o.noise_position_m);
+        const double e = (m.value[c] - t.value[c]) / (g ? o.noise_angle_rad() : o.noise_position_m);
         s1[g] += e;
         s2[g] += e * e;
         n[g] += 1;
@@ -101,7 +101,7 @@ TEST(PoseTrack, NoiseStdAndMeanMatchTheOptions) {
 
 TEST(PoseTrack, ZeroNoiseMeasuresTheTruth) {
   PoseTrackOptions o = DefaultPoseTrackOptions(PoseScenario::kHead);
-  o.noise_angle_rad = 0;
+  o.noise_deg = 0;
   o.noise_position_m = 0;
   const PoseTrackSimulator sim(o);
   for (const PoseMeasurement& m : sim.measurements()) {
@@ -249,8 +249,8 @@ TEST(PoseTrack, CheckRejectsBadOptions) {
   bad([](PoseTrackOptions& o) { o.fps = -1; }, "fps");
   bad([](PoseTrackOptions& o) { o.duration_s = 0.05; }, "fewer than 3");
   bad([](PoseTrackOptions& o) { o.t0_s = -1; }, "t0");
-  bad([](PoseTrackOptions& o) { o.noise_angle_rad = -1e-3; }, "angle noise");
-  bad([](PoseTrackOptions& o) { o.noise_position_m = INFINITY; }, "position noise");
+  bad([](PoseTrackOptions& o) { o.noise_deg = -1e-3; }, "--noise-deg must be in [0, 10] deg");
+  bad([](PoseTrackOptions& o) { o.noise_position_m = INFINITY; }, "--noise-m must be in [0, 1] m");
   bad([](PoseTrackOptions& o) { o.rate_rad_s = NAN; }, "rate");
   bad([](PoseTrackOptions& o) { o.yaw0_rad = geo::kTwoPi; }, "initial yaw");
   bad([](PoseTrackOptions& o) { o.dropout = 1.0; }, "dropout");
