@@ -263,7 +263,7 @@ TEST(AttitudeOi, SigmaColumnsMatchTheScatter) {
   const ImagePoints ip = ReadImagePoints(io::CsvTable::Parse(csv, "p.csv"), s.model);
   AttitudeOiOptions opt;
   opt.sigma_px = 0.3;
-  opt.turret_sigma_rad = 0.0;
+  opt.turret_sigma_deg = 0.0;
   const AttitudeOiResult r =
       RunAttitudeOi(ip, s.model, s.cam, locate::BoresightSource::Fixed(tr.boresight.az_rad, tr.boresight.el_rad), opt);
   Eigen::Matrix<double, 6, 1> sq = Eigen::Matrix<double, 6, 1>::Zero(), sig = sq;
@@ -329,7 +329,7 @@ TEST(AttitudeOi, RowStatusesForMissingPointsTurretGapsAndOutliers) {
   EXPECT_EQ(r.outliers_rejected, 1u);
   // Without outlier rejection frame 7 is invalid (reprojection) and keeps its RMS.
   AttitudeOiOptions strict;
-  strict.reject_outlier = false;
+  strict.no_reject = true;
   const AttitudeOiResult r2 = RunScene(s, csv, strict);
   EXPECT_EQ(r2.rows[7].status, RowStatus::kInvalid);
   EXPECT_EQ(r2.rows[7].note, PoseNote::kReprojection);
