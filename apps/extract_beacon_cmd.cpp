@@ -65,10 +65,7 @@ int RunBeaconCmd(const BeaconArgs& a, const Context& ctx) {
     rep["mean_ncc"] = s.mean_ncc();
     rep["restarts"] = s.restarts;
     rep["centroid_estimator"] = {{"per_lamp", s.per_lamp}, {"cluster", s.ok + s.reacquired - s.per_lamp}};
-    rep["time_s"] = {{"total", res.wall_s}, {"extraction", res.extract_s}};
-    rep["time_per_frame_ms"] = {
-        {"total", res.frames ? 1e3 * res.wall_s / static_cast<double>(res.frames) : 0.0},
-        {"extraction", res.frames ? 1e3 * res.extract_s / static_cast<double>(res.frames) : 0.0}};
+    AddReportTimes(&rep, res.frames, res.wall_s, res.extract_s);
     rep["options"] = opt.ToJson();
     rep["frame_times"] = a.in.FrameTimesJson();
     rk::cli::WriteReport(common.report_path, rep);

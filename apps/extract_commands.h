@@ -1,6 +1,7 @@
 // rk-extract's subcommands (apps/subcommand.h) and the video input options they share.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -60,5 +61,12 @@ struct VideoInputArgs {
                                : io::Json{{"source", "frames"}};
   }
 };
+
+// The report's "time_s" and "time_per_frame_ms" (total and extraction).
+inline void AddReportTimes(io::Json* report, std::int64_t frames, double wall_s, double extract_s) {
+  const auto per_frame_ms = [&](double s) { return frames ? 1e3 * s / static_cast<double>(frames) : 0.0; };
+  (*report)["time_s"] = {{"total", wall_s}, {"extraction", extract_s}};
+  (*report)["time_per_frame_ms"] = {{"total", per_frame_ms(wall_s)}, {"extraction", per_frame_ms(extract_s)}};
+}
 
 }  // namespace rk::app

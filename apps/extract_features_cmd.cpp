@@ -72,10 +72,7 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
     rep["rejected_by_constellation"] = s.rejected;
     rep["frames_with_4_points"] = s.frames_with_4;
     rep["mean_ncc"] = s.mean_ncc;
-    rep["time_s"] = {{"total", res.wall_s}, {"extraction", res.extract_s}};
-    rep["time_per_frame_ms"] = {
-        {"total", res.frames ? 1e3 * res.wall_s / static_cast<double>(res.frames) : 0.0},
-        {"extraction", res.frames ? 1e3 * res.extract_s / static_cast<double>(res.frames) : 0.0}};
+    AddReportTimes(&rep, res.frames, res.wall_s, res.extract_s);
     rep["options"] = opt.ToJson();
     rep["frame_times"] = a.in.FrameTimesJson();
     cli::WriteReport(ctx.common.report_path, rep);

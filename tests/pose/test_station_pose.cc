@@ -420,5 +420,41 @@ TEST(AttitudeOi, BadInputIsDataError) {
   }
 }
 
+// Issue 16 item 1: the oi options come from one table (the solver's nested in it): the choices read and
+// write their enumerations, the switches are in the report as given, the bounds give the messages.
+TEST(AttitudeOiOptions, TableChoicesSwitchesAndMessages) {
+  const auto& table = AttitudeOiOptions::Table();
+  AttitudeOiOptions o;
+  const auto* second = table.Find("--second-start");
+  ASSERT_NE(second, nullptr);
+  EXPECT_TRUE(second->set_choice(&o, "never"));
+  EXPECT_EQ(o.pnp.second_start, SecondStart::kNever);
+  EXPECT_FALSE(second->set_choice(&o, "sometimes"));
+  const auto* interp = table.Find("--turret-interp");
+  ASSERT_NE(interp, nullptr);
+  EXPECT_TRUE(interp->set_choice(&o, "linear"));
+  EXPECT_EQ(o.turret_method, track::InterpMethod::kLinear);
+  EXPECT_FALSE(interp->set_choice(&o, "local-cubic"));  // the turret takes linear or cubic only
+  o.pure_oi = true;
+  const io::Json j = o.ToJson();
+  EXPECT_EQ(j.at("second_start"), "never");
+  EXPECT_EQ(j.at("turret_interp"), "linear");
+  EXPECT_EQ(j.at("pure_oi"), true);
+  EXPECT_EQ(j.at("no_reject"), false);
+  EXPECT_EQ(j.at("turret_max_gap_s"), 0.1);
+  EXPECT_EQ(j.at("near_planar"), 0.05);
+
+  std::string why;
+  o = {};
+  EXPECT_TRUE(o.Check(&why)) << why;
+  o.min_points = 3;
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--min-points must be in [4, 1000]");
+  o = {};
+  o.pnp.near_planar_ratio = 1.5;
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--near-planar must be in [0, 1]");
+}
+
 }  // namespace
 }  // namespace rk::pose
