@@ -24,10 +24,6 @@ namespace {
 
 struct OiArgs {
   std::string points, camera, target, turret, boresight, output;
-  std::string turret_interp = "cubic", second_start = "auto";
-  double turret_max_gap_s = 0.1;
-  double turret_sigma_deg = 0.003 / std::sqrt(12.0);
-  bool pure_oi = false, no_reject = false;
   pose::AttitudeOiOptions opt;
   io::BadRows bad_rows = io::BadRows::kError;
 };
@@ -56,19 +52,7 @@ geo::AzEl ParseBoresight(const std::string& text) {
 }
 
 int RunOi(const OiArgs& a, const Context& ctx) {
-  pose::AttitudeOiOptions opt = a.opt;
-  if (!pose::ParseSecondStart(a.second_start, &opt.pnp.second_start)) {
-    throw UsageError("--second-start must be auto, always or never");
-  }
-  track::InterpMethod turret_method = track::InterpMethod::kCubic;
-  if (!track::ParseInterpMethod(a.turret_interp, &turret_method) ||
-      (turret_method != track::InterpMethod::kLinear && turret_method != track::InterpMethod::kCubic)) {
-    throw UsageError("--turret-interp must be linear or cubic");
-  }
-  if (!(a.turret_max_gap_s > 0.0)) throw UsageError("--turret-max-gap must be > 0 s");
-  opt.turret_sigma_rad = geo::DegToRad(a.turret_sigma_deg);
-  opt.pnp.polish = !a.pure_oi;
-  opt.reject_outlier = !a.no_reject;
+  const pose::AttitudeOiOptions& opt = a.opt;
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
 
@@ -96,7 +80,7 @@ int RunOi(const OiArgs& a, const Context& ctx) {
   if (!a.turret.empty()) turret_log = locate::ReadTurretLog(io::CsvTable::Read(a.turret, {a.bad_rows, locate::TurretLogRowRule()}));
   const locate::BoresightSource boresight =
       fixed ? locate::BoresightSource::Fixed(fixed->az_rad, fixed->el_rad)
-            : locate::BoresightSource::FromLog(*turret_log, turret_method, a.turret_max_gap_s);
+            : locate::BoresightSource::FromLog(*turret_log, opt.turret_method, opt.turret_max_gap_s);
 
   const pose::AttitudeOiResult res = pose::RunAttitudeOi(points, model, camera, boresight, opt);
   const std::size_t n = res.rows.size();
@@ -145,20 +129,9 @@ int RunOi(const OiArgs& a, const Context& ctx) {
     r["mean_chi2_per_dof"] = std::isfinite(c2) ? io::Json(c2) : io::Json(nullptr);
     r["summary"] = res.SummaryJson();
     r["target"] = {{"points", model.size()}, {"planarity", model.Planarity()}};
-    r["options"] = {{"boresight", fixed ? io::Json{geo::RadToDeg(fixed->az_rad), geo::RadToDeg(fixed->el_rad)}
-                                        : io::Json(nullptr)},
-                    {"turret_interp", a.turret_interp},
-                    {"turret_max_gap_s", a.turret_max_gap_s},
-                    {"turret_sigma_deg", a.turret_sigma_deg},
-                    {"sigma_px", opt.sigma_px},
-                    {"min_points", opt.min_points},
-                    {"max_rms_px", opt.max_rms_px},
-                    {"reject_outlier", opt.reject_outlier},
-                    {"second_start", pose::SecondStartName(opt.pnp.second_start)},
-                    {"ambiguity_chi2", opt.pnp.ambiguity_chi2},
-                    {"near_planar_ratio", opt.pnp.near_planar_ratio},
-                    {"continuity_s", opt.continuity_s},
-                    {"polish", opt.pnp.polish}};
+    r["options"] = opt.ToJson();
+    r["options"]["boresight"] =
+        fixed ? io::Json{geo::RadToDeg(fixed->az_rad), geo::RadToDeg(fixed->el_rad)} : io::Json(nullptr);
     cli::WriteReport(ctx.common.report_path, r);
   }
   return 0;
@@ -183,37 +156,7 @@ Command AddOiCommand(CLI::App& parent) {
   o_turret->excludes(o_bore);
   cli::AddBadRowsOption(s, &a->bad_rows);
   s->add_option("-o,--output", a->output, "Pose CSV ('-' = stdout)")->required();
-  s->add_option("--turret-interp", a->turret_interp, "Turret angle interpolation to frame times: linear or cubic")
-      ->capture_default_str();
-  s->add_option("--turret-max-gap", a->turret_max_gap_s,
-                "Longest turret-log interval (s) interpolated across; frames in longer gaps are invalid")
-      ->capture_default_str();
-  s->add_option("--turret-sigma-deg", a->turret_sigma_deg,
-                "1-sigma turret angle noise (deg) in the sigma_* columns (default: 0.003 deg step / sqrt 12)")
-      ->capture_default_str();
-  s->add_option("--sigma-px", a->opt.sigma_px, "1-sigma pixel noise of points without a sigma_px column (px)")
-      ->capture_default_str();
-  s->add_option("--min-points", a->opt.min_points, "Fewest usable points for a pose (>= 4)")->capture_default_str();
-  s->add_option("--max-rms-px", a->opt.max_rms_px,
-                "Largest accepted RMS reprojection error (px); larger rows are invalid (after trying to reject one "
-                "point)")
-      ->capture_default_str();
-  s->add_flag("--no-reject", a->no_reject, "Never leave a point out to bring the RMS under --max-rms-px");
-  s->add_option("--second-start", a->second_start,
-                "Second OI start from the mirrored pose: auto (near-planar targets, or a poor first fit), always, never")
-      ->capture_default_str();
-  s->add_option("--ambiguity-chi2", a->opt.pnp.ambiguity_chi2,
-                "Two minima whose chi-square differ by less are flagged ambiguous")
-      ->capture_default_str();
-  s->add_option("--near-planar", a->opt.pnp.near_planar_ratio,
-                "Targets with scatter eigenvalue ratio lambda3/lambda1 below this are near-planar (second start, "
-                "homography start)")
-      ->capture_default_str();
-  s->add_option("--continuity", a->opt.continuity_s,
-                "Ambiguous frames take the pose nearest the previous row's if it is at most this old (s)")
-      ->capture_default_str();
-  s->add_flag("--pure-oi", a->pure_oi,
-              "Orthogonal iteration only, without the reprojection polish (object-space optimum; for comparison)");
+  cli::AddOptions(s, &a->opt, pose::AttitudeOiOptions::Table());
   return {s, [a, s](const Context& ctx) {
             if (a->turret.empty() && a->boresight.empty()) {
               throw UsageError("give the camera's pointing: --turret turret.csv or --boresight AZ,EL");

@@ -68,20 +68,19 @@ int RunRecover(const std::string& dir, bool check_only, const rk::cli::CommonOpt
   return 0;
 }
 
-int RunRecord(const std::string& config_path, const std::string& out, double duration_s,
-              const rk::cli::CommonOptions& common, int argc, char** argv) {
+int RunRecord(const std::string& config_path, rk::capture::CaptureOptions o, const rk::cli::CommonOptions& common,
+              int argc, char** argv) {
+  const std::string& out = o.out_dir;
   if (config_path.empty()) throw rk::UsageError("--config is required (or the subcommand recover)");
   if (out.empty()) throw rk::UsageError("--out is required");
-  if (!(duration_s >= 0) || !std::isfinite(duration_s)) throw rk::UsageError("--duration must be >= 0 seconds");
+  std::string why;
+  if (!rk::capture::CaptureOptions::Table().Check(o, &why)) throw rk::UsageError(why);
   const rk::capture::StationConfig cfg = rk::capture::LoadStationConfig(config_path);
   std::mutex err_mutex;
   const bool progress = rk::cli::ShowProgress(common);
   bool status_shown = false;
   for (const auto& w : cfg.warnings) rk::cli::Warn(kTool, common, w);
 
-  rk::capture::CaptureOptions o;
-  o.out_dir = out;
-  o.duration_s = duration_s;
   o.stop = &g_stop;
   o.command_line.assign(argv, argv + argc);
   if (progress) {
@@ -97,7 +96,6 @@ int RunRecord(const std::string& config_path, const std::string& out, double dur
     if (status_shown) std::cerr << "\r\x1b[K";
     std::cerr << kTool << ": warning: " << what << "\n" << std::flush;
   };
-  std::string why;
   if (!o.Check(&why)) throw rk::UsageError(why);
   InstallStopHandlers();
   const rk::capture::CaptureSummary s = rk::capture::RunCapture(cfg, o);
@@ -109,6 +107,7 @@ int RunRecord(const std::string& config_path, const std::string& out, double dur
     rk::io::Json r = rk::cli::MakeReport(kTool, argc, argv);
     rk::cli::AddReportInput(&r, "config", config_path);
     r["out"] = out;
+    r["options"] = rk::capture::CaptureOptions::Table().ToJson(o);
     r["summary"] = s.ToJson();
     rk::cli::WriteReport(common.report_path, r);
   }
@@ -141,11 +140,11 @@ int main(int argc, char** argv) {
       kTool};
   rk::cli::CommonOptions common;
   rk::cli::AddCommonOptions(app, kTool, &common);
-  std::string config, out;
-  double duration_s = 0;
+  std::string config;
+  rk::capture::CaptureOptions record;
   app.add_option("--config,-c", config, "Station configuration JSON (SPEC.md §6; paths in it relative to it)");
-  app.add_option("--out,-o", out, "Trial folder to create (refused if it exists and is not empty)");
-  app.add_option("--duration", duration_s, "Stop after S seconds (default: until SIGINT or SIGTERM)");
+  app.add_option("--out,-o", record.out_dir, "Trial folder to create (refused if it exists and is not empty)");
+  rk::cli::AddOptions(&app, &record, rk::capture::CaptureOptions::Table());
   CLI::App* recover = app.add_subcommand(
       "recover",
       "Check a trial directory and repair what a crash leaves (torn last lines and frames, the manifest); "
@@ -157,11 +156,11 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
   return rk::cli::Run(app, kTool, argc, argv, [&]() -> int {
     if (recover->parsed()) {
-      if (!config.empty() || !out.empty() || app.count("--duration") > 0) {
+      if (!config.empty() || !record.out_dir.empty() || app.count("--duration") > 0) {
         throw rk::UsageError("recover takes a trial directory only (no --config, --out or --duration)");
       }
       return RunRecover(dir, check_only, common, argc, argv);
     }
-    return RunRecord(config, out, duration_s, common, argc, argv);
+    return RunRecord(config, record, common, argc, argv);
   });
 }

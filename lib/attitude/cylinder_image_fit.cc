@@ -243,13 +243,21 @@ void WeightByNoiseModel(Problem& prob, const Eigen::VectorXd& r) {
 
 }  // namespace
 
+const io::OptionTable<CylinderImageFitOptions>& CylinderImageFitOptions::Table() {
+  using O = CylinderImageFitOptions;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Real("--fit-psf-sigma", &O::initial_psf_sigma_px, "px", io::Bounds::LeftOpen(0, 5),
+                "Image fit: starting value of the optics blur sigma (px; fitted)")
+          .Integer("--fit-max-iterations", &O::max_iterations, "", io::Bounds::AtLeast(1),
+                   "Image fit: Levenberg-Marquardt iteration limit");
+  return table;
+}
+
 bool CylinderImageFitOptions::Check(std::string* why) const {
-  if (!(initial_psf_sigma_px > 0.0 && initial_psf_sigma_px <= 5.0)) {
-    *why = "the image fit's initial PSF sigma must be in (0, 5] px";
-    return false;
-  }
-  if (max_iterations < 1 || rim_samples < 16 || !(margin_px >= 1.0 && margin_px <= 100.0)) {
-    *why = "the image fit needs max_iterations >= 1, rim_samples >= 16 and a margin in [1, 100] px";
+  if (!Table().Check(*this, why)) return false;
+  if (rim_samples < 16 || !(margin_px >= 1.0 && margin_px <= 100.0)) {
+    *why = "the image fit needs rim_samples >= 16 and a margin in [1, 100] px";
     return false;
   }
   return true;

@@ -37,6 +37,7 @@
 
 #include "attitude/cylinder_geometry.h"
 #include "camera/camera_model.h"
+#include "io/options.h"
 
 namespace rk::attitude {
 
@@ -45,6 +46,8 @@ struct CylinderImageFitOptions {
   int max_iterations = 30;            // Levenberg–Marquardt iterations, >= 1
   int rim_samples = 512;              // points per rim in the projected outline, >= 16
   double margin_px = 6.0;             // window margin around the outline beyond 4σ (px), >= 1
+  // The command-line options of the image fit (rk-attitude cylinder --fit-*; io/options.h).
+  static const io::OptionTable<CylinderImageFitOptions>& Table();
   bool Check(std::string* why) const;
 };
 

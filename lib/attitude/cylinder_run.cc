@@ -46,20 +46,40 @@ const char* CylinderSolutionStatusName(CylinderSolutionStatus s) {
   return "?";
 }
 
+const io::OptionTable<CylinderRunOptions>& CylinderRunOptions::Table() {
+  using B = io::Bounds;
+  using O = CylinderRunOptions;
+  using track::InterpMethod;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Sub(&O::solve, CylinderSolveOptions::Table())
+          .Choice("--theodolite-interp", &O::theodolite_method, {InterpMethod::kLinear, InterpMethod::kCubic},
+                  track::InterpMethodName, "Theodolite interpolation: linear or cubic")
+          .Real("--theodolite-max-gap", &O::theodolite_max_gap_s, "s", B::Positive(),
+                "Longest theodolite-log interval (s) interpolated across; frames in longer gaps are invalid")
+          .Real("--continuity-gap", &O::continuity_gap_s, "s", B::Positive(),
+                "History older than this (s) is not used to choose between the two solutions")
+          .Real("--ambiguity-deg", &O::ambiguity_deg, "deg", B::Positive().Finite(),
+                "Solutions (or their distances to the predicted axis) closer than this are not told apart (deg)")
+          .Real("--max-asymmetry-px", &O::max_asymmetry_px, "px", B::Positive(),
+                "Largest difference of the nose's distances to tail1 and tail2 (px; at least a quarter of the tail "
+                "diameter's image) before a frame is inconsistent")
+          .Real("--max-miss-px", &O::max_miss_px, "px", B::AtLeast(0).Finite(),
+                "Where noise removes the exact solutions, accept the closest approach if it misses by at most this "
+                "(px); 0 = never")
+          .Real("--max-edge-tilt-deg", [](O& o) -> double& { return o.solve.max_edge_tilt_deg; }, "deg",
+                B::LeftOpen(0, 90),
+                "Solutions tilting the tail diameter further out of the image plane are not admissible (deg)")
+          .Sub(&O::image_fit, CylinderImageFitOptions::Table())
+          .Real("--pixel-sigma", &O::pixel_sigma_px, "px", B::AtLeast(0).Finite(),
+                "Point error assumed for the sigma columns (px, each coordinate)")
+          .Real("--angle-sigma-arcsec", &O::angle_sigma_arcsec, "arcsec", B::AtLeast(0).Finite(),
+                "Theodolite angle error assumed for the sigma columns (arcsec, each axis)");
+  return table;
+}
+
 bool CylinderRunOptions::Check(std::string* why) const {
-  if (!solve.Check(why)) return false;
-  auto fail = [&](const char* w) {
-    *why = w;
-    return false;
-  };
-  if (!(max_miss_px >= 0.0) || !std::isfinite(max_miss_px)) return fail("--max-miss-px must be >= 0");
-  if (!(theodolite_max_gap_s > 0.0)) return fail("--theodolite-max-gap must be > 0 s");
-  if (!(continuity_gap_s > 0.0)) return fail("--continuity-gap must be > 0 s");
-  if (!(ambiguity_deg > 0.0) || !std::isfinite(ambiguity_deg)) return fail("--ambiguity-deg must be > 0");
-  if (!(max_asymmetry_px > 0.0)) return fail("--max-asymmetry-px must be > 0");
-  if (!(pixel_sigma_px >= 0.0) || !std::isfinite(pixel_sigma_px)) return fail("--pixel-sigma must be >= 0");
-  if (!(angle_sigma_arcsec >= 0.0) || !std::isfinite(angle_sigma_arcsec)) return fail("--angle-sigma-arcsec must be >= 0");
-  return image_fit.Check(why);
+  return Table().Check(*this, why) && solve.Check(why) && image_fit.Check(why);
 }
 
 namespace {

@@ -110,7 +110,10 @@ struct CylinderRunOptions {
   double pixel_sigma_px = 0.3;              // for the σ columns, >= 0
   double angle_sigma_arcsec = 0.0;          // for the σ columns, >= 0
   CylinderImageFitOptions image_fit;        // used when frames are given
+  // The command-line options of rk-attitude cylinder, solve's and image_fit's among them (io/options.h).
+  static const io::OptionTable<CylinderRunOptions>& Table();
   bool Check(std::string* why) const;
+  io::Json ToJson() const { return Table().ToJson(*this); }
 };
 
 struct CylinderRow {

@@ -8,6 +8,7 @@
 #include <limits>
 
 #include "attitude/polynomial.h"
+#include "geo/angles.h"
 
 namespace rk::attitude {
 
@@ -27,8 +28,16 @@ std::string CylinderMethodName(CylinderMethod method) {
   return method == CylinderMethod::kSearch ? "search" : "p3p";
 }
 
+const io::OptionTable<CylinderSolveOptions>& CylinderSolveOptions::Table() {
+  static const io::OptionTable<CylinderSolveOptions> table = io::OptionTable<CylinderSolveOptions>().Choice(
+      "--method", &CylinderSolveOptions::method, {CylinderMethod::kP3P, CylinderMethod::kSearch}, CylinderMethodName,
+      "Solver: p3p (closed form, Ferrari quartic) or search (the paper's R1 search)");
+  return table;
+}
+
 bool CylinderSolveOptions::Check(std::string* why) const {
-  if (!(max_edge_tilt_rad > 0.0 && max_edge_tilt_rad <= M_PI / 2 + 1e-12)) {
+  if (!Table().Check(*this, why)) return false;
+  if (!(max_edge_tilt_deg > 0.0 && max_edge_tilt_deg <= 90.0)) {
     *why = "maximum edge tilt must be in (0, 90] degrees";
     return false;
   }
@@ -150,7 +159,7 @@ void Finish(Context& c) {
       bool dup = false;
       for (const CylinderSolution& o : out) dup = dup || same(s, o, rel);
       if (dup) continue;
-      if (s.edge_tilt_rad > c.opt.max_edge_tilt_rad) {
+      if (s.edge_tilt_rad > geo::DegToRad(c.opt.max_edge_tilt_deg)) {
         ++c.out->rejected_tilted;
         continue;
       }
@@ -178,7 +187,7 @@ CylinderSolveResult SolveCylinderSearch(const CylinderRays& rays, const target::
   const double r_edge = d / gap23;
   const double r1_max = MaxNoseRange(a, target);
   // 10 % margin on the tilt: |R2 − R3|/d and the geometric tilt differ by the (tiny) angle between the rays.
-  const double tilt = std::min(1.1 * opt.max_edge_tilt_rad, M_PI / 2);
+  const double tilt = std::min(1.1 * geo::DegToRad(opt.max_edge_tilt_deg), M_PI / 2);
   const double lo = std::max(r_edge * std::cos(tilt) - d - L, 1e-9 * r_edge);
   const double hi = std::min(r_edge + d + L, r1_max);
   if (!(hi > lo)) return result;

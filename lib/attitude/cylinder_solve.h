@@ -30,7 +30,7 @@
 // distance error over the tail range (rad), is at most max_miss_rad, and only when no exact admissible
 // solution exists; 0 disables near misses.
 //
-// Admissible: all ranges > 0 and edge tilt ≤ max_edge_tilt_rad (the diameter P2P3 nearly perpendicular to
+// Admissible: all ranges > 0 and edge tilt ≤ max_edge_tilt_deg (the diameter P2P3 nearly perpendicular to
 // the line of sight, as SPEC.md §3 defines tail1/tail2); the P3P roots that tilt it further are dropped
 // and counted. Solutions are returned sorted by nose range, nearer first.
 #pragma once
@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "attitude/cylinder_geometry.h"
+#include "io/options.h"
 
 namespace rk::attitude {
 
@@ -50,13 +51,15 @@ struct CylinderSolveOptions {
   // Default by measurement (bench/cylinder_tables.cc, bench/bench_cylinder.cc, docs/benchmarks.md): on exact
   // pixels both reach 3e-9° and agree to 2e-11°; the closed form takes ~1 µs per frame, the search ~0.5 ms.
   CylinderMethod method = CylinderMethod::kP3P;
-  // Edge tilt limit: larger tilts are not edge-on tail points; (0, π/2]. 60°: under 1-pixel quantisation
-  // the true solution tilts by up to ~30° at a 10-pixel tail diameter (bench/cylinder_tables.cc).
-  double max_edge_tilt_rad = 1.0471975511965976;
+  // Edge tilt limit (deg): larger tilts are not edge-on tail points; (0, 90]. 60°: under 1-pixel
+  // quantisation the true solution tilts by up to ~30° at a 10-pixel tail diameter (bench/cylinder_tables.cc).
+  double max_edge_tilt_deg = 60.0;
   double max_miss_rad = 0.0;                       // near-miss acceptance (rad); 0 = exact roots only
   int search_steps_per_slant = 32;                 // kSearch grid step L'/N, [4, 4096]
   int search_max_samples = 200000;                 // kSearch: cap on grid points per branch, [100, 1e7]
 
+  // The command-line option --method (rk-attitude cylinder; io/options.h).
+  static const io::OptionTable<CylinderSolveOptions>& Table();
   bool Check(std::string* why) const;
 };
 

@@ -21,17 +21,6 @@
 namespace rk::capture {
 namespace fs = std::filesystem;
 
-bool CaptureOptions::Check(std::string* why) const {
-  auto fail = [&](const std::string& w) {
-    if (why) *why = w;
-    return false;
-  };
-  if (out_dir.empty() || out_dir == "-") return fail("--out must name a folder");
-  if (!(duration_s >= 0) || !std::isfinite(duration_s)) return fail("--duration must be >= 0 seconds");
-  if (!(status_period_s > 0)) return fail("status period must be > 0");
-  return true;
-}
-
 io::Json CameraSummary::ToJson() const {
   return {{"source_kind", source_kind},   {"format", format},           {"fps", fps},
           {"width", width},               {"height", height},           {"bit_depth", bit_depth},

@@ -22,6 +22,7 @@
 #include "capture/ptu.h"
 #include "capture/station_config.h"
 #include "io/json_util.h"
+#include "io/options.h"
 
 namespace rk::capture {
 
@@ -35,6 +36,8 @@ struct CaptureOptions {
   std::vector<std::string> command_line;      // recorded in the manifest
   std::function<std::int64_t()> free_space_probe;  // replaces statvfs (tests)
 
+  // The command-line options of rk-capture's recording (io/options.h); capture_options.cc.
+  static const io::OptionTable<CaptureOptions>& Table();
   bool Check(std::string* why) const;
 };
 

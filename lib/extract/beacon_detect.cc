@@ -142,19 +142,38 @@ double ProfileNoise(const std::vector<double>& r, std::vector<double>* work) {
 
 }  // namespace
 
+const io::OptionTable<DetectOptions>& DetectOptions::Table() {
+  using B = io::Bounds;
+  static const io::OptionTable<DetectOptions> table =
+      io::OptionTable<DetectOptions>()
+          .Real("--k-detect", &DetectOptions::k_detect, "", B::Positive(),
+                "Seed threshold in noise sigmas above the local background")
+          .Real("--k-grow", &DetectOptions::k_grow, "", B::Positive(), "Region-growing threshold in noise sigmas")
+          .Integer("--gap", &DetectOptions::gap_px, "px", B::Closed(0, 4),
+                   "Region-growing gap tolerance (px), merges the lamps")
+          .Integer("--cluster-gap", &DetectOptions::cluster_gap_px, "px", B::Closed(0, 64),
+                   "Regions this close (px) merge into one lamp cluster")
+          .Integer("--max-extent", &DetectOptions::max_extent_px, "px", B::Closed(4, 512),
+                   "Largest distance of a region pixel from its seed (px)")
+          .Integer("--max-area", &DetectOptions::max_area_px, "px", B::AtLeast(1),
+                   "Regions with more pixels are rejected")
+          .Integer("--margin", &DetectOptions::margin_px, "px", B::Closed(1, 32),
+                   "Centroid window: region + this margin (px)")
+          .Integer("--ring", &DetectOptions::ring_px, "px", B::Closed(1, 16), "Width of the local-background ring (px)")
+          .Flag("--bg-plane", &DetectOptions::background_plane,
+                "Fit a background plane to the ring (for sky gradients) instead of a level")
+          .Integer("--projection-peaks", &DetectOptions::projection_peaks, "", B::Closed(1, 64),
+                   "Peaks per grey projection in full-frame search");
+  return table;
+}
+
 bool DetectOptions::Check(std::string* why) const {
+  if (!Table().Check(*this, why)) return false;
   auto fail = [&](const char* w) {
     if (why) *why = w;
     return false;
   };
-  if (!(k_detect > 0) || !(k_grow > 0) || k_grow > k_detect) return fail("thresholds need 0 < k_grow <= k_detect");
-  if (gap_px < 0 || gap_px > 4) return fail("gap tolerance must be in [0, 4] pixels");
-  if (cluster_gap_px < 0 || cluster_gap_px > 64) return fail("cluster gap must be in [0, 64] pixels");
-  if (max_extent_px < 4 || max_extent_px > 512) return fail("max region extent must be in [4, 512] pixels");
-  if (max_area_px < 1) return fail("max region area must be >= 1 pixel");
-  if (margin_px < 1 || margin_px > 32) return fail("centroid margin must be in [1, 32] pixels");
-  if (ring_px < 1 || ring_px > 16) return fail("background ring must be in [1, 16] pixels");
-  if (projection_peaks < 1 || projection_peaks > 64) return fail("projection peaks must be in [1, 64]");
+  if (k_grow > k_detect) return fail("--k-grow must be <= --k-detect");
   if (max_candidates < 1) return fail("max candidates must be >= 1");
   if (!(min_noise_dn > 0)) return fail("noise floor must be > 0");
   return true;

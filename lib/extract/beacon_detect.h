@@ -35,6 +35,8 @@
 #include <string>
 #include <vector>
 
+#include "io/options.h"
+
 namespace rk::extract {
 
 struct DetectOptions {
@@ -52,6 +54,9 @@ struct DetectOptions {
   int projection_peaks = 6;     // K: peaks taken from each grey projection
   double min_noise_dn = 0.5;    // floor of σ (quantisation)
   int max_candidates = 24;      // per search area
+  // The command-line options (rk-extract beacon): flag, member, unit, valid range, help; Check() and
+  // the report's "options" block come from it (io/options.h).
+  static const io::OptionTable<DetectOptions>& Table();
   bool Check(std::string* why) const;
 };
 

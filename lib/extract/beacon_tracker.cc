@@ -8,26 +8,48 @@
 
 namespace rk::extract {
 
+const io::OptionTable<BeaconTrackOptions>& BeaconTrackOptions::Table() {
+  using B = io::Bounds;
+  using O = BeaconTrackOptions;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Sub(&O::detect, DetectOptions::Table())
+          .Real("--maneuver-time", &O::maneuver_time_s, "s", B::Positive().Finite(), "Singer maneuver time constant 1/a (s)")
+          .Real("--accel-sigma", &O::accel_sigma_px_s2, "px/s^2", B::Positive().Finite(),
+                "Singer RMS image acceleration (px/s^2)")
+          .Real("--meas-sigma", &O::meas_sigma_px, "px", B::Positive(), "Centroid noise assumed by the filter (px)")
+          .Real("--gate-sigma", &O::gate_sigma, "", B::Positive(), "Search window half size in predicted sigmas")
+          .Real("--gate-chi2", &O::gate_chi2, "", B::Positive(),
+                "Mahalanobis gate (2 dof): full-frame search while tracking; a re-acquisition beyond it restarts "
+                "the filter")
+          .Integer("--window-min", &O::min_window_px, "px", B::AtLeast(4), "Smallest search window half size (px)")
+          .Integer("--window-max", &O::max_window_px, "px", B::AtLeast(4),
+                   "Largest search window half size (px); beyond it the whole frame is searched")
+          .Real("--ncc-track", &O::ncc_track, "", B::Closed(-1, 1), "NCC with the template needed while tracking")
+          .Real("--ncc-reacquire", &O::ncc_reacquire, "", B::Closed(-1, 1), "NCC needed to re-acquire after a loss")
+          .Real("--ncc-update", &O::ncc_template_update, "", B::Closed(-1, 1), "Template refreshed when NCC >= this")
+          .Real("--size-ratio", &O::size_ratio, "", B::AtLeast(1), "Candidate/template size ratio allowed, [1/r, r]")
+          .Real("--flux-ratio", &O::flux_ratio, "", B::AtLeast(1),
+                "Re-acquisition: candidate/template flux ratio allowed, [1/r, r]")
+          .Real("--long-loss", &O::long_loss_s, "s", B::AtLeast(0),
+                "Losses this long (s): no window search, the filter restarts")
+          .Real("--min-flux", &O::min_flux_dn, "dn", B::AtLeast(0), "Acquisition: minimum flux (DN*px), 0 = any")
+          .Real("--fill-gaps", &O::fill_gaps_s, "s", B::AtLeast(0),
+                "Fill the first S seconds of a gap with the prediction (status predicted); 0 = off")
+          .Choice("--estimator", &O::per_lamp, {{true, "auto"}, {false, "cluster"}},
+                  "Position: auto (per-lamp centroids with averaged flux shares when the lamps resolve, else the "
+                  "cluster centroid) or cluster (always the cluster centroid)");
+  return table;
+}
+
 bool BeaconTrackOptions::Check(std::string* why) const {
-  if (!detect.Check(why)) return false;
+  if (!Table().Check(*this, why) || !detect.Check(why)) return false;
   auto fail = [&](const char* w) {
     if (why) *why = w;
     return false;
   };
-  if (!(maneuver_time_s > 0) || !std::isfinite(maneuver_time_s)) return fail("maneuver time constant must be > 0 s");
-  if (!(accel_sigma_px_s2 > 0) || !std::isfinite(accel_sigma_px_s2)) return fail("acceleration sigma must be > 0 px/s^2");
-  if (!(meas_sigma_px > 0)) return fail("measurement sigma must be > 0 px");
   if (!(init_vel_sigma_px_s > 0)) return fail("initial velocity sigma must be > 0 px/s");
-  if (!(gate_sigma > 0) || !(gate_chi2 > 0)) return fail("gate sizes must be > 0");
-  if (min_window_px < 4 || max_window_px < min_window_px) return fail("need 4 <= min window <= max window (px)");
-  if (!(ncc_track >= -1 && ncc_track <= 1) || !(ncc_reacquire >= -1 && ncc_reacquire <= 1) ||
-      !(ncc_template_update >= -1 && ncc_template_update <= 1))
-    return fail("NCC thresholds must be in [-1, 1]");
-  if (!(size_ratio >= 1)) return fail("size ratio must be >= 1");
-  if (!(flux_ratio >= 1)) return fail("flux ratio must be >= 1");
-  if (!(long_loss_s >= 0)) return fail("long-loss time must be >= 0 s");
-  if (!(min_flux_dn >= 0)) return fail("minimum flux must be >= 0");
-  if (!(fill_gaps_s >= 0)) return fail("fill-gaps time must be >= 0 s");
+  if (max_window_px < min_window_px) return fail("--window-max must be >= --window-min");
   return true;
 }
 

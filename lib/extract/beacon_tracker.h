@@ -83,7 +83,10 @@ struct BeaconTrackOptions {
   double fill_gaps_s = 0.0;         // > 0: frames of gaps shorter than this get `predicted`
   bool per_lamp = true;             // position from the per-lamp estimator (beacon_lamps.h) when the
                                     // lamps resolve; false: always the cluster centroid
+  // The command-line options of rk-extract beacon, detect's first (io/options.h).
+  static const io::OptionTable<BeaconTrackOptions>& Table();
   bool Check(std::string* why) const;
+  io::Json ToJson() const { return Table().ToJson(*this); }
 };
 
 struct BeaconFrameResult {

@@ -93,19 +93,33 @@ Vec8 StartParameters(const cv::Mat& image, const Eigen::Vector2d& start, int x0,
 
 }  // namespace
 
+const io::OptionTable<MarkerDetectOptions>& MarkerDetectOptions::Table() {
+  using B = io::Bounds;
+  using O = MarkerDetectOptions;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Choice("--polarity", &O::dark, {{false, "bright"}, {true, "dark"}},
+                  "Markers brighter (bright) or darker (dark) than their surroundings")
+          .Real("--min-radius-px", &O::min_radius_px, "px", B::Closed(0, 500), "Smallest marker image radius (px)")
+          .Real("--max-radius-px", &O::max_radius_px, "px", B::LeftOpen(0, 500), "Largest marker image radius (px)")
+          .Integer("--downsample", &O::downsample, "", B::Closed(1, 8),
+                   "Full-frame detection on frames averaged down by this (1..8)")
+          .Real("--k-detect", &O::k_detect, "", B::Positive(), "Detection threshold in noise sigmas (full-frame search)")
+          .Real("--min-contrast", &O::min_contrast_dn, "dn", B::AtLeast(0),
+                "Smallest marker contrast accepted (DN); 0 = 5 noise sigmas")
+          .Real("--ncc-min", &O::ncc_min, "", B::Open(-1, 1), "Correlation score needed to accept a marker")
+          .Integer("--max-candidates", &O::max_candidates, "", B::Closed(4, 1000),
+                   "Full-frame search keeps this many strongest blobs");
+  return table;
+}
+
 bool MarkerDetectOptions::Check(std::string* why) const {
+  if (!Table().Check(*this, why)) return false;
   auto fail = [&](const char* w) {
     *why = w;
     return false;
   };
-  if (!(min_radius_px >= 0.0 && max_radius_px > min_radius_px && max_radius_px <= 500.0)) {
-    return fail("marker radius range must satisfy 0 <= min < max <= 500 px");
-  }
-  if (downsample < 1 || downsample > 8) return fail("--downsample must be in [1, 8]");
-  if (!(k_detect > 0.0)) return fail("--k-detect must be > 0");
-  if (!(min_contrast_dn >= 0.0)) return fail("--min-contrast must be >= 0");
-  if (!(ncc_min > -1.0 && ncc_min < 1.0)) return fail("--ncc-min must be in (-1, 1)");
-  if (max_candidates < 4 || max_candidates > 1000) return fail("--max-candidates must be in [4, 1000]");
+  if (!(max_radius_px > min_radius_px)) return fail("--max-radius-px must be > --min-radius-px");
   if (max_iterations < 1) return fail("fit iterations must be >= 1");
   if (!(sigma_floor_px >= 0.0)) return fail("sigma floor must be >= 0");
   return true;

@@ -30,6 +30,8 @@
 #include <string>
 #include <vector>
 
+#include "io/options.h"
+
 namespace rk::extract {
 
 struct MarkerDetectOptions {
@@ -44,6 +46,8 @@ struct MarkerDetectOptions {
   int max_iterations = 20;         // least-squares fit
   double sigma_floor_px = 0.005;   // added in quadrature to the fit's centre σ (unmodelled effects)
 
+  // The command-line options of rk-extract features' detector (io/options.h).
+  static const io::OptionTable<MarkerDetectOptions>& Table();
   bool Check(std::string* why) const;
 };
 

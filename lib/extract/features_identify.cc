@@ -231,16 +231,28 @@ std::vector<Record> Refine(const std::vector<Record>& top, const std::vector<Eig
 
 }  // namespace
 
+const io::OptionTable<IdentifyOptions>& IdentifyOptions::Table() {
+  using B = io::Bounds;
+  using O = IdentifyOptions;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Integer("--min-identified", &O::min_identified, "", B::AtLeast(4),
+                   "Markers an identification must explain (>= 5 non-planar, >= 4 planar targets)")
+          .Real("--id-tolerance", &O::tol_frac, "", B::LeftOpen(0, 0.5),
+                "Identification: a marker matches a prediction within this fraction of the smallest separation")
+          .Real("--ambiguity-ratio", &O::ambiguity_ratio, "", B::AtLeast(1),
+                "Identification refused when a different assignment fits within this factor of the best RMS");
+  return table;
+}
+
 bool IdentifyOptions::Check(std::string* why) const {
+  if (!Table().Check(*this, why)) return false;
   auto fail = [&](const char* w) {
     *why = w;
     return false;
   };
-  if (min_identified < 4) return fail("--min-identified must be >= 4");
-  if (!(tol_frac > 0 && tol_frac <= 0.5)) return fail("identification tolerance fraction must be in (0, 0.5]");
   if (!(tol_min_px > 0)) return fail("identification tolerance must be > 0 px");
   if (!(max_aspect > 1) || !(max_skew_cos > 0 && max_skew_cos <= 1)) return fail("bad weak-perspective limits");
-  if (!(ambiguity_ratio >= 1)) return fail("ambiguity ratio must be >= 1");
   if (!(planar_ratio >= 0 && planar_ratio < 1)) return fail("planar ratio must be in [0, 1)");
   if (max_bases < 1 || max_detections < 4) return fail("need at least 1 basis and 4 detections");
   return true;

@@ -27,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "io/options.h"
 #include "target/feature_model.h"
 
 namespace rk::extract {
@@ -42,6 +43,8 @@ struct IdentifyOptions {
   int max_bases = 6;               // bases tried, ≥ 1
   int max_detections = 16;         // strongest detections considered, ≥ 4
 
+  // The command-line options of rk-extract features' identification (io/options.h).
+  static const io::OptionTable<IdentifyOptions>& Table();
   bool Check(std::string* why) const;
 };
 

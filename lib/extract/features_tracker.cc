@@ -6,17 +6,30 @@
 
 namespace rk::extract {
 
+const io::OptionTable<FeatureTrackOptions>& FeatureTrackOptions::Table() {
+  using B = io::Bounds;
+  using O = FeatureTrackOptions;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Sub(&O::detect, MarkerDetectOptions::Table())
+          .Real("--search-px", &O::search_px, "px", B::Positive(), "Search half-size around a predicted marker (px)")
+          .Real("--gate", &O::gate_frac, "", B::LeftOpen(0, 0.5),
+                "Constellation check: a marker farther than this fraction of the smallest marker separation from "
+                "the fitted affine camera is rejected")
+          .Integer("--min-track", &O::min_track, "", B::AtLeast(3),
+                   "Fewer tracked markers than this start a new identification")
+          .Sub(&O::identify, IdentifyOptions::Table());
+  return table;
+}
+
 bool FeatureTrackOptions::Check(std::string* why) const {
-  if (!detect.Check(why) || !identify.Check(why)) return false;
+  if (!Table().Check(*this, why) || !detect.Check(why) || !identify.Check(why)) return false;
   auto fail = [&](const char* w) {
     *why = w;
     return false;
   };
-  if (!(search_px > 0)) return fail("--search-px must be > 0");
   if (!(search_speed_factor >= 0)) return fail("search speed factor must be >= 0");
-  if (!(gate_frac > 0 && gate_frac <= 0.5)) return fail("--gate must be in (0, 0.5]");
   if (!(gate_min_px > 0)) return fail("gate must be > 0 px");
-  if (min_track < 3) return fail("--min-track must be >= 3");
   if (!(coast_s >= 0)) return fail("coast time must be >= 0 s");
   return true;
 }

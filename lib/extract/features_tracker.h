@@ -44,7 +44,10 @@ struct FeatureTrackOptions {
   int min_track = 4;                  // fewer measured markers → re-acquire, ≥ 3
   double coast_s = 0.5;               // a marker unseen for longer is predicted from the constellation only (s)
 
+  // The command-line options of rk-extract features: detect's, the tracker's, identify's (io/options.h).
+  static const io::OptionTable<FeatureTrackOptions>& Table();
   bool Check(std::string* why) const;
+  io::Json ToJson() const { return Table().ToJson(*this); }
 };
 
 struct FeaturePoint {

@@ -27,19 +27,19 @@ const char* SilhouetteStatusName(SilhouetteStatus s) {
   return "?";
 }
 
-bool SilhouetteOptions::Check(std::string* why) const {
-  auto fail = [&](const char* w) {
-    *why = w;
-    return false;
-  };
-  if (!(k_detect >= 2.0 && k_detect <= 100.0)) return fail("--k-detect must be in [2, 100]");
-  if (min_area_px < 4 || min_area_px > 10000000) return fail("--min-area must be in [4, 1e7] px");
-  if (border_px < 2 || border_px > 200) return fail("--border must be in [2, 200] px");
-  if (!(psf_sigma_px >= 0.0 && psf_sigma_px <= 10.0)) return fail("--psf-sigma must be in [0, 10] px");
-  if (!(min_width_px >= 1.0 && min_width_px <= 1e4)) return fail("--min-width must be in [1, 1e4] px");
-  if (!(min_length_ratio >= 1.0 && std::isfinite(min_length_ratio)))
-    return fail("--min-length-ratio must be >= 1");
-  return true;
+const io::OptionTable<SilhouetteOptions>& SilhouetteOptions::Table() {
+  using B = io::Bounds;
+  using O = SilhouetteOptions;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Real("--k-detect", &O::k_detect, "", B::Closed(2, 100), "Detection threshold in sky-noise sigmas")
+          .Integer("--min-area", &O::min_area_px, "px", B::Closed(4, 1e7), "Smallest target region (px)")
+          .Integer("--border", &O::border_px, "px", B::Closed(2, 200), "Frame border band used for the sky plane (px)")
+          .Real("--psf-sigma", &O::psf_sigma_px, "px", B::Closed(0, 10), "Optics blur sigma assumed for the margins (px)")
+          .Real("--min-width", &O::min_width_px, "px", B::Closed(1, 1e4), "Narrower bodies are not measured (px)")
+          .Real("--min-length-ratio", &O::min_length_ratio, "", B::AtLeast(1).Finite(),
+                "Image length / width below this (near tail chase) is not measured");
+  return table;
 }
 
 namespace {

@@ -35,6 +35,8 @@
 #include <opencv2/core.hpp>
 #include <string>
 
+#include "io/options.h"
+
 namespace rk::extract {
 
 struct SilhouetteOptions {
@@ -44,7 +46,10 @@ struct SilhouetteOptions {
   double psf_sigma_px = 1.0;     // assumed optics blur σ (px): sets the margins kept from kinks, [0, 10]
   double min_width_px = 3.0;     // a body narrower than this (px) is not measured, [1, 1e4]
   double min_length_ratio = 3.0; // image length / width below this (near tail chase) is not measured, >= 1
-  bool Check(std::string* why) const;
+  // The command-line options of rk-extract silhouette (io/options.h).
+  static const io::OptionTable<SilhouetteOptions>& Table();
+  bool Check(std::string* why) const { return Table().Check(*this, why); }
+  io::Json ToJson() const { return Table().ToJson(*this); }
 };
 
 enum class SilhouetteStatus {

@@ -14,7 +14,7 @@ std::string G(double x) {
 }  // namespace
 
 bool Bounds::Contains(double x) const {
-  if (std::isnan(x)) return false;
+  if (std::isnan(x) || (finite && std::isinf(x))) return false;
   if (std::isfinite(lo) && (lo_open ? !(x > lo) : !(x >= lo))) return false;
   if (std::isfinite(hi) && (hi_open ? !(x < hi) : !(x <= hi))) return false;
   // An infinite value passes only on a side left unbounded.
@@ -23,13 +23,14 @@ bool Bounds::Contains(double x) const {
 }
 
 std::string Bounds::Describe() const {
+  const std::string prefix = finite ? "finite and " : "";
   const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
   if (has_lo && has_hi) {
-    return std::string("in ") + (lo_open ? "(" : "[") + G(lo) + ", " + G(hi) + (hi_open ? ")" : "]");
+    return prefix + "in " + (lo_open ? "(" : "[") + G(lo) + ", " + G(hi) + (hi_open ? ")" : "]");
   }
-  if (has_lo) return (lo_open ? "> " : ">= ") + G(lo);
-  if (has_hi) return (hi_open ? "< " : "<= ") + G(hi);
-  return "a number";
+  if (has_lo) return prefix + (lo_open ? "> " : ">= ") + G(lo);
+  if (has_hi) return prefix + (hi_open ? "< " : "<= ") + G(hi);
+  return finite ? "a finite number" : "a number";
 }
 
 std::string ReportKey(const std::string& flag, const std::string& unit) {

@@ -25,11 +25,13 @@
 namespace rk::io {
 
 // Valid values of a number option: lo < x (lo_open) or lo <= x, and x < hi or x <= hi. Every bound
-// also requires a finite value unless the bound itself is infinite on that side.
+// also requires a finite value unless the bound itself is infinite on that side; Finite() refuses
+// infinity on an unbounded side too (an option whose infinite value would make no sense).
 struct Bounds {
   double lo = -std::numeric_limits<double>::infinity();
   double hi = std::numeric_limits<double>::infinity();
   bool lo_open = false, hi_open = false;
+  bool finite = false;  // ±inf refused even on an unbounded side (Finite())
 
   static Bounds Any() { return {}; }
   static Bounds Positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
@@ -38,6 +40,12 @@ struct Bounds {
   static Bounds Open(double lo, double hi) { return {lo, hi, true, true}; }
   static Bounds LeftOpen(double lo, double hi) { return {lo, hi, true, false}; }
   static Bounds RightOpen(double lo, double hi) { return {lo, hi, false, true}; }
+  // The same bounds, with ±infinity refused on an unbounded side too ("finite and > 0").
+  Bounds Finite() const {
+    Bounds b = *this;
+    b.finite = true;
+    return b;
+  }
 
   bool Contains(double x) const;
   // "> 0", ">= 1", "in [2, 50]", "in (0, 0.5]", "<= 3" (numbers as %g).

@@ -10,20 +10,7 @@
 
 namespace rk::pose {
 
-bool ParseSecondStart(const std::string& text, SecondStart* s) {
-  if (text == "auto") {
-    *s = SecondStart::kAuto;
-  } else if (text == "always") {
-    *s = SecondStart::kAlways;
-  } else if (text == "never") {
-    *s = SecondStart::kNever;
-  } else {
-    return false;
-  }
-  return true;
-}
-
-const char* SecondStartName(SecondStart s) {
+std::string SecondStartName(SecondStart s) {
   switch (s) {
     case SecondStart::kAuto:
       return "auto";
@@ -35,7 +22,25 @@ const char* SecondStartName(SecondStart s) {
   return "?";
 }
 
+const io::OptionTable<PnpOptions>& PnpOptions::Table() {
+  using B = io::Bounds;
+  using O = PnpOptions;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Choice("--second-start", &O::second_start, {SecondStart::kAuto, SecondStart::kAlways, SecondStart::kNever},
+                  SecondStartName,
+                  "Second OI start from the mirrored pose: auto (near-planar targets, or a poor first fit), always, "
+                  "never")
+          .Real("--ambiguity-chi2", &O::ambiguity_chi2, "", B::AtLeast(0).Finite(),
+                "Two minima whose chi-square differ by less are flagged ambiguous")
+          .Real("--near-planar", &O::near_planar_ratio, "", B::Closed(0, 1),
+                "Targets with scatter eigenvalue ratio lambda3/lambda1 below this are near-planar (second start, "
+                "homography start)");
+  return table;
+}
+
 bool PnpOptions::Check(std::string* why) const {
+  if (!Table().Check(*this, why)) return false;
   const char* w = nullptr;
   if (!oi.Check(&w)) {
     *why = w;
@@ -51,14 +56,6 @@ bool PnpOptions::Check(std::string* why) const {
   }
   if (!(retry_rms_px > 0.0)) {
     *why = "retry RMS threshold must be > 0 px";
-    return false;
-  }
-  if (!(near_planar_ratio >= 0.0 && near_planar_ratio <= 1.0)) {
-    *why = "near-planar ratio must be in [0, 1]";
-    return false;
-  }
-  if (!(ambiguity_chi2 >= 0.0) || !std::isfinite(ambiguity_chi2)) {
-    *why = "ambiguity chi-square threshold must be >= 0";
     return false;
   }
   if (!(distinct_deg > 0.0 && distinct_deg < 180.0)) {

@@ -21,15 +21,14 @@
 #include <string>
 #include <vector>
 
+#include "io/options.h"
 #include "pose/oi.h"
 #include "pose/reproj_refine.h"
 
 namespace rk::pose {
 
 enum class SecondStart { kAuto, kAlways, kNever };
-// "auto" | "always" | "never"; false if unknown.
-bool ParseSecondStart(const std::string& text, SecondStart* s);
-const char* SecondStartName(SecondStart s);
+std::string SecondStartName(SecondStart s);  // "auto" | "always" | "never"
 
 struct PnpOptions {
   OiOptions oi;
@@ -52,6 +51,8 @@ struct PnpOptions {
   // and two further starts (the solution turned end over end) are tried. > 0.
   double retry_rms_px = 2.0;
 
+  // The command-line options of the solver (rk-attitude oi; io/options.h).
+  static const io::OptionTable<PnpOptions>& Table();
   bool Check(std::string* why) const;
 };
 

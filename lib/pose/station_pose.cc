@@ -4,6 +4,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
 #include "geo/angles.h"
 #include "io/error.h"
@@ -37,30 +38,34 @@ Eigen::Matrix<double, 6, 1> Outputs(const camera::CameraModel& cam, const geo::A
 
 }  // namespace
 
-bool AttitudeOiOptions::Check(std::string* why) const {
-  if (!pnp.Check(why)) return false;
-  if (min_points < 4 || min_points > 1000) {
-    *why = "--min-points must be in [4, 1000] (a pose needs 4 points)";
-    return false;
-  }
-  if (!(sigma_px > 0.0) || !std::isfinite(sigma_px)) {
-    *why = "--sigma-px must be > 0";
-    return false;
-  }
-  if (!(turret_sigma_rad >= 0.0) || !std::isfinite(turret_sigma_rad)) {
-    *why = "--turret-sigma-deg must be >= 0";
-    return false;
-  }
-  if (!(max_rms_px > 0.0)) {
-    *why = "--max-rms-px must be > 0";
-    return false;
-  }
-  if (!(continuity_s >= 0.0)) {
-    *why = "--continuity must be >= 0 s";
-    return false;
-  }
-  return true;
+const io::OptionTable<AttitudeOiOptions>& AttitudeOiOptions::Table() {
+  using B = io::Bounds;
+  using O = AttitudeOiOptions;
+  using track::InterpMethod;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Choice("--turret-interp", &O::turret_method, {InterpMethod::kLinear, InterpMethod::kCubic},
+                  track::InterpMethodName, "Turret angle interpolation to frame times: linear or cubic")
+          .Real("--turret-max-gap", &O::turret_max_gap_s, "s", B::Positive(),
+                "Longest turret-log interval (s) interpolated across; frames in longer gaps are invalid")
+          .Real("--turret-sigma-deg", &O::turret_sigma_deg, "deg", B::AtLeast(0).Finite(),
+                "1-sigma turret angle noise (deg) in the sigma_* columns (default: 0.003 deg step / sqrt 12)")
+          .Real("--sigma-px", &O::sigma_px, "px", B::Positive().Finite(),
+                "1-sigma pixel noise of points without a sigma_px column (px)")
+          .Integer("--min-points", &O::min_points, "", B::Closed(4, 1000), "Fewest usable points for a pose (>= 4)")
+          .Real("--max-rms-px", &O::max_rms_px, "px", B::Positive(),
+                "Largest accepted RMS reprojection error (px); larger rows are invalid (after trying to reject one "
+                "point)")
+          .Flag("--no-reject", &O::no_reject, "Never leave a point out to bring the RMS under --max-rms-px")
+          .Sub(&O::pnp, PnpOptions::Table())
+          .Real("--continuity", &O::continuity_s, "s", B::AtLeast(0),
+                "Ambiguous frames take the pose nearest the previous row's if it is at most this old (s)")
+          .Flag("--pure-oi", &O::pure_oi,
+                "Orthogonal iteration only, without the reprojection polish (object-space optimum; for comparison)");
+  return table;
 }
+
+bool AttitudeOiOptions::Check(std::string* why) const { return Table().Check(*this, why) && pnp.Check(why); }
 
 const char* PoseNoteName(PoseNote note) {
   switch (note) {
@@ -98,18 +103,10 @@ void StationPose(const camera::CameraModel& camera, const geo::AzEl& boresight, 
   *R_enu_body = R_enu_cam * R_cam_body;
 }
 
-AttitudeOiResult RunAttitudeOi(const ImagePoints& points, const target::FeatureModel& model,
-                               const camera::CameraModel& camera, const locate::BoresightSource& boresight,
-                               const AttitudeOiOptions& options) {
-  std::string why;
-  if (!options.Check(&why)) throw UsageError(why);
-  AttitudeOiResult res;
-  res.has_frame = points.has_frame;
-  res.turret_duplicate_times = boresight.duplicate_times();
-  PnpSolver solver(options.pnp);
-  const double fx = camera.fx(), fy = camera.fy();
+namespace {
 
-  // Pixels outside the sensor cannot be measurements: most likely the wrong camera model.
+// Pixels outside the sensor cannot be measurements: most likely the wrong camera model.
+void CheckPointsInImage(const ImagePoints& points, const camera::CameraModel& camera) {
   for (const auto& f : points.frames) {
     for (const auto& p : f.points) {
       const bool inside = p.px.x() >= -0.5 && p.px.x() <= camera.width_px - 0.5 && p.px.y() >= -0.5 &&
@@ -122,171 +119,53 @@ AttitudeOiResult RunAttitudeOi(const ImagePoints& points, const target::FeatureM
       }
     }
   }
+}
 
-  std::vector<Eigen::Vector2d> xn, xn_sub;
-  std::vector<Eigen::Vector3d> pb, pb_sub;
-  std::vector<double> sg, sg_sub;
-  std::vector<Eigen::Vector2d> px;
-  std::optional<std::size_t> prev_pose;  // index of the last row with a pose
-  res.rows.reserve(points.frames.size());
-  for (const PointFrame& f : points.frames) {
+PnpOptions SolverOptions(const AttitudeOiOptions& options) {
+  PnpOptions pnp = options.pnp;
+  if (options.pure_oi) pnp.polish = false;
+  return pnp;
+}
+
+// The stages of RunAttitudeOi (station_pose.h steps 1–7), one frame at a time; the buffers are reused
+// across frames.
+class OiRun {
+ public:
+  OiRun(const ImagePoints& points, const target::FeatureModel& model, const camera::CameraModel& camera,
+        const locate::BoresightSource& boresight, const AttitudeOiOptions& options)
+      : points_(points), model_(model), camera_(camera), boresight_(boresight), options_(options),
+        solver_(SolverOptions(options)) {
+    res_.has_frame = points.has_frame;
+    res_.turret_duplicate_times = boresight.duplicate_times();
+    res_.rows.reserve(points.frames.size());
+  }
+
+  // Steps 1–7 for one frame: appends its row.
+  void Frame(const PointFrame& f) {
     PoseRow row;
     row.frame = f.frame;
     row.t_s = f.t_s;
     row.points_used = static_cast<int>(f.points.size());
     track::InterpStatus bs = track::InterpStatus::kOk;
-    row.boresight = boresight.At(f.t_s, &bs);
-    auto finish = [&](RowStatus st, PoseNote note) {
-      row.status = st;
-      row.note = note;
-      ++res.rows_by_status[static_cast<std::size_t>(st)];
-      res.rows.push_back(row);
-    };
-    if (!row.boresight) ++res.turret_not_covered;
-    if (row.points_used < options.min_points) {
-      ++res.few_points;
-      finish(RowStatus::kLost, PoseNote::kFewPoints);
-      continue;
+    row.boresight = boresight_.At(f.t_s, &bs);
+    if (!row.boresight) ++res_.turret_not_covered;
+    if (row.points_used < options_.min_points) {
+      ++res_.few_points;
+      return Finish(&row, RowStatus::kLost, PoseNote::kFewPoints);
     }
-    if (!row.boresight) {
-      finish(RowStatus::kInvalid, PoseNote::kTurret);
-      continue;
-    }
-    xn.clear();
-    pb.clear();
-    sg.clear();
-    px.clear();
-    for (const auto& p : f.points) {
-      const Eigen::Vector3d m = camera.NormalisedRay(p.px);
-      xn.emplace_back(m.x(), m.y());
-      pb.push_back(model.p_body[static_cast<std::size_t>(p.model_index)]);
-      sg.push_back(p.sigma_px.value_or(options.sigma_px));
-      px.push_back(p.px);
-    }
-    // Solves a subset (skip = index left out, or -1) and measures it in distorted pixels.
-    struct Fit {
-      PnpResult r;
-      double rms = 0, max = 0;
-      bool front = false;
-    };
-    auto solve = [&](int skip) {
-      xn_sub.clear();
-      pb_sub.clear();
-      sg_sub.clear();
-      for (std::size_t i = 0; i < xn.size(); ++i) {
-        if (static_cast<int>(i) == skip) continue;
-        xn_sub.push_back(xn[i]);
-        pb_sub.push_back(pb[i]);
-        sg_sub.push_back(sg[i]);
-      }
-      Fit fit;
-      fit.r = solver.Solve(xn_sub, pb_sub, sg_sub, fx, fy);
-      if (!fit.r.ok) return fit;
-      double sse = 0;
-      int n = 0;
-      fit.front = true;
-      for (std::size_t i = 0; i < xn.size(); ++i) {
-        if (static_cast<int>(i) == skip) continue;
-        const auto uv = camera.Project(fit.r.best.R_cam_body * pb[i] + fit.r.best.t_cam);
-        if (!uv) {
-          fit.front = false;
-          continue;
-        }
-        const double e2 = (*uv - px[i]).squaredNorm();
-        sse += e2;
-        fit.max = std::max(fit.max, std::sqrt(e2));
-        ++n;
-      }
-      fit.rms = n > 0 ? std::sqrt(sse / n) : 0.0;
-      return fit;
-    };
-    Fit fit = solve(-1);
-    if (!fit.r.ok) {
-      const bool behind = fit.r.failure.find("front") != std::string::npos;
-      ++(behind ? res.behind_camera : res.degenerate);
-      finish(RowStatus::kInvalid, behind ? PoseNote::kBehindCamera : PoseNote::kDegenerate);
-      continue;
-    }
-    if (fit.r.second_start_run) ++res.second_starts;
-    if (fit.rms > options.max_rms_px && options.reject_outlier &&
-        static_cast<int>(xn.size()) - 1 >= options.min_points) {
-      Fit best;
-      int best_skip = -1;
-      for (int j = 0; j < static_cast<int>(xn.size()); ++j) {
-        Fit cand = solve(j);
-        if (cand.r.ok && cand.front && (best_skip < 0 || cand.rms < best.rms)) {
-          best = cand;
-          best_skip = j;
-        }
-      }
-      if (best_skip >= 0 && best.rms <= options.max_rms_px) {
-        fit = best;
-        row.rejected_id = model.ids[static_cast<std::size_t>(f.points[static_cast<std::size_t>(best_skip)].model_index)];
-        row.points_used -= 1;
-        ++res.outliers_rejected;
-      }
-    }
-    if (!fit.front) {
-      ++res.behind_camera;
-      finish(RowStatus::kInvalid, PoseNote::kBehindCamera);
-      continue;
-    }
-    if (fit.rms > options.max_rms_px) {
-      ++res.reprojection;
-      row.rms_px = fit.rms;
-      row.max_px = fit.max;
-      finish(RowStatus::kInvalid, PoseNote::kReprojection);
-      continue;
-    }
+    if (!row.boresight) return Finish(&row, RowStatus::kInvalid, PoseNote::kTurret);
+    Fit fit;
+    const PoseNote note = FitFrame(f, &row, &fit);
+    if (note != PoseNote::kNone) return Finish(&row, RowStatus::kInvalid, note);
 
-    // Primary and alternative minima in the station frame.
-    const geo::AzEl& b = *row.boresight;
     PnpSolution primary = fit.r.best;
-    PnpSolution other = fit.r.alt;
-    Eigen::Vector3d p_enu, p_alt;
-    Eigen::Matrix3d R_enu_body, R_alt;
-    StationPose(camera, b, primary.R_cam_body, primary.t_cam, &p_enu, &R_enu_body);
-    if (fit.r.ambiguous) {
-      StationPose(camera, b, other.R_cam_body, other.t_cam, &p_alt, &R_alt);
-      const PoseRow* prev = prev_pose ? &res.rows[*prev_pose] : nullptr;
-      if (prev && f.t_s - prev->t_s <= options.continuity_s &&
-          RotationAngle(R_alt, prev->R_enu_body) < RotationAngle(R_enu_body, prev->R_enu_body)) {
-        std::swap(primary, other);
-        std::swap(p_enu, p_alt);
-        std::swap(R_enu_body, R_alt);
-      }
-      row.ambiguous = true;
-      row.has_alt = true;
-      row.alt_attitude = geo::EulerFromRotationEnuBody(R_alt);
-      ++res.ambiguous;
+    Eigen::Vector3d p_enu;
+    Eigen::Matrix3d R_enu_body;
+    ChoosePrimary(f, fit.r, &row, &primary, &p_enu, &R_enu_body);
+    if (!PropagateSigma(*row.boresight, primary, &row.sigma)) {
+      ++res_.degenerate;
+      return Finish(&row, RowStatus::kInvalid, PoseNote::kDegenerate);
     }
-    // Covariance of (δθ_cam, δt_cam) from the polish, plus turret noise on A and E.
-    Eigen::Matrix<double, 8, 8> cov_in = Eigen::Matrix<double, 8, 8>::Zero();
-    const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(primary.information);
-    const Eigen::Matrix<double, 6, 6> cov6 = ldlt.solve(Eigen::Matrix<double, 6, 6>::Identity());
-    const Eigen::Vector<double, 6> dinfo = primary.information.diagonal();
-    if (ldlt.info() != Eigen::Success || !cov6.allFinite() || !(dinfo.minCoeff() > 0.0) ||
-        ldlt.rcond() < 1e-14) {
-      ++res.degenerate;
-      finish(RowStatus::kInvalid, PoseNote::kDegenerate);
-      continue;
-    }
-    cov_in.topLeftCorner<6, 6>() = cov6;
-    cov_in(6, 6) = cov_in(7, 7) = options.turret_sigma_rad * options.turret_sigma_rad;
-    Eigen::Matrix<double, 6, 8> J;
-    for (int k = 0; k < 8; ++k) {
-      const double h = 1e-6;
-      Eigen::Matrix<double, 8, 1> d = Eigen::Matrix<double, 8, 1>::Zero();
-      d(k) = h;
-      Eigen::Matrix<double, 6, 1> yp = Outputs(camera, b, primary.R_cam_body, primary.t_cam, d);
-      Eigen::Matrix<double, 6, 1> ym = Outputs(camera, b, primary.R_cam_body, primary.t_cam, -d);
-      Eigen::Matrix<double, 6, 1> dy = yp - ym;
-      for (int a = 3; a < 6; ++a) dy(a) = geo::WrapPi(yp(a) - ym(a));
-      J.col(k) = dy / (2 * h);
-    }
-    const Eigen::Matrix<double, 6, 6> cov_out = J * cov_in * J.transpose();
-    row.sigma = cov_out.diagonal().cwiseMax(0.0).cwiseSqrt();
-
     row.has_pose = true;
     row.p_enu_m = p_enu;
     row.R_enu_body = R_enu_body;
@@ -296,30 +175,212 @@ AttitudeOiResult RunAttitudeOi(const ImagePoints& points, const target::FeatureM
     row.chi2 = primary.chi2;
     row.dof = 2 * row.points_used - 6;
     row.oi_iterations = primary.oi_iterations;
-    res.chi2_sum += row.chi2;
-    res.dof_sum += std::max(row.dof, 0);
-    const bool back = !res.rows.empty() && !res.rows.back().has_pose;
-    finish(back ? RowStatus::kReacquired : RowStatus::kOk, PoseNote::kNone);
-    prev_pose = res.rows.size() - 1;
+    res_.chi2_sum += row.chi2;
+    res_.dof_sum += std::max(row.dof, 0);
+    const bool back = !res_.rows.empty() && !res_.rows.back().has_pose;
+    Finish(&row, back ? RowStatus::kReacquired : RowStatus::kOk, PoseNote::kNone);
+    prev_pose_ = res_.rows.size() - 1;
   }
 
-  if (!boresight.fixed() && !res.rows.empty() && res.turret_not_covered == res.rows.size()) {
-    const double t0 = boresight.first_time(), t1 = boresight.last_time();
-    throw DataError(boresight.source(), 0, 0,
-                    (std::isnan(t0) ? std::string("has no usable sample")
-                                    : "covers t_s " + Num(t0) + " .. " + Num(t1)) +
-                        " but no frame time of " + points.source + " (t_s " + Num(res.rows.front().t_s) + " .. " +
-                        Num(res.rows.back().t_s) + ") is covered within the --turret-max-gap limit");
+  // The run's own checks: the turret log covers some frame, some frame has a pose.
+  AttitudeOiResult Result() && {
+    if (!boresight_.fixed() && !res_.rows.empty() && res_.turret_not_covered == res_.rows.size()) {
+      const double t0 = boresight_.first_time(), t1 = boresight_.last_time();
+      throw DataError(boresight_.source(), 0, 0,
+                      (std::isnan(t0) ? std::string("has no usable sample")
+                                      : "covers t_s " + Num(t0) + " .. " + Num(t1)) +
+                          " but no frame time of " + points_.source + " (t_s " + Num(res_.rows.front().t_s) +
+                          " .. " + Num(res_.rows.back().t_s) + ") is covered within the --turret-max-gap limit");
+    }
+    const std::size_t with_pose = res_.rows_by_status[static_cast<std::size_t>(RowStatus::kOk)] +
+                                  res_.rows_by_status[static_cast<std::size_t>(RowStatus::kReacquired)];
+    if (with_pose == 0) {
+      throw ProcessingError("no pose in any of the " + std::to_string(res_.rows.size()) + " frames of " +
+                            points_.source + " (" + std::to_string(res_.few_points) + " with fewer than " +
+                            std::to_string(options_.min_points) + " usable points, " +
+                            std::to_string(res_.rows.size() - res_.few_points) + " failed a check)");
+    }
+    return std::move(res_);
   }
-  const std::size_t with_pose = res.rows_by_status[static_cast<std::size_t>(RowStatus::kOk)] +
-                                res.rows_by_status[static_cast<std::size_t>(RowStatus::kReacquired)];
-  if (with_pose == 0) {
-    throw ProcessingError("no pose in any of the " + std::to_string(res.rows.size()) + " frames of " + points.source +
-                          " (" + std::to_string(res.few_points) + " with fewer than " +
-                          std::to_string(options.min_points) + " usable points, " +
-                          std::to_string(res.rows.size() - res.few_points) + " failed a check)");
+
+ private:
+  // A subset's pose and its residuals in distorted pixels.
+  struct Fit {
+    PnpResult r;
+    double rms = 0, max = 0;
+    bool front = false;
+  };
+
+  void Finish(PoseRow* row, RowStatus st, PoseNote note) {
+    row->status = st;
+    row->note = note;
+    ++res_.rows_by_status[static_cast<std::size_t>(st)];
+    res_.rows.push_back(*row);
   }
-  return res;
+
+  // Steps 3–4: the pose of all points, else of all but the one whose omission fits best when the RMS is
+  // too large. kNone when the fit passes the checks, else the note of the invalid row.
+  PoseNote FitFrame(const PointFrame& f, PoseRow* row, Fit* fit) {
+    xn_.clear();
+    pb_.clear();
+    sg_.clear();
+    px_.clear();
+    for (const auto& p : f.points) {
+      const Eigen::Vector3d m = camera_.NormalisedRay(p.px);
+      xn_.emplace_back(m.x(), m.y());
+      pb_.push_back(model_.p_body[static_cast<std::size_t>(p.model_index)]);
+      sg_.push_back(p.sigma_px.value_or(options_.sigma_px));
+      px_.push_back(p.px);
+    }
+    *fit = Solve(-1);
+    if (!fit->r.ok) {
+      const bool behind = fit->r.failure.find("front") != std::string::npos;
+      ++(behind ? res_.behind_camera : res_.degenerate);
+      return behind ? PoseNote::kBehindCamera : PoseNote::kDegenerate;
+    }
+    if (fit->r.second_start_run) ++res_.second_starts;
+    if (fit->rms > options_.max_rms_px && !options_.no_reject &&
+        static_cast<int>(xn_.size()) - 1 >= options_.min_points) {
+      Fit best;
+      int best_skip = -1;
+      for (int j = 0; j < static_cast<int>(xn_.size()); ++j) {
+        Fit cand = Solve(j);
+        if (cand.r.ok && cand.front && (best_skip < 0 || cand.rms < best.rms)) {
+          best = cand;
+          best_skip = j;
+        }
+      }
+      if (best_skip >= 0 && best.rms <= options_.max_rms_px) {
+        *fit = best;
+        row->rejected_id =
+            model_.ids[static_cast<std::size_t>(f.points[static_cast<std::size_t>(best_skip)].model_index)];
+        row->points_used -= 1;
+        ++res_.outliers_rejected;
+      }
+    }
+    if (!fit->front) {
+      ++res_.behind_camera;
+      return PoseNote::kBehindCamera;
+    }
+    if (fit->rms > options_.max_rms_px) {
+      ++res_.reprojection;
+      row->rms_px = fit->rms;
+      row->max_px = fit->max;
+      return PoseNote::kReprojection;
+    }
+    return PoseNote::kNone;
+  }
+
+  // Solves the frame's points but `skip` (an index, or -1) and measures them in distorted pixels.
+  Fit Solve(int skip) {
+    xn_sub_.clear();
+    pb_sub_.clear();
+    sg_sub_.clear();
+    for (std::size_t i = 0; i < xn_.size(); ++i) {
+      if (static_cast<int>(i) == skip) continue;
+      xn_sub_.push_back(xn_[i]);
+      pb_sub_.push_back(pb_[i]);
+      sg_sub_.push_back(sg_[i]);
+    }
+    Fit fit;
+    fit.r = solver_.Solve(xn_sub_, pb_sub_, sg_sub_, camera_.fx(), camera_.fy());
+    if (!fit.r.ok) return fit;
+    double sse = 0;
+    int n = 0;
+    fit.front = true;
+    for (std::size_t i = 0; i < xn_.size(); ++i) {
+      if (static_cast<int>(i) == skip) continue;
+      const auto uv = camera_.Project(fit.r.best.R_cam_body * pb_[i] + fit.r.best.t_cam);
+      if (!uv) {
+        fit.front = false;
+        continue;
+      }
+      const double e2 = (*uv - px_[i]).squaredNorm();
+      sse += e2;
+      fit.max = std::max(fit.max, std::sqrt(e2));
+      ++n;
+    }
+    fit.rms = n > 0 ? std::sqrt(sse / n) : 0.0;
+    return fit;
+  }
+
+  // Steps 5–6: primary and alternative minima in the station frame; of two ambiguous minima the one
+  // continuous with the previous pose is the primary, the other goes in alt_*.
+  void ChoosePrimary(const PointFrame& f, const PnpResult& r, PoseRow* row, PnpSolution* primary,
+                     Eigen::Vector3d* p_enu, Eigen::Matrix3d* R_enu_body) {
+    const geo::AzEl& b = *row->boresight;
+    PnpSolution other = r.alt;
+    Eigen::Vector3d p_alt;
+    Eigen::Matrix3d R_alt;
+    StationPose(camera_, b, primary->R_cam_body, primary->t_cam, p_enu, R_enu_body);
+    if (!r.ambiguous) return;
+    StationPose(camera_, b, other.R_cam_body, other.t_cam, &p_alt, &R_alt);
+    const PoseRow* prev = prev_pose_ ? &res_.rows[*prev_pose_] : nullptr;
+    if (prev && f.t_s - prev->t_s <= options_.continuity_s &&
+        RotationAngle(R_alt, prev->R_enu_body) < RotationAngle(*R_enu_body, prev->R_enu_body)) {
+      std::swap(*primary, other);
+      std::swap(*p_enu, p_alt);
+      std::swap(*R_enu_body, R_alt);
+    }
+    row->ambiguous = true;
+    row->has_alt = true;
+    row->alt_attitude = geo::EulerFromRotationEnuBody(R_alt);
+    ++res_.ambiguous;
+  }
+
+  // Step 7: 1σ of e, n, u, yaw, pitch, roll from the covariance of (δθ_cam, δt_cam) of the polish plus
+  // the turret noise on A and E. False when the information matrix is degenerate.
+  bool PropagateSigma(const geo::AzEl& b, const PnpSolution& primary, Eigen::Matrix<double, 6, 1>* sigma) const {
+    Eigen::Matrix<double, 8, 8> cov_in = Eigen::Matrix<double, 8, 8>::Zero();
+    const Eigen::LDLT<Eigen::Matrix<double, 6, 6>> ldlt(primary.information);
+    const Eigen::Matrix<double, 6, 6> cov6 = ldlt.solve(Eigen::Matrix<double, 6, 6>::Identity());
+    const Eigen::Vector<double, 6> dinfo = primary.information.diagonal();
+    if (ldlt.info() != Eigen::Success || !cov6.allFinite() || !(dinfo.minCoeff() > 0.0) || ldlt.rcond() < 1e-14) {
+      return false;
+    }
+    cov_in.topLeftCorner<6, 6>() = cov6;
+    const double turret_sigma_rad = geo::DegToRad(options_.turret_sigma_deg);
+    cov_in(6, 6) = cov_in(7, 7) = turret_sigma_rad * turret_sigma_rad;
+    Eigen::Matrix<double, 6, 8> J;
+    for (int k = 0; k < 8; ++k) {
+      const double h = 1e-6;
+      Eigen::Matrix<double, 8, 1> d = Eigen::Matrix<double, 8, 1>::Zero();
+      d(k) = h;
+      Eigen::Matrix<double, 6, 1> yp = Outputs(camera_, b, primary.R_cam_body, primary.t_cam, d);
+      Eigen::Matrix<double, 6, 1> ym = Outputs(camera_, b, primary.R_cam_body, primary.t_cam, -d);
+      Eigen::Matrix<double, 6, 1> dy = yp - ym;
+      for (int a = 3; a < 6; ++a) dy(a) = geo::WrapPi(yp(a) - ym(a));
+      J.col(k) = dy / (2 * h);
+    }
+    const Eigen::Matrix<double, 6, 6> cov_out = J * cov_in * J.transpose();
+    *sigma = cov_out.diagonal().cwiseMax(0.0).cwiseSqrt();
+    return true;
+  }
+
+  const ImagePoints& points_;
+  const target::FeatureModel& model_;
+  const camera::CameraModel& camera_;
+  const locate::BoresightSource& boresight_;
+  const AttitudeOiOptions& options_;
+  PnpSolver solver_;
+  AttitudeOiResult res_;
+  std::optional<std::size_t> prev_pose_;  // index of the last row with a pose
+  std::vector<Eigen::Vector2d> xn_, xn_sub_, px_;
+  std::vector<Eigen::Vector3d> pb_, pb_sub_;
+  std::vector<double> sg_, sg_sub_;
+};
+
+}  // namespace
+
+AttitudeOiResult RunAttitudeOi(const ImagePoints& points, const target::FeatureModel& model,
+                               const camera::CameraModel& camera, const locate::BoresightSource& boresight,
+                               const AttitudeOiOptions& options) {
+  std::string why;
+  if (!options.Check(&why)) throw UsageError(why);
+  CheckPointsInImage(points, camera);
+  OiRun run(points, model, camera, boresight, options);
+  for (const PointFrame& f : points.frames) run.Frame(f);
+  return std::move(run).Result();
 }
 
 io::CsvWriter PoseCsv(const AttitudeOiResult& result) {

@@ -26,13 +26,14 @@
 //      attitude (within continuity_s), else the lower χ²; the other goes in alt_*.
 //   7. 1σ of e, n, u, yaw, pitch, roll: first-order propagation of the pose covariance
 //      (JᵀWJ)⁻¹ of the LM polish (W = 1/σ² per point) and of the turret angle noise
-//      (turret_sigma_rad on A and E) through step 5, by central differences. It does not
+//      (turret_sigma_deg on A and E) through step 5, by central differences. It does not
 //      include camera calibration or target model errors.
 // A frame is `reacquired` when it has a pose and the previous frame had none.
 #pragma once
 
 #include <Eigen/Core>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -52,14 +53,21 @@ namespace rk::pose {
 
 struct AttitudeOiOptions {
   PnpOptions pnp;
-  int min_points = 4;               // fewest usable points for a pose, [4, 1000]
+  // Boresight from the turret log (the caller builds the locate::BoresightSource with these).
+  track::InterpMethod turret_method = track::InterpMethod::kCubic;  // linear or cubic
+  double turret_max_gap_s = 0.1;    // longest turret-log interval interpolated across (s), > 0
+  double turret_sigma_deg = 0.003 / std::sqrt(12.0);  // 1σ of A and E (deg): 0.003° encoder step / √12, ≥ 0
   double sigma_px = 0.1;            // 1σ pixel noise of points without sigma_px (px), > 0
-  double turret_sigma_rad = 1.5114994701951815e-05;  // 1σ of A and E (rad): 0.003° encoder step / √12
+  int min_points = 4;               // fewest usable points for a pose, [4, 1000]
   double max_rms_px = 1.0;          // largest accepted RMS reprojection error (px), > 0
-  bool reject_outlier = true;       // try leaving one point out when the RMS is too large
+  bool no_reject = false;           // never leave one point out when the RMS is too large
   double continuity_s = 1.0;        // ambiguous frames follow the previous pose if within this time (s), ≥ 0
+  bool pure_oi = false;             // orthogonal iteration only: pnp.polish is turned off
 
+  // The command-line options of rk-attitude oi, the solver's among them (io/options.h).
+  static const io::OptionTable<AttitudeOiOptions>& Table();
   bool Check(std::string* why) const;
+  io::Json ToJson() const { return Table().ToJson(*this); }
 };
 
 enum class PoseNote { kNone, kFewPoints, kTurret, kDegenerate, kBehindCamera, kReprojection };

@@ -256,5 +256,31 @@ TEST(CylinderPoints, ReaderErrorsNameLineAndColumn) {
   EXPECT_TRUE(f.frames[0].px[2].has_value());
 }
 
+// Issue 16 item 1: rk-attitude cylinder's options in one table, the solver's and the image fit's nested.
+TEST(CylinderRunOptions, TableReachesNestedOptions) {
+  CylinderRunOptions o;
+  std::string why;
+  EXPECT_TRUE(o.Check(&why)) << why;
+  o.solve.max_edge_tilt_deg = 95.0;
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--max-edge-tilt-deg must be in (0, 90] deg");
+  o = {};
+  o.image_fit.initial_psf_sigma_px = 0.0;
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--fit-psf-sigma must be in (0, 5] px");
+  o = {};
+  const auto* method = CylinderRunOptions::Table().Find("--method");
+  ASSERT_NE(method, nullptr);
+  EXPECT_TRUE(method->set_choice(&o, "search"));
+  EXPECT_EQ(o.solve.method, CylinderMethod::kSearch);
+  o.solve.max_edge_tilt_deg = 45.0;
+  const io::Json j = o.ToJson();
+  EXPECT_EQ(j.at("method"), "search");
+  EXPECT_EQ(j.at("max_edge_tilt_deg"), 45.0);
+  EXPECT_EQ(j.at("fit_max_iterations"), 30);
+  EXPECT_EQ(j.at("angle_sigma_arcsec"), 0.0);
+  EXPECT_EQ(j.at("theodolite_interp"), "cubic");
+}
+
 }  // namespace
 }  // namespace rk::attitude

@@ -152,5 +152,22 @@ TEST(Recorder, ADeviceThatIsNotThereLeavesNothingBehind) {
   fs::remove_all(dir);
 }
 
+// Issue 16 item 1: --duration's bound and report key come from CaptureOptions::Table(); the folder rule
+// stays hand-written after it.
+TEST(CaptureOptions, TableCheckAndReportKey) {
+  CaptureOptions o;
+  o.out_dir = "trial";
+  std::string why;
+  EXPECT_TRUE(o.Check(&why)) << why;
+  o.duration_s = -1.0;
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--duration must be finite and >= 0 s");
+  o.duration_s = 2.5;
+  EXPECT_EQ(CaptureOptions::Table().ToJson(o).at("duration_s"), 2.5);
+  o.out_dir = "-";
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--out must name a folder");
+}
+
 }  // namespace
 }  // namespace rk::capture

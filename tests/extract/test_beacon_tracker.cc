@@ -226,6 +226,41 @@ TEST(BeaconTrackOptions, CheckRejectsBadValues) {
   EXPECT_FALSE(o.Check(&why));
 }
 
+// Issue 16 item 1: one table per Options struct gives the messages (flag, bound, unit), the cross-option
+// rules name both flags, and the report keys are the flag with its unit.
+TEST(BeaconTrackOptions, TableMessagesAndReportKeys) {
+  BeaconTrackOptions o;
+  std::string why;
+  o.min_window_px = 3;
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--window-min must be >= 4 px");
+  o = {};
+  o.detect.gap_px = 5;  // a nested struct's option, through Sub()
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--gap must be in [0, 4] px");
+  o = {};
+  o.min_window_px = 50;
+  o.max_window_px = 40;
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--window-max must be >= --window-min");
+  o = {};
+  o.detect.k_grow = 10;
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--k-grow must be <= --k-detect");
+
+  o = {};
+  o.per_lamp = false;
+  o.detect.background_plane = true;
+  const io::Json j = o.ToJson();
+  EXPECT_EQ(j.at("estimator"), "cluster");
+  EXPECT_EQ(j.at("bg_plane"), true);
+  EXPECT_EQ(j.at("window_min_px"), 12);
+  EXPECT_EQ(j.at("gap_px"), 1);
+  EXPECT_EQ(j.at("min_flux_dn"), 0.0);
+  EXPECT_EQ(j.size(), BeaconTrackOptions::Table().specs().size());
+  EXPECT_EQ(j.size(), 26u);  // every flag of rk-extract beacon that is a number, switch or choice
+}
+
 // Issue 15 item 2: the image motion turns while the beacon is hidden (a turret
 // servo catching up), so the Singer prediction carries the search window the
 // wrong way. The beacon moves at (80, 40) px/s until t_turn, then returns

@@ -45,6 +45,12 @@ TEST(Bounds, ContainsAndDescribe) {
   EXPECT_FALSE(Bounds::RightOpen(0, 1).Contains(1));
   EXPECT_TRUE(Bounds::RightOpen(0, 1).Contains(0));
   EXPECT_FALSE(Bounds::AtLeast(1).Contains(-inf));
+  // Finite(): infinity refused on the unbounded side as well, and the message says so.
+  EXPECT_FALSE(Bounds::Positive().Finite().Contains(inf));
+  EXPECT_TRUE(Bounds::Positive().Finite().Contains(1e300));
+  EXPECT_FALSE(Bounds::Any().Finite().Contains(-inf));
+  EXPECT_EQ(Bounds::Positive().Finite().Describe(), "finite and > 0");
+  EXPECT_EQ(Bounds::Any().Finite().Describe(), "a finite number");
   EXPECT_EQ(Bounds::Positive().Describe(), "> 0");
   EXPECT_EQ(Bounds::AtLeast(1).Describe(), ">= 1");
   EXPECT_EQ(Bounds::Closed(2, 50).Describe(), "in [2, 50]");

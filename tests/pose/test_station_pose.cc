@@ -263,7 +263,7 @@ TEST(AttitudeOi, SigmaColumnsMatchTheScatter) {
   const ImagePoints ip = ReadImagePoints(io::CsvTable::Parse(csv, "p.csv"), s.model);
   AttitudeOiOptions opt;
   opt.sigma_px = 0.3;
-  opt.turret_sigma_rad = 0.0;
+  opt.turret_sigma_deg = 0.0;
   const AttitudeOiResult r =
       RunAttitudeOi(ip, s.model, s.cam, locate::BoresightSource::Fixed(tr.boresight.az_rad, tr.boresight.el_rad), opt);
   Eigen::Matrix<double, 6, 1> sq = Eigen::Matrix<double, 6, 1>::Zero(), sig = sq;
@@ -329,7 +329,7 @@ TEST(AttitudeOi, RowStatusesForMissingPointsTurretGapsAndOutliers) {
   EXPECT_EQ(r.outliers_rejected, 1u);
   // Without outlier rejection frame 7 is invalid (reprojection) and keeps its RMS.
   AttitudeOiOptions strict;
-  strict.reject_outlier = false;
+  strict.no_reject = true;
   const AttitudeOiResult r2 = RunScene(s, csv, strict);
   EXPECT_EQ(r2.rows[7].status, RowStatus::kInvalid);
   EXPECT_EQ(r2.rows[7].note, PoseNote::kReprojection);
@@ -418,6 +418,42 @@ TEST(AttitudeOi, BadInputIsDataError) {
     EXPECT_EQ(e.code(), ExitCode::kInvalidData);
     EXPECT_NE(std::string(e.what()).find("turret.csv"), std::string::npos);
   }
+}
+
+// Issue 16 item 1: the oi options come from one table (the solver's nested in it): the choices read and
+// write their enumerations, the switches are in the report as given, the bounds give the messages.
+TEST(AttitudeOiOptions, TableChoicesSwitchesAndMessages) {
+  const auto& table = AttitudeOiOptions::Table();
+  AttitudeOiOptions o;
+  const auto* second = table.Find("--second-start");
+  ASSERT_NE(second, nullptr);
+  EXPECT_TRUE(second->set_choice(&o, "never"));
+  EXPECT_EQ(o.pnp.second_start, SecondStart::kNever);
+  EXPECT_FALSE(second->set_choice(&o, "sometimes"));
+  const auto* interp = table.Find("--turret-interp");
+  ASSERT_NE(interp, nullptr);
+  EXPECT_TRUE(interp->set_choice(&o, "linear"));
+  EXPECT_EQ(o.turret_method, track::InterpMethod::kLinear);
+  EXPECT_FALSE(interp->set_choice(&o, "local-cubic"));  // the turret takes linear or cubic only
+  o.pure_oi = true;
+  const io::Json j = o.ToJson();
+  EXPECT_EQ(j.at("second_start"), "never");
+  EXPECT_EQ(j.at("turret_interp"), "linear");
+  EXPECT_EQ(j.at("pure_oi"), true);
+  EXPECT_EQ(j.at("no_reject"), false);
+  EXPECT_EQ(j.at("turret_max_gap_s"), 0.1);
+  EXPECT_EQ(j.at("near_planar"), 0.05);
+
+  std::string why;
+  o = {};
+  EXPECT_TRUE(o.Check(&why)) << why;
+  o.min_points = 3;
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--min-points must be in [4, 1000]");
+  o = {};
+  o.pnp.near_planar_ratio = 1.5;
+  EXPECT_FALSE(o.Check(&why));
+  EXPECT_EQ(why, "--near-planar must be in [0, 1]");
 }
 
 }  // namespace
