@@ -31,18 +31,8 @@ int main(int argc, char** argv) {
   std::string bin_dir;
   bool no_plots = false;
   app.add_option("trial", opt.trial, "Trial manifest trial.json, or the trial folder that holds it")->required();
-  app.add_flag("--force,-f", opt.force, "Re-run every step, even those that are up to date");
-  app.add_flag("--dry-run,-n", opt.dry_run,
-               "Only print which steps would run and why (no lock taken, nothing written)");
-  app.add_flag("--keep-going,-k", opt.keep_going,
-               "After a failed step, still run the steps that do not depend on it (the run still fails)");
-  app.add_flag("--rehash", opt.rehash,
-               "Hash every input and tool again instead of trusting unchanged size + modification time");
-  app.add_flag("--no-plots", no_plots, "No plot steps (rk-plot) this time");
-  app.add_option("-j,--jobs", opt.jobs, "Steps run at the same time (1..64)")->capture_default_str();
-  app.add_option("--wait-lock", opt.wait_lock_s,
-                 "If another rk-run holds this trial, wait up to S seconds for it (0 = fail at once)")
-      ->capture_default_str();
+  rk::cli::AddOptions(&app, &opt, rk::run::RunOptions::Table(),
+                      {{"--jobs", [&] { app.add_flag("--no-plots", no_plots, "No plot steps (rk-plot) this time"); }}});
   app.add_option("--tool-cache", opt.tool_cache,
                  "JSON file where tool identities (--version, SHA-256) are kept between runs, so that many "
                  "trials ask each tool once (rk-nightly passes one)");

@@ -14,7 +14,10 @@ placeholders. Everything else must be byte-identical.
   golden_outputs.py BIN_A WORK --against BIN_B     run both and show the first differing bytes of each file
 
 The digest file tests/golden/outputs.txt was made from the build before the redesign of issue 16
-(commit 81c295d); tests/CMakeLists.txt checks every build against it (ctest -R golden_outputs).
+(commit 81c295d); tests/CMakeLists.txt checks every build against it (ctest -R golden_outputs). A commit
+that changes behaviour on purpose rewrites it (-o) and says which observables changed and why: the option
+tables of issue 16 changed one option-check message and the JSON reports (options blocks, summary), no
+CSV or video product.
 """
 import argparse
 import hashlib

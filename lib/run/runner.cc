@@ -30,20 +30,33 @@ const char* TrialResultName(TrialResult r) {
   return "?";
 }
 
+const io::OptionTable<RunOptions>& RunOptions::Table() {
+  using O = RunOptions;
+  using B = io::Bounds;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Flag("--force", &O::force, "Re-run every step, even those that are up to date")
+          .Alias("-f")
+          .Flag("--dry-run", &O::dry_run, "Only print which steps would run and why (no lock taken, nothing written)")
+          .Alias("-n")
+          .Flag("--keep-going", &O::keep_going,
+                "After a failed step, still run the steps that do not depend on it (the run still fails)")
+          .Alias("-k")
+          .Flag("--rehash", &O::rehash,
+                "Hash every input and tool again instead of trusting unchanged size + modification time")
+          .Integer("--jobs", &O::jobs, "", B::Closed(1, 64), "Steps run at the same time (1..64)")
+          .Alias("-j")
+          .Real("--wait-lock", &O::wait_lock_s, "s", B::Closed(0, 7 * 86400.0),
+                "If another rk-run holds this trial, wait up to S seconds for it (0 = fail at once)");
+  return table;
+}
+
 bool RunOptions::Check(std::string* why) const {
   if (trial.empty()) {
     *why = "no trial given";
     return false;
   }
-  if (jobs < 1 || jobs > 64) {
-    *why = "--jobs must be 1..64";
-    return false;
-  }
-  if (!(wait_lock_s >= 0.0) || wait_lock_s > 7 * 86400.0) {
-    *why = "--wait-lock must be 0..604800 s";
-    return false;
-  }
-  return true;
+  return Table().Check(*this, why);
 }
 
 namespace internal {

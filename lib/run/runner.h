@@ -14,6 +14,7 @@
 
 #include "io/error.h"
 #include "io/json_util.h"
+#include "io/options.h"
 
 namespace rk::run {
 
@@ -30,6 +31,8 @@ struct RunOptions {
   std::string tool_cache;       // JSON file of tool identities shared between runs ("" = none)
   std::vector<std::string> command_line;  // for the report
   std::function<void(const std::string&)> progress;  // one line per event, may be empty
+  // The command-line options above, described once (io::OptionTable).
+  static const io::OptionTable<RunOptions>& Table();
   bool Check(std::string* why) const;
 };
 
