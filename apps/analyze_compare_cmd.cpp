@@ -16,7 +16,7 @@ namespace rk::app {
 namespace {
 
 struct CompareArgs {
-  std::string est_path, ref_path, columns_arg, out_path, errors_path, interp = "linear";
+  std::string est_path, ref_path, columns_arg, out_path, errors_path;
   double after_s = 0.0, before_s = 0.0;
   bool table = false;
   analysis::CompareOptions opt;
@@ -25,10 +25,10 @@ struct CompareArgs {
   io::BadRows bad_rows = io::BadRows::kError;
 };
 
-// The comparison options from the flags (--interp, --columns, --after/--before). Throws UsageError.
+// The comparison options: a.opt (its table's options, parsed by CLI11) with --columns and --after/--before.
+// Throws UsageError.
 analysis::CompareOptions CompareOptionsOf(const CompareArgs& a) {
   analysis::CompareOptions opt = a.opt;
-  if (!track::ParseInterpMethod(a.interp, &opt.interp)) throw UsageError("unknown --interp " + a.interp);
   opt.columns = io::SplitList(a.columns_arg);
   if (*a.after_opt) opt.after_s = a.after_s;
   if (*a.before_opt) opt.before_s = a.before_s;
@@ -130,7 +130,6 @@ Command AddCompareCommand(CLI::App& parent) {
   auto& after_s = a->after_s;
   auto& before_s = a->before_s;
   auto& table = a->table;
-  auto& opt = a->opt;
   compare->add_option("--estimate", est_path, "Estimate CSV with t_s and the columns ('-' = stdin)")
       ->required();
   compare->add_option("--reference", ref_path, "Reference CSV with t_s and the columns")->required();
@@ -145,16 +144,7 @@ Command AddCompareCommand(CLI::App& parent) {
       "--errors", errors_path,
       "Also write the error series CSV: t_s,err_<C>... (file units, empty where not computed)");
   compare->add_flag("--table", table, "Print a fixed-width table to stdout (to stderr when -o is '-')");
-  compare->add_flag("--arcsec", opt.arcsec,
-                    "Statistics of _deg columns in arc-seconds (\"unit\": \"arcsec\")");
-  auto& interp = a->interp;
-  compare->add_option("--interp", interp, "Reference interpolation: linear or cubic (4-point Lagrange)")
-      ->check(CLI::IsMember({"linear", "cubic"}))
-      ->capture_default_str();
-  compare->add_option(
-      "--max-gap", opt.max_gap_s,
-      "Longest reference interval (s) interpolated across (default: no limit; empty reference "
-      "values always break the interval)");
+  cli::AddOptions(compare, &a->opt, analysis::CompareOptions::Table());
 
   return {compare, [a](const Context& ctx) { return RunCompare(*a, ctx); }};
 }

@@ -29,6 +29,19 @@ io::Json NumberOrNull(double v) { return std::isfinite(v) ? io::Json(v) : io::Js
 
 bool IsAngleColumn(const std::string& column) { return EndsWith(column, "_deg"); }
 
+const io::OptionTable<CompareOptions>& CompareOptions::Table() {
+  using O = CompareOptions;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Flag("--arcsec", &O::arcsec, "Statistics of _deg columns in arc-seconds (\"unit\": \"arcsec\")")
+          .Choice("--interp", &O::interp, {track::InterpMethod::kLinear, track::InterpMethod::kCubic},
+                  track::InterpMethodName, "Reference interpolation: linear or cubic (4-point Lagrange)")
+          .Real("--max-gap", &O::max_gap_s, "s", io::Bounds::Positive(),
+                "Longest reference interval (s) interpolated across (default: no limit; empty reference values "
+                "always break the interval)");
+  return table;
+}
+
 bool CompareOptions::Check(std::string* why) const {
   if (columns.empty()) {
     *why = "--columns needs at least one column name";
@@ -57,11 +70,7 @@ bool CompareOptions::Check(std::string* why) const {
     *why = "--interp must be linear or cubic";
     return false;
   }
-  if (!(max_gap_s > 0.0)) {
-    *why = "--max-gap must be > 0 s";
-    return false;
-  }
-  return true;
+  return Table().Check(*this, why);
 }
 
 CompareResult Compare(const io::CsvTable& estimate, const io::CsvTable& reference,

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "io/options.h"
 #include "analysis/stats.h"
 #include "io/csv.h"
 #include "io/json_util.h"
@@ -34,6 +35,8 @@ struct CompareOptions {
   double max_gap_s = std::numeric_limits<double>::infinity();
   bool arcsec = false;  // statistics of `_deg` columns in arc-seconds
 
+  // --arcsec, --interp, --max-gap, described once (io::OptionTable); the lists and optional times are the app's.
+  static const io::OptionTable<CompareOptions>& Table();
   bool Check(std::string* why) const;
 };
 
