@@ -5,6 +5,7 @@
 
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
+#include "geo/pointing.h"
 #include "io/error.h"
 
 namespace rk::camera {
@@ -27,22 +28,6 @@ Eigen::Vector2d Distort(const std::array<double, 5>& k, const Eigen::Vector2d& n
     (*J)(1, 1) = radial + y * dradial_dr2 * dry + p1 * (dry + 4 * y) + 2 * p2 * x;
   }
   return d;
-}
-
-Eigen::Matrix3d Rx(double a) {
-  Eigen::Matrix3d R;
-  R << 1, 0, 0, 0, std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a);
-  return R;
-}
-Eigen::Matrix3d Ry(double a) {
-  Eigen::Matrix3d R;
-  R << std::cos(a), 0, std::sin(a), 0, 1, 0, -std::sin(a), 0, std::cos(a);
-  return R;
-}
-Eigen::Matrix3d Rz(double a) {
-  Eigen::Matrix3d R;
-  R << std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1;
-  return R;
 }
 
 }  // namespace
@@ -87,12 +72,20 @@ std::optional<Eigen::Vector2d> CameraModel::Project(const Eigen::Vector3d& p_cam
 }
 
 Eigen::Matrix3d CameraModel::RotationTurretFromCamera() const {
-  return Ry(mount_yaw_rad) * Rx(mount_pitch_rad) * Rz(mount_roll_rad);
+  return geo::RotationTurretFromCameraT(mount_yaw_rad, mount_pitch_rad, mount_roll_rad);
 }
 
 Eigen::Vector3d CameraModel::RayEnu(const Eigen::Vector2d& px, double az_rad, double el_rad) const {
   Eigen::Vector3d m_cam = NormalisedRay(px);
   Eigen::Vector3d ray = geo::RotationEnuFromTurret(az_rad, el_rad) * (RotationTurretFromCamera() * m_cam);
+  return ray.normalized();
+}
+
+Eigen::Vector3d CameraModel::RayEnu(const Eigen::Vector2d& px, double az_rad, double el_rad,
+                                    const geo::PointingTerms& pointing) const {
+  if (pointing.IsZero()) return RayEnu(px, az_rad, el_rad);
+  Eigen::Vector3d m_cam = NormalisedRay(px);
+  Eigen::Vector3d ray = geo::RotationEnuFromTurret(az_rad, el_rad, pointing) * (RotationTurretFromCamera() * m_cam);
   return ray.normalized();
 }
 
@@ -135,6 +128,11 @@ CameraModel CameraModelFromJson(const io::Json& j, const std::string& where) {
     c.mount_pitch_rad = geo::DegToRad(io::NumberOr(m, "pitch", 0.0, mw));
     c.mount_roll_rad = geo::DegToRad(io::NumberOr(m, "roll", 0.0, mw));
   }
+  c.time_offset_s = io::NumberOr(j, "time_offset_s", 0.0, where);
+  if (!std::isfinite(c.time_offset_s) || std::abs(c.time_offset_s) > 10.0) {
+    throw DataError(where, 0, 0, "time_offset_s must be finite and within ±10 s");
+  }
+  if (j.contains("calibration") && !j.at("calibration").is_null()) c.calibration = j.at("calibration");
   return c;
 }
 
@@ -151,6 +149,9 @@ io::Json CameraModelToJson(const CameraModel& c) {
   j["mount_deg"] = {{"yaw", geo::RadToDeg(c.mount_yaw_rad)},
                     {"pitch", geo::RadToDeg(c.mount_pitch_rad)},
                     {"roll", geo::RadToDeg(c.mount_roll_rad)}};
+  // Written only when set, so camera files of trials without a latency stay as they were.
+  if (c.time_offset_s != 0.0) j["time_offset_s"] = c.time_offset_s;
+  if (!c.calibration.is_null()) j["calibration"] = c.calibration;
   return j;
 }
 

@@ -21,6 +21,7 @@
 #include <optional>
 #include <string>
 
+#include "geo/pointing.h"
 #include "io/json_util.h"
 
 namespace rk::camera {
@@ -35,6 +36,12 @@ struct CameraModel {
   double mount_yaw_rad = 0.0;
   double mount_pitch_rad = 0.0;
   double mount_roll_rad = 0.0;
+  // Camera latency (SPEC.md §3): a frame's mid-exposure time is its frames.csv t_s + time_offset_s; the
+  // turret and range logs' times are true. Optional "time_offset_s" in the file, default 0.
+  double time_offset_s = 0.0;
+  // rk-calibrate's "calibration" object (method, date, residual RMS, "sigma" of every estimated
+  // parameter), kept as read so that a camera written back keeps it; null when absent.
+  io::Json calibration;
 
   double fx() const { return focal_length_mm / pixel_size_mm[0]; }
   double fy() const { return focal_length_mm / pixel_size_mm[1]; }
@@ -53,6 +60,9 @@ struct CameraModel {
   Eigen::Matrix3d RotationTurretFromCamera() const;
   // Unit line of sight in ENU through pixel `px` for boresight az/el (radians).
   Eigen::Vector3d RayEnu(const Eigen::Vector2d& px, double az_rad, double el_rad) const;
+  // The same through the turret's pointing model (SPEC.md §3.1); az/el are the logged angles.
+  Eigen::Vector3d RayEnu(const Eigen::Vector2d& px, double az_rad, double el_rad,
+                         const geo::PointingTerms& pointing) const;
   // ENU direction → pixel for boresight az/el; nullopt if behind the camera.
   std::optional<Eigen::Vector2d> ProjectEnu(const Eigen::Vector3d& dir_enu, double az_rad, double el_rad) const;
 };

@@ -4,7 +4,9 @@
 #include <random>
 
 #include "camera/camera_model.h"
+#include "camera/pointing_model.h"
 #include "geo/angles.h"
+#include "geo/pointing.h"
 #include "geo/line_of_sight.h"
 #include "io/error.h"
 
@@ -92,6 +94,61 @@ TEST(CameraModel, JsonRoundTripAndValidation) {
   j = CameraModelToJson(c);
   j["pixel_size_mm"] = {0.0, 0.1};
   EXPECT_THROW(CameraModelFromJson(j, "cam.json"), Error);
+}
+
+TEST(CameraModel, TimeOffsetAndCalibrationBlockRoundTrip) {
+  CameraModel c = DistortedCamera();
+  io::Json j = CameraModelToJson(c);
+  EXPECT_FALSE(j.contains("time_offset_s"));  // files without a latency stay as they were
+  EXPECT_FALSE(j.contains("calibration"));
+  j["time_offset_s"] = 0.0125;
+  j["calibration"] = {{"method", "pointing"}, {"sigma", {{"time_offset_s", 1e-4}}}};
+  CameraModel d = CameraModelFromJson(j, "cam.json");
+  EXPECT_DOUBLE_EQ(d.time_offset_s, 0.0125);
+  EXPECT_DOUBLE_EQ(d.calibration["sigma"]["time_offset_s"].get<double>(), 1e-4);
+  io::Json back = CameraModelToJson(d);
+  EXPECT_EQ(back["time_offset_s"], j["time_offset_s"]);
+  EXPECT_EQ(back["calibration"], j["calibration"]);
+  j["time_offset_s"] = 1e6;
+  EXPECT_THROW(CameraModelFromJson(j, "cam.json"), Error);
+}
+
+TEST(CameraModel, RayThroughPointingModelEqualsTheSpecChain) {
+  CameraModel c = DistortedCamera();
+  c.mount_yaw_rad = 0.001;
+  c.mount_roll_rad = -0.002;
+  geo::PointingTerms p{0.5, 1e-4, -2e-4, 3e-4};
+  const Eigen::Vector2d px(100.0, 1900.0);
+  for (double az : {0.0, 3.0, 6.28}) {
+    const double el = 0.8;
+    Eigen::Vector3d expected = (geo::RotationEnuFromTurret(az, el, p) * c.RotationTurretFromCamera() *
+                                c.NormalisedRay(px)).normalized();
+    EXPECT_NEAR((c.RayEnu(px, az, el, p) - expected).norm(), 0.0, 1e-14);
+    EXPECT_NEAR((c.RayEnu(px, az, el, geo::PointingTerms{}) - c.RayEnu(px, az, el)).norm(), 0.0, 0.0);
+  }
+}
+
+TEST(PointingModel, JsonRoundTripKeepsSigmaAndExtraKeys) {
+  io::Json j = {{"az_offset_deg", 123.25}, {"tilt_north_deg", 0.01}, {"el_axis_tilt_deg", -0.003},
+                {"sigma", {{"az_offset_deg", 0.001}, {"tilt_north_deg", 2e-4}}},
+                {"observations", 412}, {"date", "2026-11-26"}};
+  PointingModel m = PointingModelFromJson(j, "pointing.json");
+  EXPECT_NEAR(m.terms.az_offset_rad, geo::DegToRad(123.25), 1e-15);
+  EXPECT_EQ(m.terms.tilt_east_rad, 0.0);  // absent = 0
+  ASSERT_TRUE(m.sigma_rad[kAzOffset].has_value());
+  EXPECT_FALSE(m.sigma_rad[kTiltEast].has_value());  // not estimated: no sigma
+  io::Json back = PointingModelToJson(m);
+  EXPECT_EQ(back["observations"], 412);
+  EXPECT_NEAR(back["tilt_north_deg"].get<double>(), 0.01, 1e-15);
+  EXPECT_FALSE(back["sigma"].contains("tilt_east_deg"));
+  j["tilt_east_deg"] = 45.0;  // not a levelling error a calibration can hold
+  try {
+    PointingModelFromJson(j, "pointing.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kInvalidData);
+    EXPECT_NE(std::string(e.what()).find("tilt_east_deg"), std::string::npos);
+  }
 }
 
 }  // namespace
