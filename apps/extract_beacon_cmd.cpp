@@ -41,10 +41,10 @@ int RunBeaconCmd(const BeaconArgs& a, const Context& ctx) {
 
   const rk::extract::FrameClock clock = a.in.Clock();
   const bool progress = rk::cli::ShowProgress(common);
-  const rk::extract::BeaconRunResult res = rk::extract::RunBeacon(a.in.videos, clock, opt, [&](std::int64_t n) {
-    if (progress) std::cerr << "\r" << ctx.tool << ": " << n << " frames" << std::flush;
-  });
-  if (progress) std::cerr << "\r";
+  rk::cli::ProgressMeter meter(ctx.tool, "frames", VideoInputArgs::ExpectedFrames(clock), progress);
+  const rk::extract::BeaconRunResult res =
+      rk::extract::RunBeacon(a.in.videos, clock, opt, [&](std::int64_t n) { meter.Update(n); });
+  meter.Finish();
   rk::extract::BeaconTrackCsv(res.rows, res.bit_depth).Write(a.out_path);
 
   const auto& s = res.summary;

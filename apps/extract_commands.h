@@ -50,6 +50,8 @@ struct VideoInputArgs {
     return frames_path.empty() ? extract::FrameClock::FromRate(*fps, t0.value_or(0.0))
                                : extract::FrameClock::FromCsv(frames_path, bad_rows);
   }
+  // Frames to process, for the progress display: the frames file's rows; 0 (unknown) with --fps.
+  static std::int64_t ExpectedFrames(const extract::FrameClock& clock) { return clock.from_file() ? clock.size() : 0; }
   // The report's inputs video_<i> and frames.
   void AddReportInputs(io::Json* report) const {
     for (std::size_t i = 0; i < videos.size(); ++i) cli::AddReportInput(report, "video_" + std::to_string(i), videos[i]);

@@ -42,11 +42,10 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
   const target::FeatureModel model = target::LoadFeatureModel(a.target_path);
   const extract::FrameClock clock = a.in.Clock();
   const bool progress = cli::ShowProgress(ctx.common);
+  cli::ProgressMeter meter(ctx.tool, "frames", VideoInputArgs::ExpectedFrames(clock), progress);
   const extract::FeatureRunResult res =
-      extract::RunFeatures(a.in.videos, clock, model, opt, [&](std::int64_t n) {
-        if (progress) std::cerr << "\r" << ctx.tool << ": " << n << " frames" << std::flush;
-      });
-  if (progress) std::cerr << "\r";
+      extract::RunFeatures(a.in.videos, clock, model, opt, [&](std::int64_t n) { meter.Update(n); });
+  meter.Finish();
   const auto& s = res.summary;
   if (s.ambiguous > 0) {
     cli::Warn(ctx.tool, ctx.common,

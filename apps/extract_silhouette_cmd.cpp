@@ -43,11 +43,10 @@ Command AddSilhouetteCommand(CLI::App& parent) {
             if (!ctx.common.report_path.empty()) io::CheckOutputNotInput(ctx.common.report_path, inputs);
             const extract::FrameClock clock = a->in.Clock();
             const bool progress = cli::ShowProgress(ctx.common);
+            cli::ProgressMeter meter(ctx.tool, "frames", VideoInputArgs::ExpectedFrames(clock), progress);
             const extract::SilhouetteRunResult res =
-                extract::RunSilhouette(a->in.videos, clock, a->opt, [&](std::int64_t n) {
-                  if (progress) std::cerr << "\r" << ctx.tool << ": " << n << " frames" << std::flush;
-                });
-            if (progress) std::cerr << "\r";
+                extract::RunSilhouette(a->in.videos, clock, a->opt, [&](std::int64_t n) { meter.Update(n); });
+            meter.Finish();
             extract::SilhouettePointsCsv(res.rows).Write(a->out_path);
             using S = extract::SilhouetteStatus;
             const auto n = [&](S s) { return res.by_status[static_cast<std::size_t>(s)]; };
@@ -75,6 +74,10 @@ Command AddSilhouetteCommand(CLI::App& parent) {
               rep["time_s"] = {{"total", res.wall_s}, {"extraction", res.extract_s}};
               rep["options"] = a->opt.ToJson();
               cli::WriteReport(ctx.common.report_path, rep);
+            }
+            if (progress) {
+              std::cerr << ctx.tool << ": " << res.frames << " frames: " << n(S::kOk) << " with points, " << bad
+                        << " without\n";
             }
             return 0;
           }};

@@ -33,7 +33,7 @@ ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 # Members of JSON reports that differ between two runs of the same binary, or between two builds of the
 # same source: wall-clock times, durations, file times, tool identities (build ids, sizes), step keys.
 VOLATILE_KEY = re.compile(
-    r"(_utc$|^utc$|^time_s$|_time_s$|^elapsed|^seconds$|^wall|^cpu_|^mtime|^version$|^build_id$|^tool_id$|"
+    r"(_utc$|^utc$|^time_s$|_time_s$|^elapsed|^seconds$|^wall|^cpu_|^mtime|^version$|^git_commit$|^build_id$|^tool_id$|"
     r"^command_line$|^argv$|^host|^pid$|^duration_ms$|^started|^finished|^tools_s$|^total_s$|"
     r"^identity$|^identities$|_ms$|cpu_s$|^time$|rss|^user_s$|^sys_s$|^key$|^upstream$|^tools$|^id$)")
 

@@ -133,6 +133,7 @@ Json TrialRun::BuildReport() const {
   Json rep;
   rep["tool"] = "rk-run";
   rep["version"] = kVersion;
+  rep["git_commit"] = kGitCommit;
   rep["command_line"] = o_.command_line;
   Json inputs = digests_->ToJson();
   rep["inputs"] = inputs;
@@ -163,6 +164,7 @@ Json TrialRun::BuildSummaryJson() const {
   Json j;
   j["tool"] = "rk-run";
   j["version"] = kVersion;
+  j["git_commit"] = kGitCommit;
   j["command_line"] = o_.command_line;
   j["inputs"] = Json::object();
   j["inputs"]["manifest"] = manifest_file_;

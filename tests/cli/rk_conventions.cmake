@@ -1,0 +1,15 @@
+# Command-line conventions of the suite (issue 19): the rk dispatcher, --version with the git commit,
+# man pages and bash completion made from --help, progress only on a terminal.
+
+# rk help lists every rk-* tool of the build with one line; rk <tool> runs it with its exit code and
+# streams; rk --version and every tool's --version name the version and the git commit.
+rk_cli_script(rk_conventions/rk_dispatcher)
+
+# A man page per tool and for rk (when help2man is installed), each with a NAME and, for tools with
+# subcommands, a section per subcommand; a bash completion file per tool that completes options,
+# subcommands, choice values and file names (driven through bash's completion variables).
+rk_cli_script(rk_conventions/rk_man_and_completion)
+
+# Progress: nothing on stderr when it is not a terminal; on a pseudo-terminal (script(1)) the progress
+# line with done/total, rate and ETA, then the closing summary line; nothing with --quiet.
+rk_cli_script(rk_conventions/rk_progress_only_on_a_terminal REQUIRES sim_small)
