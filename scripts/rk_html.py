@@ -25,7 +25,7 @@ table{border-collapse:collapse;margin:6px 0;font-size:13px}
 th,td{border:1px solid #dde2e8;padding:3px 8px;text-align:left;vertical-align:top}
 th{background:#eef1f5}
 td.num{text-align:right;font-variant-numeric:tabular-nums}
-.ok{color:#17692f;font-weight:600}.warning{color:#9a6200;font-weight:600}
+.ok,.done,.up-to-date{color:#17692f;font-weight:600}.warning{color:#9a6200;font-weight:600}
 .failed,.locked{color:#b3261e;font-weight:600}.muted{color:#6b7580}
 .headline{display:flex;flex-wrap:wrap;gap:10px;margin:6px 0}
 .fig{display:inline-block;background:#fafbfc;border:1px solid #e3e7ec;border-radius:4px;padding:10px 14px;
@@ -125,7 +125,7 @@ def headline_figures(report):
                 if isinstance(est, dict) and isinstance(est.get("range_m"), (int, float)):
                     sig = q.get("sigma", {}).get(radar, {}) if isinstance(q.get("sigma"), dict) else {}
                     s = sig.get("range_m") if isinstance(sig, dict) else None
-                    out.append(("%s %s range bias" % (kind, radar), num(est["range_m"]) + " m",
+                    out.append(("radar %s range bias (%s)" % (radar, kind), num(est["range_m"]) + " m",
                                 "1σ %s m" % num(s) if isinstance(s, (int, float)) else ""))
     return out
 
@@ -139,7 +139,8 @@ def headline_html(figs):
 
 
 def one_line(text, width=200):
-    line = " ".join(str(text or "").split())
+    lines = [ln for ln in str(text or "").splitlines() if ln.strip()]
+    line = " ".join(lines[0].split()) if lines else ""
     return line if len(line) <= width else line[:width - 1] + "…"
 
 
