@@ -166,6 +166,8 @@ def index_html(summary, root):
         figs = headline_figures(rep) if isinstance(rep, dict) else []
         figs_html = "<br>".join("%s: <b>%s</b>" % (esc(k), esc(v)) for k, v, _ in figs) or \
             '<span class="muted">—</span>'
+        if figs and result in FAILED_RESULTS:
+            figs_html = '<span class="muted">last good run:</span><br>' + figs_html
         rows.append("<tr><td>%s</td><td class=\"%s\">%s</td><td>%s</td><td>%s</td><td class=\"num\">%s</td>"
                     "<td class=\"num\">%s / %s</td><td>%s</td></tr>"
                     % (esc(r.get("trial")), esc(result), esc(result), esc(one_line(r.get("reason"))), figs_html,
