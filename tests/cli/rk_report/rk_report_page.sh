@@ -53,6 +53,8 @@ echo '{"tool": "rk-locate"}' > "$data/report/bin/report.json"; rk-report "$data/
 set -e
 test "$rc1" = 4; grep -q '^rk-report: error: .*report.json: cannot read' "$data/report/e1"
 test "$rc2" = 3; grep -q 'not an rk-run report' "$data/report/e2"
+rk-report "$t/out" --matplotlib -o "$data/report/mpl.html" --quiet   # the same figures drawn by matplotlib
+test "$(grep -o '<svg' "$data/report/mpl.html" | wc -l)" = "$(grep -o '<svg' "$p" | wc -l)"
 rk-report "$t/out" --no-figures -o "$data/report/tables.html" --quiet
 grep -q 'Figures left out' "$data/report/tables.html"
 if grep -q '<svg' "$data/report/tables.html"; then echo "--no-figures drew figures"; exit 1; fi
