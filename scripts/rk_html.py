@@ -25,6 +25,7 @@ table{border-collapse:collapse;margin:6px 0;font-size:13px}
 th,td{border:1px solid #dde2e8;padding:3px 8px;text-align:left;vertical-align:top}
 th{background:#eef1f5}
 td.num{text-align:right;font-variant-numeric:tabular-nums}
+td b,.fig .v{white-space:nowrap}
 .ok,.done,.up-to-date{color:#17692f;font-weight:600}.warning{color:#9a6200;font-weight:600}
 .failed,.locked{color:#b3261e;font-weight:600}.muted{color:#6b7580}
 .headline{display:flex;flex-wrap:wrap;gap:10px;margin:6px 0}
