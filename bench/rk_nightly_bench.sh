@@ -5,12 +5,18 @@
 # summary, the wall time, the sum of the tool times (each step's wall time measured by rk-run around the
 # child process), the ideal wall time tools / cores and their ratio; then a second rk-nightly run, where
 # every trial is up to date.
-#   bench/rk_nightly_bench.sh [--trials N] [--duration S] [--jobs J] [--no-plots] [--root DIR] [--regen]
+#   bench/rk_nightly_bench.sh [--trials N] [--duration S] [--jobs J] [--no-plots] [--root DIR] [--regen] [--pages]
 # Defaults: 20 trials, 10 s each (200 frames of 640x512, FFV1), J = nproc, plots on, ROOT=/tmp/rk-nightly-bench.
+# --pages (issue 19 targets) then measures what the report pages and the index add: four more forced passes,
+# alternately with rk-report replaced by a no-op (a copy of rk-run in a folder of links to the tools, where it
+# looks first) and with the real pages, the smaller wall of each and the difference (target <= 10 %);
+# every page made again by hand, timed one by one (sum / cores = the pages' share of an ideal nightly); the
+# index's own time from rk-nightly's log; and a 20-second beacon trial's page opened in headless Chromium
+# five times (tests/cli/browser_check.py: load event end and first paint, target < 1 s).
 set -euo pipefail
 SRC=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BIN=${RK_BIN:-$SRC/build/apps}
-N=20; DUR=10; JOBS=$(nproc); PLOTS=""; ROOT=/tmp/rk-nightly-bench; REGEN=0
+N=20; DUR=10; JOBS=$(nproc); PLOTS=""; ROOT=/tmp/rk-nightly-bench; REGEN=0; PAGES=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --trials) N=$2; shift 2 ;;
@@ -19,6 +25,7 @@ while [ $# -gt 0 ]; do
     --no-plots) PLOTS=--no-plots; shift ;;
     --root) ROOT=$2; shift 2 ;;
     --regen) REGEN=1; shift ;;
+    --pages) PAGES=1; shift ;;
     *) echo "rk_nightly_bench.sh: error: unknown option $1" >&2; exit 2 ;;
   esac
 done
@@ -50,4 +57,43 @@ print("   wall %.2f s; tools %.2f s (cpu %.2f s) on %d cores -> ideal %.2f s; wa
       % (s["wall_s"], s["tool_time_s"], s["tool_cpu_s"], s["cores_used"], s.get("ideal_wall_s", 0.0), s.get("wall_over_ideal", 0.0)))
 PY
 done
+[ "$PAGES" = 1 ] || { echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"; exit 0; }
+
+# -- issue 19: report pages and index --------------------------------------------------------------------
+NOPAGE=$ROOT/.bench-nopage; rm -rf "$NOPAGE"; mkdir -p "$NOPAGE"
+for f in "$BIN"/rk-* "$BIN"/*.py; do ln -s "$f" "$NOPAGE/$(basename "$f")"; done
+rm "$NOPAGE/rk-run" "$NOPAGE/rk-report"; cp "$BIN/rk-run" "$NOPAGE/rk-run"   # a copy: it looks beside itself
+printf '#!/bin/sh\nexit 0\n' > "$NOPAGE/rk-report"; chmod +x "$NOPAGE/rk-report"
+declare -A WALL=([nopage]=1e9 [pages]=1e9)
+for pass in nopage pages nopage pages; do   # alternated, the smaller wall of each kept: less load noise
+  runner=$BIN/rk-run; [ "$pass" = nopage ] && runner=$NOPAGE/rk-run
+  find "$ROOT" -name report.html -path '*/out/*' -delete
+  set +e; "$SRC/scripts/rk-nightly" "$ROOT" -j "$JOBS" $PLOTS --force -q --rk-run "$runner"; set -e
+  w=$(python3 -c "import json,sys; print(json.load(open(sys.argv[1]))['wall_s'])" "$ROOT/rk-nightly-summary.json")
+  WALL[$pass]=$(python3 -c "print(min($w, ${WALL[$pass]}))")
+  echo "-- pass $pass: wall $w s, pages: $(find "$ROOT" -name report.html -path '*/out/*' | wc -l), load $(cut -d' ' -f1 /proc/loadavg)"
+done
+index_s=$(grep -o 'index: .* ([0-9.]* s)' "$ROOT/rk-nightly.log" | tail -1 | grep -o '([0-9.]* s)' | tr -d '(s )')
+pages_s=0
+for d in "$ROOT"/t*/out; do
+  s0=$(date +%s.%N); "$BIN/rk-report" "$d" --quiet; s1=$(date +%s.%N)
+  pages_s=$(python3 -c "print($pages_s + $s1 - $s0)")
+done
+python3 - "${WALL[nopage]}" "${WALL[pages]}" "$pages_s" "$index_s" "$N" "$JOBS" "$ROOT" <<'PY'
+import glob, os, sys
+nopage, pages, pages_s, index_s, n, jobs, root = map(str, sys.argv[1:])
+nopage, pages, pages_s, index_s = float(nopage), float(pages), float(pages_s), float(index_s or 0)
+cores = min(int(jobs), int(n))
+sizes = [os.path.getsize(p) for p in glob.glob(os.path.join(root, "t*/out/report.html"))]
+print("   nightly wall without pages %.2f s, with pages and index %.2f s: +%.1f %% (target <= 10 %%)"
+      % (nopage, pages, 100 * (pages - nopage) / nopage))
+print("   pages made one by one: %.2f s for %s (%.2f s each; / %d cores = %.1f %% of the no-page nightly); "
+      "index %.3f s" % (pages_s, n, pages_s / int(n), cores, 100 * pages_s / cores / nopage, index_s))
+print("   page size: %.0f kB mean, %.0f kB max" % (sum(sizes) / len(sizes) / 1024, max(sizes) / 1024))
+PY
+# Render time of a 20-second beacon trial's page in Chromium.
+R20=$ROOT/.bench-render20
+if [ ! -s "$R20/trial.json" ]; then "$BIN/rk-sim" beacon --out "$R20" --force --preset small --duration 20 --seed 99 --quiet; fi
+"$BIN/rk-run" "$R20" --force --quiet
+python3 "$SRC/tests/cli/browser_check.py" "$R20/out/report.html" --repeat 5 || echo "(browser check failed or chromium missing)"
 echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"

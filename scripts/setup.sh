@@ -6,18 +6,21 @@
 #   scripts/setup.sh --asan-only  only the ASan+UBSan build (what scripts/test.sh needs)
 #   scripts/setup.sh --slurm    also Slurm and munge (for the rk-slurm test, tests/run/slurm_array_test.sh)
 #   scripts/setup.sh --fuzz     also clang and libFuzzer, and the fuzz harnesses in build-fuzz/ (tests/fuzz)
+#   scripts/setup.sh --browser  also Debian's chromium, for the headless-browser test of the report pages
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 ASAN=0
 RELEASE=1
 SLURM=0
 FUZZ=0
+BROWSER=0
 for arg in "$@"; do
   case "$arg" in
     --asan) ASAN=1 ;;
     --asan-only) ASAN=1; RELEASE=0 ;;
     --slurm) SLURM=1 ;;
     --fuzz) FUZZ=1 ;;
+    --browser) BROWSER=1 ;;
     *) echo "setup.sh: error: unknown option $arg" >&2; exit 2 ;;
   esac
 done
@@ -34,6 +37,9 @@ PACKAGES=(
 if [ "$SLURM" = 1 ]; then PACKAGES+=(slurmctld slurmd slurm-client munge); fi
 # clang 14 and its runtime libraries (libFuzzer, ASan, UBSan) for the fuzz harnesses only.
 if [ "$FUZZ" = 1 ]; then PACKAGES+=(clang libclang-rt-14-dev); fi
+# Headless Chromium opens the report pages in ctest (rk_report_pages_in_chromium); nobody needs a browser to
+# build or run rangekit, so only the test set-up installs it.
+if [ "$BROWSER" = 1 ]; then PACKAGES+=(chromium); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

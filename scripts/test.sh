@@ -14,6 +14,9 @@ SETUP=(--asan-only)
 if [ "${CI:-}" = true ] || [ "${RK_SLURM_TEST:-}" = 1 ]; then SETUP+=(--slurm); fi
 FUZZ=0
 if [ "${CI:-}" = true ] || [ "${RK_FUZZ_TEST:-}" = 1 ]; then FUZZ=1; SETUP+=(--fuzz); fi
+# The report pages are opened in headless Chromium (tests/cli/browser_check.py): CI installs it; elsewhere
+# the test is reported skipped when chromium is absent (RK_BROWSER_TEST=1 installs it here too).
+if [ "${CI:-}" = true ] || [ "${RK_BROWSER_TEST:-}" = 1 ]; then SETUP+=(--browser); fi
 "$ROOT/scripts/setup.sh" "${SETUP[@]}"
 JOBS=$(nproc)
 echo "== ASan+UBSan build: ctest"

@@ -10,6 +10,7 @@
 
 #include "io/version.h"
 #include "run/previous_report.h"
+#include "run/report_page.h"
 #include "run/sha256.h"
 #include "run/trial_dir.h"
 #include "run/trial_run.h"
@@ -243,10 +244,14 @@ bool TrialRun::PlanDecideExecute() {
     s_.result = TrialResult::kUpToDate;
     s_.steps_skipped = static_cast<int>(runs_.size());
     Say("up to date: nothing to run");
+    ReportPage(false);
   } else {
     Say("building a new out/: " + rebuild_reason_);
     Execute();
-    if (!failed_) Commit();
+    if (!failed_) {
+      Commit();
+      ReportPage(true);
+    }
   }
   return false;
 }
@@ -263,6 +268,7 @@ void TrialRun::Finish() {
   }
   s_.wall_s = Seconds(t0_);
   s_.summary = BuildSummaryJson();
+  if (!page_warning_.empty()) s_.summary["report_page_warning"] = page_warning_;
   if (!o_.dry_run) {
     try {
       io::WriteJson((fs::path(s_.trial_dir) / "last-run.json").string(), s_.summary);
@@ -273,6 +279,16 @@ void TrialRun::Finish() {
         (s_.error.empty() ? "" : " (exit " + std::to_string(static_cast<int>(s_.exit_code)) + "): " + s_.error) +
         " in " + Fmt(s_.wall_s) + " s");
   }
+}
+
+// out/report.html (run/report_page.h) with --plots only: --no-plots makes no figure of any kind. A page that
+// cannot be made is a warning in the log and the summary; the run still succeeds.
+void TrialRun::ReportPage(bool rebuilt) {
+  if (!o_.plots) return;
+  page_warning_ = MakeReportPage(s_.trial_dir, o_.tool_dirs, rebuilt);
+  if (page_warning_.empty()) return;
+  page_warning_ = "report page not made: " + page_warning_;
+  Say("warning: " + page_warning_);
 }
 
 RunSummary TrialRun::Run() {

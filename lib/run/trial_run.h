@@ -81,6 +81,7 @@ class TrialRun {
   void WriteToolCache();
   void DryRunSummary();
   void Commit();
+  void ReportPage(bool rebuilt);
   void Finish();
   // execute.cc
   void Execute();
@@ -114,6 +115,7 @@ class TrialRun {
   bool failed_ = false;
   bool rebuild_ = false;  // a new out/ is needed even if no step runs
   std::string rebuild_reason_;
+  std::string page_warning_;  // why out/report.html was not made ("" = made, current or not asked for)
 };
 
 }  // namespace rk::run::internal

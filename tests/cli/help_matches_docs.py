@@ -5,7 +5,7 @@
    a line "Usage: rk-<tool> [<sub>] ..."; the tool is run with that subcommand and --help, and the block,
    from its Usage line on, must equal the output from its Usage line on (trailing spaces ignored).
 2. Every option that a tool or subcommand lists in its --help is named in the tool's pages
-   (docs/<tool>*.md; rk-nightly and rk-slurm are in docs/rk-run.md), by its long or its short form.
+   (docs/<tool>*.md; rk-nightly, rk-slurm and rk-report are in docs/rk-run.md), by its long or its short form.
 Usage: help_matches_docs.py DOCS_DIR BIN_DIR
 """
 import os
@@ -27,7 +27,7 @@ def blocks(path):
                 cur.append(line.rstrip())
 
 
-PAGES = {"rk-nightly": ["rk-run"], "rk-slurm": ["rk-run"]}
+PAGES = {"rk-nightly": ["rk-run"], "rk-slurm": ["rk-run"], "rk-report": ["rk-run"]}
 
 
 def help_options(cmd):

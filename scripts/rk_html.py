@@ -1,0 +1,183 @@
+"""Shared by the trial report page (scripts/rk-report) and rk-nightly's index.html (docs/rk-run.md,
+"The report page"): the page's style sheet, escaping, the headline figures of a trial taken from its
+out/report.json, its warnings, and the nightly index. Python 3 standard library only (rk-nightly must not
+need matplotlib); the pages it makes are self-contained: no script, no font, no style sheet and no image is
+fetched from anywhere when they are opened."""
+import datetime
+import html
+import json
+import os
+
+# One style sheet for both pages, inlined in each (no external CSS).
+CSS = """
+body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,"DejaVu Sans",sans-serif;margin:0;color:#1d232a;
+background:#f6f7f9;font-size:14px;line-height:1.4}
+header{background:#1f3a5f;color:#fff;padding:12px 24px}
+header h1{margin:0;font-size:20px}
+header .sub{opacity:.85;font-size:13px}
+nav{padding:6px 24px;background:#e6eaf0;font-size:13px}
+nav a{margin-right:14px;color:#1f3a5f}
+main{padding:8px 24px 40px}
+section{background:#fff;border:1px solid #dde2e8;border-radius:6px;margin:14px 0;padding:10px 16px}
+h2{font-size:17px;margin:4px 0 8px;color:#1f3a5f}
+h3{font-size:15px;margin:12px 0 6px}
+table{border-collapse:collapse;margin:6px 0;font-size:13px}
+th,td{border:1px solid #dde2e8;padding:3px 8px;text-align:left;vertical-align:top}
+th{background:#eef1f5}
+td.num{text-align:right;font-variant-numeric:tabular-nums}
+td b,.fig .v{white-space:nowrap}
+.ok,.done,.up-to-date{color:#17692f;font-weight:600}.warning{color:#9a6200;font-weight:600}
+.failed,.locked{color:#b3261e;font-weight:600}.muted{color:#6b7580}
+.headline{display:flex;flex-wrap:wrap;gap:10px;margin:6px 0}
+.fig{display:inline-block;background:#fafbfc;border:1px solid #e3e7ec;border-radius:4px;padding:10px 14px;
+min-width:130px}
+.fig .v{font-size:20px;font-weight:600}.fig .k{font-size:12px;color:#56606b}
+ul.warn li{margin:2px 0}
+figure{margin:8px 0}figure svg{max-width:100%;height:auto}
+figcaption{font-size:12px;color:#56606b}
+pre{background:#f3f4f6;padding:8px;overflow:auto;font-size:12px;max-height:480px}
+details summary{cursor:pointer;color:#1f3a5f}
+"""
+
+FAILED_RESULTS = ("failed", "locked")
+
+
+def esc(x):
+    return html.escape("" if x is None else str(x), quote=True)
+
+
+def num(v, digits=3):
+    """A number for a table: integers as they are, others with `digits` significant decimals."""
+    if v is None:
+        return ""
+    if isinstance(v, bool):
+        return "yes" if v else "no"
+    if isinstance(v, int):
+        return str(v)
+    if isinstance(v, float):
+        if v != v:
+            return ""
+        if v == int(v) and abs(v) < 1e15:
+            return "%d" % v
+        a = abs(v)
+        if a >= 1000 or a < 1e-3:
+            return "%.*g" % (digits + 3, v)
+        return ("%.*f" % (digits, v)).rstrip("0").rstrip(".") if a >= 1 else "%.*g" % (digits, v)
+    return str(v)
+
+
+def percent(fraction):
+    """The one way a fraction is shown on both pages (the browser test looks for this text)."""
+    return "%.1f %%" % (100.0 * fraction)
+
+
+def load_json(path):
+    try:
+        with open(path) as f:
+            return json.load(f)
+    except (OSError, ValueError):
+        return None
+
+
+def utc_now():
+    return datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
+
+
+def page(title, header_html, nav, body):
+    """A whole page: no <script>, no external resource."""
+    links = "".join('<a href="#%s">%s</a>' % (esc(a), esc(t)) for a, t in nav)
+    return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+            "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">"
+            # Forbids every fetch, so that a page that would reach out breaks visibly in any browser.
+            "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; "
+            "style-src 'unsafe-inline'; img-src data:\">"
+            "<title>%s</title><style>%s</style></head>\n<body><header>%s</header>%s<main>\n%s\n</main></body></html>\n"
+            % (esc(title), CSS, header_html, "<nav>%s</nav>" % links if nav else "", body))
+
+
+def step_quality(step):
+    q = step.get("quality")
+    return q if isinstance(q, dict) else {}
+
+
+def headline_figures(report):
+    """[(label, value text, unit/step)] of a trial: the figures a person looks at first, from each step's
+    quality record (the tool's summary, docs/rk-run.md "The summary contract")."""
+    out = []
+    for st in report.get("steps", []) if isinstance(report, dict) else []:
+        q = step_quality(st)
+        kind, unit = st.get("kind", ""), st.get("unit", "")
+        if not q:
+            continue
+        rows = q.get("rows")
+        okf = q.get("ok_fraction")
+        if kind == "extract-beacon" and isinstance(okf, (int, float)):
+            out.append(("%s tracked frames" % unit, percent(okf), "%s of %s frames" % (
+                num(q.get("status", {}).get("ok", round(okf * (rows or 0)))), num(rows))))
+        elif kind == "locate" and isinstance(q.get("range_coverage"), (int, float)):
+            out.append(("%s range coverage" % unit, percent(q["range_coverage"]), "rows with a range"))
+        elif kind == "attitude-oi" and isinstance(q.get("poses"), (int, float)) and q.get("frames"):
+            out.append(("%s poses" % unit, percent(q["poses"] / q["frames"]), "%s of %s frames" % (
+                num(q["poses"]), num(q["frames"]))))
+        elif kind in ("extract-features", "extract-silhouette", "attitude-cylinder") and isinstance(okf, (int, float)):
+            out.append(("%s %s ok" % (unit, kind), percent(okf), "%s rows" % num(rows)))
+        elif kind.startswith("register") and isinstance(q.get("estimate"), dict):
+            for radar, est in sorted(q["estimate"].items()):
+                if isinstance(est, dict) and isinstance(est.get("range_m"), (int, float)):
+                    sig = q.get("sigma", {}).get(radar, {}) if isinstance(q.get("sigma"), dict) else {}
+                    s = sig.get("range_m") if isinstance(sig, dict) else None
+                    out.append(("radar %s range bias (%s)" % (radar, kind), num(est["range_m"]) + " m",
+                                "1σ %s m" % num(s) if isinstance(s, (int, float)) else ""))
+    return out
+
+
+def headline_html(figs):
+    if not figs:
+        return '<p class="muted">no headline figures (no step reported quality figures)</p>'
+    return '<div class="headline">' + "".join(
+        '<div class="fig"><div class="v">%s</div><div class="k">%s</div><div class="k">%s</div></div>'
+        % (esc(v), esc(k), esc(d)) for k, v, d in figs) + "</div>"
+
+
+def one_line(text, width=200):
+    lines = [ln for ln in str(text or "").splitlines() if ln.strip()]
+    line = " ".join(lines[0].split()) if lines else ""
+    return line if len(line) <= width else line[:width - 1] + "…"
+
+
+def index_html(summary, root):
+    """rk-nightly's ROOT/index.html: every trial, failures first, with its result, a one-line reason, its
+    headline figures (from TRIAL/out/report.json) and a link to TRIAL/out/report.html."""
+    trials = list(summary.get("trials", []))
+    order = {"failed": 0, "locked": 1}
+    trials.sort(key=lambda r: (order.get(r.get("result"), 2), r.get("trial", "")))
+    counts = summary.get("counts", {})
+    rows = []
+    for r in trials:
+        d = r.get("dir") or os.path.join(root, r.get("trial", ""))
+        rep = load_json(os.path.join(d, "out", "report.json"))
+        page_path = os.path.join(d, "out", "report.html")
+        link = esc(os.path.relpath(page_path, root))
+        result = r.get("result", "failed")
+        if os.path.isfile(page_path):
+            what = "page" if result not in FAILED_RESULTS else "last good run"
+            cell = '<a href="%s">%s</a>' % (link, what)
+        else:
+            cell = '<span class="muted">no page</span>'
+        figs = headline_figures(rep) if isinstance(rep, dict) else []
+        figs_html = "<br>".join("%s: <b>%s</b>" % (esc(k), esc(v)) for k, v, _ in figs) or \
+            '<span class="muted">—</span>'
+        if figs and result in FAILED_RESULTS:
+            figs_html = '<span class="muted">last good run:</span><br>' + figs_html
+        rows.append("<tr><td>%s</td><td class=\"%s\">%s</td><td>%s</td><td>%s</td><td class=\"num\">%s</td>"
+                    "<td class=\"num\">%s / %s</td><td>%s</td></tr>"
+                    % (esc(r.get("trial")), esc(result), esc(result), esc(one_line(r.get("reason"))), figs_html,
+                       esc(num(r.get("wall_s"))), esc(r.get("steps_run", 0)), esc(r.get("steps_skipped", 0)), cell))
+    head = ("<h1>Nightly run: %s</h1><div class=\"sub\">%d trials — %s; started %s, wall %s s; page made %s</div>"
+            % (esc(summary.get("root", root)), len(trials),
+               esc(", ".join("%s %s" % (v, k.replace("_", " ")) for k, v in counts.items())),
+               esc(summary.get("started_utc", "")), esc(num(summary.get("wall_s"))), esc(utc_now())))
+    body = ("<section id=\"trials\"><h2>Trials (failures first)</h2><table><tr><th>trial</th><th>result</th>"
+            "<th>reason</th><th>headline figures</th><th>wall s</th><th>steps run / skipped</th><th>report</th></tr>"
+            + "\n".join(rows) + "</table></section>")
+    return page("rk-nightly: " + os.path.basename(root.rstrip("/")), head, [], body)

@@ -1,0 +1,15 @@
+# CLI tests of the trial report page (scripts/rk-report, made by rk-run) and rk-nightly's index.html (issue 19,
+# docs/rk-run.md "The report page"). The scripts are in tests/cli/rk_report/ and use rk_run/lib.sh.
+
+# rk-run makes out/report.html once per new out/: self-contained (no script, no external reference), with the
+# trial's figures; an up-to-date run leaves it alone, remakes it when it is missing; --no-plots makes none; a
+# page that cannot be made (a failing rk-report) is a warning: rk-run exits 0 and last-run.json says why.
+rk_cli_script(rk_report/rk_report_page REQUIRES sim_small SETUP report_pages)
+
+# Both pages in a real browser (headless Chromium, tests/cli/browser_check.py over the DevTools pipe): no
+# console error, no network request (proxy and host resolver point nowhere; the pages' own CSP forbids every
+# fetch), the tracked-frame percentage of report.json shown on the trial page and on rk-nightly's index, the
+# failed trial listed first with its reason. Skipped (exit 77) when chromium is not installed; CI installs it
+# (scripts/setup.sh --browser).
+rk_cli_script(rk_report/rk_report_pages_in_chromium REQUIRES sim_small report_pages)
+set_tests_properties(rk_report_pages_in_chromium PROPERTIES SKIP_RETURN_CODE 77)
