@@ -32,7 +32,7 @@ int main(int argc, char** argv) {
   bool no_plots = false;
   app.add_option("trial", opt.trial, "Trial manifest trial.json, or the trial folder that holds it")->required();
   rk::cli::AddOptions(&app, &opt, rk::run::RunOptions::Table(),
-                      {{"--jobs", [&] { app.add_flag("--no-plots", no_plots, "No plot steps (rk-plot) this time"); }}});
+                      {{"--jobs", [&] { app.add_flag("--no-plots", no_plots, "No plot steps (rk-plot) and no report page (rk-report) this time"); }}});
   app.add_option("--tool-cache", opt.tool_cache,
                  "JSON file where tool identities (--version, SHA-256) are kept between runs, so that many "
                  "trials ask each tool once (rk-nightly passes one)");
