@@ -2,6 +2,7 @@
 // docs/rk-run.md). Thin CLI over lib/run (run/runner.h): the tools themselves run as child processes.
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -48,11 +49,22 @@ int main(int argc, char** argv) {
       rk::io::CheckOutputNotInput(common.report_path, {opt.trial});
     }
     const bool progress = rk::cli::ShowProgress(common);
+    // Event lines ("extract-az: run (...)") and, between them, the running steps' own progress redrawn in
+    // place (from rk-run's watcher thread, hence the lock).
+    std::mutex stderr_mu;
     if (progress) {
-      opt.progress = [](const std::string& line) { std::cerr << kTool << ": " << line << "\n"; };
+      opt.progress = [&stderr_mu](const std::string& line) {
+        std::lock_guard<std::mutex> lock(stderr_mu);
+        std::cerr << "\r\x1b[K" << kTool << ": " << line << "\n" << std::flush;
+      };
+      opt.step_progress = [&stderr_mu](const std::string& line) {
+        std::lock_guard<std::mutex> lock(stderr_mu);
+        std::cerr << "\r" << kTool << ": " << line << "\x1b[K" << std::flush;
+      };
     }
     rk::run::InstallStopHandlers();
     const rk::run::RunSummary s = rk::run::RunTrial(opt);
+    if (progress) std::cerr << "\r\x1b[K" << std::flush;  // the last progress redraw
     if (!common.report_path.empty()) rk::cli::WriteReport(common.report_path, s.summary);
     if (s.result == rk::run::TrialResult::kFailed || s.result == rk::run::TrialResult::kLocked) {
       throw rk::Error(s.exit_code, s.error);

@@ -130,6 +130,9 @@ void TrialRun::StartStep(std::size_t i, std::map<pid_t, std::size_t>* running) {
   for (const auto& o : r.step.outputs) fs::create_directories((fs::path(work_) / o).parent_path());
   spec.cwd = s_.trial_dir;
   spec.log_path = (fs::path(work_) / r.step.LogFile()).string();
+  const std::string progress_env =
+      progress_files_.Add(r.step.id, (fs::path(work_) / "steps" / (r.step.id + ".progress")).string());
+  if (!progress_env.empty()) spec.env.push_back(progress_env);
   {
     std::ofstream head(spec.log_path);
     head << "# " << r.ran_utc << " " << r.step.id << ":";
@@ -183,6 +186,7 @@ void TrialRun::Execute() {
   for (std::size_t i = 0; i < runs_.size(); ++i) index[runs_[i].step.id] = i;
   std::map<pid_t, std::size_t> running;
   bool stop_launching = false;
+  progress_files_.Start(o_.step_progress);
   for (;;) {
     if (StopSignal() != 0) {
       KillChildren(&running);
@@ -201,6 +205,7 @@ void TrialRun::Execute() {
     FinishStep(&r);
     if (failed_ && !o_.keep_going) stop_launching = true;
   }
+  progress_files_.Stop();
   for (auto& r : runs_) {
     if (r.decision == Decision::kRun && !r.started) {
       r.status = "not-run";
@@ -268,6 +273,7 @@ std::string TrialRun::FailureMessage(const StepRun& r, const std::string& line) 
 
 void TrialRun::FinishStep(StepRun* r) {
   r->finished = true;
+  progress_files_.Remove(r->step.id);
   const std::string log = (fs::path(work_) / r->step.LogFile()).string();
   const bool ok = r->child.signal == 0 && r->child.exit_code == 0;
   if (ok) {

@@ -8,6 +8,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <string_view>
+
 #include <cerrno>
 #include <chrono>
 #include <cstdlib>
@@ -59,6 +61,17 @@ pid_t StartChild(const ChildSpec& spec) {
   std::vector<char*> argv;
   for (const auto& a : spec.argv) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
+  // The child's environment: rk-run's, with spec.env's entries added or replacing the same name.
+  std::vector<char*> envp;
+  for (char** e = environ; e && *e; ++e) {
+    const std::string_view entry(*e);
+    const auto eq = entry.find('=');
+    bool replaced = false;
+    for (const auto& x : spec.env) replaced = replaced || (eq != std::string_view::npos && x.compare(0, eq + 1, entry.substr(0, eq + 1)) == 0);
+    if (!replaced) envp.push_back(*e);
+  }
+  for (const auto& x : spec.env) envp.push_back(const_cast<char*>(x.c_str()));
+  envp.push_back(nullptr);
   const std::string log = spec.log_path.empty() ? std::string("/dev/null") : spec.log_path;
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
@@ -78,7 +91,7 @@ pid_t StartChild(const ChildSpec& spec) {
       WriteAll(2, "rk-run: error: cannot enter the working folder of the step\n");
       ::_exit(125);
     }
-    ::execv(argv[0], argv.data());
+    ::execve(argv[0], argv.data(), envp.data());
     WriteAll(2, "rk-run: error: cannot execute ");
     WriteAll(2, argv[0]);
     WriteAll(2, ": ");

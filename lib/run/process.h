@@ -16,6 +16,7 @@ struct ChildSpec {
   std::vector<std::string> argv;  // argv[0] = path of the executable (absolute)
   std::string cwd;                // working folder of the child
   std::string log_path;           // stdout and stderr are appended here ("" = /dev/null)
+  std::vector<std::string> env;   // "NAME=VALUE" added to (or replacing in) rk-run's environment
 };
 
 struct ChildResult {

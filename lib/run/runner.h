@@ -31,6 +31,10 @@ struct RunOptions {
   std::string tool_cache;       // JSON file of tool identities shared between runs ("" = none)
   std::vector<std::string> command_line;  // for the report
   std::function<void(const std::string&)> progress;  // one line per event, may be empty
+  // The running steps' own progress (done/total, rate, ETA of each tool that reports it through
+  // io::cli::ProgressMeter's RK_PROGRESS_FILE), one line redrawn about twice a second; empty = none
+  // (then the tools are not asked for it).
+  std::function<void(const std::string&)> step_progress;
   // The command-line options above, described once (io::OptionTable).
   static const io::OptionTable<RunOptions>& Table();
   bool Check(std::string* why) const;

@@ -22,6 +22,7 @@
 #include "run/manifest.h"
 #include "run/plan.h"
 #include "run/process.h"
+#include "run/step_progress.h"
 #include "run/run_log.h"
 #include "run/runner.h"
 #include "run/tools.h"
@@ -116,6 +117,9 @@ class TrialRun {
   bool rebuild_ = false;  // a new out/ is needed even if no step runs
   std::string rebuild_reason_;
   std::string page_warning_;  // why out/report.html was not made ("" = made, current or not asked for)
+  // The running steps' progress files (o_.step_progress only): step id → (file, start time). Written by
+  // the main thread (StartStep, FinishStep), read by the watcher thread (step_progress.cc).
+  StepProgressFiles progress_files_;
 };
 
 }  // namespace rk::run::internal

@@ -1,10 +1,9 @@
-// The CLI edge's progress text (cli::FormatProgress): what a person sees on a terminal during a long run.
+// The progress display (io/progress.h): what a person sees on a terminal during a long run.
 #include <gtest/gtest.h>
 
-#include "io/cli.h"
-#include "io/version.h"
+#include "io/progress.h"
 
-namespace rk::cli {
+namespace rk::io {
 namespace {
 
 TEST(Progress, KnownTotalShowsDoneTotalPercentRateAndEta) {
@@ -32,11 +31,5 @@ TEST(Progress, DisabledMeterWritesNothing) {
   EXPECT_EQ(testing::internal::GetCapturedStderr(), "");
 }
 
-TEST(Version, LineNamesToolVersionAndCommit) {
-  const std::string line = VersionLine("rk-locate");
-  EXPECT_EQ(line.rfind("rk-locate (rangekit) ", 0), 0u);
-  EXPECT_NE(line.find(std::string("(git ") + kGitCommit + ")"), std::string::npos);
-}
-
 }  // namespace
-}  // namespace rk::cli
+}  // namespace rk::io
