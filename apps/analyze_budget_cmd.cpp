@@ -3,8 +3,8 @@
 // analysis/budget_locate.h and attitude/cylinder_budget.h; user page docs/rk-analyze.md.
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <memory>
-#include <optional>
 #include <string>
 
 #include "analysis/budget.h"
@@ -15,17 +15,39 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "io/json_util.h"
+#include "io/options.h"
 #include "sim/theodolite_scene.h"
 
 namespace rk::app {
 namespace {
 
 struct BudgetArgs {
-  std::string budget_path, out_path, method = "p3p";
-  std::optional<std::int64_t> samples;
-  std::optional<std::uint64_t> seed;
+  std::string budget_path, out_path;
+  analysis::BudgetOptions given;        // --samples, --seed: only those on the command line are used
+  attitude::CylinderSolveOptions solve;  // --method (cylinder models, Monte Carlo)
   bool table = false;
 };
+
+// A file's count: a value outside [0, 2^63) is made one that Check() refuses.
+std::uint64_t FileCount(double v) {
+  return v >= 0.0 && v < 9.2e18 ? static_cast<std::uint64_t>(v) : std::numeric_limits<std::uint64_t>::max();
+}
+
+// The number options of `table` given on the command line (app.count), copied from `given` over `*to`:
+// flags override the file's values.
+template <class O>
+void CopyGivenOptions(const CLI::App& app, const io::OptionTable<O>& table, const O& given, O* to) {
+  using Kind = typename io::OptionSpec<O>::Kind;
+  O& from = const_cast<O&>(given);  // the accessors only read from it
+  for (const auto& s : table.specs()) {
+    if (app.count(s.flag) == 0) continue;
+    if (s.kind == Kind::kReal) s.real(*to) = s.real(from);
+    if (s.kind == Kind::kInteger) s.integer(*to) = s.integer(from);
+    if (s.kind == Kind::kCount) s.count(*to) = s.count(from);
+    if (s.kind == Kind::kFlag) s.flag_value(*to) = s.flag_value(from);
+    if (s.kind == Kind::kChoice) s.set_choice(to, s.get_choice(from));
+  }
+}
 
 // "camera": a path (relative to the budget file), an inline model, or absent (the model's default).
 camera::CameraModel BudgetCamera(const io::Json& j, const std::string& budget_path, const camera::CameraModel& fallback) {
@@ -52,14 +74,11 @@ Command AddBudgetCommand(CLI::App& parent) {
   c->add_option("--budget", a->budget_path, "Budget JSON: model, camera, nominal, sources[, monte_carlo] ('-' = stdin)")
       ->required();
   c->add_option("-o,--output", a->out_path, "Result JSON ('-' = stdout)")->required();
-  c->add_option("--samples", a->samples, "Monte Carlo draws (overrides the file; default 20000; 0 = Jacobian only)");
-  c->add_option("--seed", a->seed, "Monte Carlo seed (overrides the file; default 1)");
-  c->add_option("--method", a->method, "Cylinder solver in Monte Carlo: p3p or search")
-      ->check(CLI::IsMember({"p3p", "search"}))
-      ->capture_default_str();
+  cli::AddOptions(c, &a->given, analysis::BudgetOptions::Table());
+  cli::AddOptions(c, &a->solve, attitude::CylinderSolveOptions::Table());
   c->add_flag("--table", a->table, "Print a fixed-width table to stdout (to stderr when -o is '-')");
 
-  return {c, [a](const Context& ctx) -> int {
+  return {c, [a, c](const Context& ctx) -> int {
             io::CheckOutputNotInput(a->out_path, {a->budget_path});
             if (!ctx.common.report_path.empty()) io::CheckOutputNotInput(ctx.common.report_path, {a->budget_path});
             const io::Json j = io::LoadJson(a->budget_path);
@@ -68,8 +87,7 @@ Command AddBudgetCommand(CLI::App& parent) {
             const std::string model_name = io::RequireString(j, "model", where);
             if (!j.contains("nominal")) throw DataError(where, 0, 0, "missing \"nominal\"");
             if (!j.contains("sources")) throw DataError(where, 0, 0, "missing \"sources\"");
-            attitude::CylinderSolveOptions solve;
-            if (!attitude::ParseCylinderMethod(a->method, &solve.method)) throw UsageError("unknown --method " + a->method);
+            const attitude::CylinderSolveOptions& solve = a->solve;
             std::unique_ptr<analysis::BudgetModel> model;
             if (model_name == "cylinder") {
               model = attitude::MakeCylinderBudgetModel(j.at("nominal"), BudgetCamera(j, where, sim::Seed004Camera()), solve, where);
@@ -85,18 +103,18 @@ Command AddBudgetCommand(CLI::App& parent) {
             analysis::BudgetOptions opt;
             if (j.contains("monte_carlo") && j.at("monte_carlo").is_object()) {
               const io::Json& mc = j.at("monte_carlo");
-              opt.samples = static_cast<std::int64_t>(io::NumberOr(mc, "samples", static_cast<double>(opt.samples), where + ": monte_carlo"));
-              opt.seed = static_cast<std::uint64_t>(io::NumberOr(mc, "seed", static_cast<double>(opt.seed), where + ": monte_carlo"));
+              const std::string mc_where = where + ": monte_carlo";
+              opt.samples = FileCount(io::NumberOr(mc, "samples", static_cast<double>(opt.samples), mc_where));
+              opt.seed = FileCount(io::NumberOr(mc, "seed", static_cast<double>(opt.seed), mc_where));
             }
-            if (a->samples) opt.samples = *a->samples;
-            if (a->seed) opt.seed = *a->seed;
+            CopyGivenOptions(*c, analysis::BudgetOptions::Table(), a->given, &opt);
             std::string why;
             if (!opt.Check(&why)) throw UsageError(why);
             const analysis::BudgetResult r = analysis::RunBudget(*model, sources, opt);
             io::Json out = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
             cli::AddReportInput(&out, "budget", a->budget_path);
             out["subcommand"] = "budget";
-            out["solver"] = a->method;
+            out["solver"] = attitude::CylinderMethodName(solve.method);
             out.update(analysis::BudgetResultToJson(*model, sources, opt, r));
             if (r.failed > 0) {
               cli::Warn(ctx.tool, ctx.common,

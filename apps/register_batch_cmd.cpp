@@ -12,7 +12,6 @@ namespace {
 struct BatchArgs {
   reg::InputArgs in;
   registration::BatchOptions opt;
-  std::string associate = "gate", loss = "huber";
 };
 
 }  // namespace
@@ -25,29 +24,14 @@ Command AddBatchCommand(CLI::App& app) {
       "coincide; robust loss; Ceres; biases with their covariance. Starts from a Bernoulli pass; association by "
       "re-gating with the whole-trial estimate (default), the Bernoulli pass's selection, or track_id.");
   reg::AddInputOptions(sub, &args->in);
-  reg::AddBernoulliOptions(sub, &args->opt.initial, false);
-  sub->add_option("--associate", args->associate, "gate, bernoulli or track")
-      ->check(CLI::IsMember({"gate", "bernoulli", "track"}))
-      ->capture_default_str();
-  sub->add_option("--loss", args->loss, "Robust loss: huber, cauchy or none")
-      ->check(CLI::IsMember({"huber", "cauchy", "none"}))
-      ->capture_default_str();
-  sub->add_option("--loss-scale", args->opt.loss_scale,
-                  "Whitened residual norm beyond which the loss is no longer quadratic")
-      ->capture_default_str();
-  sub->add_option("--gate", args->opt.gate_d2, "Association gate on the pair's Mahalanobis distance squared")
-      ->capture_default_str();
-  sub->add_option("--rounds", args->opt.max_rounds, "Association rounds at most (gate)")->capture_default_str();
-  sub->add_option("--iterations", args->opt.max_iterations, "Ceres iterations per solve at most")
-      ->capture_default_str();
+  cli::AddOptions(sub, &args->opt.initial, registration::BernoulliOptions::PassTable());
+  cli::AddOptions(sub, &args->opt, registration::BatchOptions::Table());
   Command cmd;
   cmd.app = sub;
   cmd.run = [args](const Context& ctx) -> int {
     BatchArgs& a = *args;
     registration::BatchOptions opt = a.opt;
     opt.initial.filter = reg::MakeFilterOptions(a.in);
-    registration::ParseBatchAssociation(a.associate, &opt.association);
-    registration::ParseRobustLoss(a.loss, &opt.loss);
     std::string why;
     if (!opt.Check(&why)) throw UsageError(why);
     reg::CheckPaths(a.in, ctx);

@@ -12,7 +12,6 @@ namespace {
 struct BernoulliArgs {
   reg::InputArgs in;
   registration::BernoulliOptions opt;
-  bool allow_plot_reuse = false;
 };
 
 }  // namespace
@@ -25,16 +24,13 @@ Command AddBernoulliCommand(CLI::App& app) {
       "with the modified greedy measurement partition (K subsets of L pairs per component and step), pruning "
       "and merging. Association unknown; clutter allowed. -L 1 = no partition (the paper's 'before').");
   reg::AddInputOptions(sub, &args->in);
-  reg::AddBernoulliOptions(sub, &args->opt, true);
-  sub->add_flag("--allow-plot-reuse", args->allow_plot_reuse,
-                "Let a subset use one plot in several pairs (the paper excludes only repeated pairs)");
+  cli::AddOptions(sub, &args->opt, registration::BernoulliOptions::Table());
   Command cmd;
   cmd.app = sub;
   cmd.run = [args](const Context& ctx) -> int {
     BernoulliArgs& a = *args;
     registration::BernoulliOptions opt = a.opt;
     opt.filter = reg::MakeFilterOptions(a.in);
-    opt.exclusive_plots = !a.allow_plot_reuse;
     std::string why;
     if (!opt.Check(&why)) throw UsageError(why);
     reg::CheckPaths(a.in, ctx);

@@ -8,7 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "geo/angles.h"
 #include "io/cli.h"
 #include "io/csv.h"
 #include "io/error.h"
@@ -23,15 +22,13 @@ namespace rk::app::reg {
 struct InputArgs {
   std::string plots, nav, output;
   bool sigmas = false;
-  registration::InputOptions input;
-  double sigma_range_m = 50.0;
-  double sigma_az_deg = geo::RadToDeg(0.0087);
-  double sigma_el_deg = geo::RadToDeg(0.0087);
-  std::string linearize = "estimate";
+  registration::InputOptions input;     // --pair-tol
+  registration::FilterOptions filter;   // noise, --linearize; --p0 and --q below
   std::string p0, q;  // six values each, file units (m, deg)
   io::BadRows bad_rows = io::BadRows::kError;
 };
 
+// The options every subcommand takes: files, --sigmas, then the input and filter tables and the prior lists.
 inline void AddInputOptions(CLI::App* sub, InputArgs* a) {
   sub->add_option("--plots", a->plots, "Radar plots CSV: t_s,radar,range_m,az_deg,el_deg[,track_id] ('-' = stdin)")
       ->required();
@@ -40,17 +37,8 @@ inline void AddInputOptions(CLI::App* sub, InputArgs* a) {
   cli::AddBadRowsOption(sub, &a->bad_rows);
   sub->add_option("-o,--output", a->output, "Biases CSV, one row per step ('-' = stdout)")->required();
   sub->add_flag("--sigmas", a->sigmas, "Add the 1-sigma columns <radar>_range_sigma_m ... <radar>_roll_sigma_deg");
-  sub->add_option("--pair-tol", a->input.pair_tol_s,
-                  "Plots of both radars within this many seconds of a step's first plot form one step (s)")
-      ->capture_default_str();
-  sub->add_option("--sigma-range", a->sigma_range_m, "Range noise 1-sigma of both radars (m)")->capture_default_str();
-  sub->add_option("--sigma-az", a->sigma_az_deg, "Azimuth noise 1-sigma of both radars (deg)")->capture_default_str();
-  sub->add_option("--sigma-el", a->sigma_el_deg, "Elevation noise 1-sigma of both radars (deg)")->capture_default_str();
-  sub->add_option("--linearize", a->linearize,
-                  "Linearisation point of the measurement model: estimate (current bias estimate) or measured "
-                  "(the paper's eqs. 2 and 7: about the measured values)")
-      ->check(CLI::IsMember({"estimate", "measured"}))
-      ->capture_default_str();
+  cli::AddOptions(sub, &a->input, registration::InputOptions::Table());
+  cli::AddOptions(sub, &a->filter, registration::FilterOptions::Table());
   sub->add_option("--p0", a->p0,
                   "Prior 1-sigma of each radar's biases: range_m,az_deg,el_deg,yaw_deg,pitch_deg,roll_deg "
                   "(default 2000,1.719,1.719,1.719,1.719,1.719; prior mean 0)");
@@ -76,40 +64,14 @@ inline registration::RadarBias ParseSix(const std::string& list, const std::stri
   return v;
 }
 
+// The filter options of the flags with --p0 and --q parsed (file units → m, rad). Throws UsageError.
 inline registration::FilterOptions MakeFilterOptions(const InputArgs& a) {
-  registration::FilterOptions f;
-  f.noise.sigma_range_m = a.sigma_range_m;
-  f.noise.sigma_az_rad = geo::DegToRad(a.sigma_az_deg);
-  f.noise.sigma_el_rad = geo::DegToRad(a.sigma_el_deg);
-  registration::ParseLinearization(a.linearize, &f.linearization);
+  registration::FilterOptions f = a.filter;
   if (!a.p0.empty()) f.initial_sigma = ParseSix(a.p0, "--p0");
   if (!a.q.empty()) f.process_sigma = ParseSix(a.q, "--q");
   std::string why;
   if (!f.Check(&why)) throw UsageError(why);
   return f;
-}
-
-inline void AddBernoulliOptions(CLI::App* sub, registration::BernoulliOptions* b, bool with_gate) {
-  sub->add_option("-K,--subsets", b->subsets, "Greedy partition: number of subsets K kept per component")
-      ->capture_default_str();
-  sub->add_option("-L,--subset-length", b->subset_length,
-                  "Greedy partition: subset length L (pairs per component and step); 1 = no partition")
-      ->capture_default_str();
-  if (with_gate) {
-    sub->add_option("--gate", b->gate_d2, "Gate on the pair's Mahalanobis distance squared (3 dof)")
-        ->capture_default_str();
-  }
-  sub->add_option("--pd", b->detection_probability,
-                  "Detection probability p_D in (0, 1]; 1 = the paper's no-missed-detection subsets")
-      ->capture_default_str();
-  sub->add_option("--clutter-density", b->clutter_density,
-                  "Density of false differences (per m^3); 0 = estimated per step")
-      ->capture_default_str();
-  sub->add_option("--prune", b->prune_weight, "Prune components lighter than this weight")->capture_default_str();
-  sub->add_option("--merge", b->merge_d2, "Merge components within this Mahalanobis distance squared")
-      ->capture_default_str();
-  sub->add_option("--max-components", b->max_components, "Keep at most this many Gaussian components")
-      ->capture_default_str();
 }
 
 inline void CheckPaths(const InputArgs& a, const Context& ctx) {

@@ -18,11 +18,7 @@ namespace rk::app {
 namespace {
 
 struct AukfArgs {
-  std::string input, output, columns, adapt = "auto", meas_sigma, q, noise_estimate = "ml", noise_fit = "causal",
-                                  smooth_noise_fit = "file";
-  int window = 40;
-  double fading = 0.0;
-  bool fading_set = false;
+  std::string input, output, columns, adapt = "auto", meas_sigma, q;
   filter::AukfOptions opt;
   filter::AukfOutputOptions out;
   io::BadRows bad_rows = io::BadRows::kError;
@@ -44,24 +40,16 @@ std::vector<double> ParseNumbers(const std::string& list, const std::string& opt
   return v;
 }
 
-// The filter options from the flags: names of modes parsed, --window/--fading, the noise lists (one value or
-// one per column; file units → radians for angle columns). Throws UsageError.
+// The filter options from the flags: the table's, --adapt, the memory (--fading given: fading, else the
+// window), the noise lists (one value or one per column; file units → radians for angle columns). Throws
+// UsageError.
 filter::AukfOptions AukfOptionsOf(const AukfArgs& a, const CLI::App& sub, std::vector<std::string>* columns_out) {
   filter::AukfOptions opt = a.opt;
   if (!filter::ParseAdaptMode(a.adapt == "auto" ? "none" : a.adapt, &opt.adapt.mode)) {
     throw UsageError("--adapt: unknown mode " + a.adapt);
   }
-  if (!filter::ParseNoiseEstimator(a.noise_estimate, &opt.noise_estimator)) {
-    throw UsageError("--noise-estimate: unknown method " + a.noise_estimate);
-  }
-  if (!filter::ParseNoiseFit(a.noise_fit, &opt.noise_fit) ||
-      !filter::ParseNoiseFit(a.smooth_noise_fit, &opt.smooth_noise_fit)) {
-    throw UsageError("--noise-fit/--smooth-noise-fit: causal or file");
-  }
-  opt.adapt.window = a.window;
   if (sub.count("--fading") > 0) {
     opt.adapt.memory = filter::AdaptMemory::kFading;
-    opt.adapt.fading = a.fading;
     if (sub.count("--window") > 0) throw UsageError("--window and --fading exclude each other");
   }
   const std::vector<std::string> columns = io::SplitList(a.columns);
@@ -152,49 +140,26 @@ Command AddAukfCommand(CLI::App& app) {
                   "Comma-separated value columns, 1 to 12 (e.g. e_m,n_m,u_m,yaw_deg)")
       ->required();
   sub->add_option("-o,--output", args->output, "Output CSV ('-' = stdout)")->required();
-  sub->add_option("--lead", args->opt.lead,
-                  "Fraction of each interval at which the prediction is output, in (0, 1)")
-      ->capture_default_str();
-  sub->add_flag("--smooth", args->opt.smooth, "Add 'smoothed' rows (unscented RTS) at sample and mid-times");
-  sub->add_option("--adapt", args->adapt,
-                  "Adapt the noise from the innovations: none, r, q, qr, or auto (= none with the "
-                  "data-estimated noise: "
-                  "measured best on the turntable benchmark; r alone can diverge, see docs/rk-smooth.md)")
-      ->check(CLI::IsMember({"auto", "none", "r", "q", "qr"}))
-      ->capture_default_str();
-  sub->add_option("--window", args->window, "Innovation window N in samples (windowed memory, the default)")
-      ->capture_default_str();
-  sub->add_option("--fading", args->fading, "Fading-memory factor lambda in (0, 1) instead of a window");
-  sub->add_option(
-      "--meas-sigma", args->meas_sigma,
-      "Initial measurement noise 1-sigma, one value or one per column, in file units (degrees for "
-      "_deg); default: estimated from the data (--noise-estimate)");
-  sub->add_option("--q", args->q,
-                  "White-jerk intensity q, one value or one per column, in file units^2/s^5 (deg^2/s^5 for "
-                  "_deg); default: estimated from the data (--noise-estimate)");
-  sub->add_option(
-         "--noise-estimate", args->noise_estimate,
-         "How --meas-sigma/--q not given are estimated per column: ml (sigma from high-order differences, q "
-         "by maximum likelihood of the innovations) or moments (third differences at lags 1-8 only)")
-      ->check(CLI::IsMember({"ml", "moments"}))
-      ->capture_default_str();
-  sub->add_option("--noise-fit", args->noise_fit,
-                  "Data the fitted noise of the estimate/prediction rows may use: causal (the rows up to each "
-                  "time, refitted as the file goes: no row depends on a later sample) or file (the whole file, "
-                  "the old default: earlier rows then depend on later samples)")
-      ->check(CLI::IsMember({"causal", "file"}))
-      ->capture_default_str();
-  sub->add_option("--smooth-noise-fit", args->smooth_noise_fit,
-                  "Noise fit behind the 'smoothed' rows: file (an extra forward pass with the whole-file fit) or "
-                  "causal (smooth the causal pass)")
-      ->check(CLI::IsMember({"causal", "file"}))
-      ->capture_default_str();
-  sub->add_option("--kappa", args->opt.kappa, "Sigma-point parameter kappa: W0 = kappa/(n+kappa)")
-      ->capture_default_str();
-  sub->add_flag("--derivatives", args->out.derivatives,
-                "Add <base>_rate_<unit>_s and <base>_accel_<unit>_s2 columns (e.g. yaw_rate_deg_s)");
-  sub->add_flag("--sigmas", args->out.sigmas,
-                "Add <base>_sigma_<unit> columns (1-sigma of each value, file units)");
+  // The table's options, with --adapt and the noise lists at their places in --help.
+  const auto add_adapt = [sub, args] {
+    sub->add_option("--adapt", args->adapt,
+                    "Adapt the noise from the innovations: none, r, q, qr, or auto (= none with the "
+                    "data-estimated noise: "
+                    "measured best on the turntable benchmark; r alone can diverge, see docs/rk-smooth.md)")
+        ->check(CLI::IsMember({"auto", "none", "r", "q", "qr"}))
+        ->capture_default_str();
+  };
+  const auto add_lists = [sub, args] {
+    sub->add_option("--meas-sigma", args->meas_sigma,
+                    "Initial measurement noise 1-sigma, one value or one per column, in file units (degrees for "
+                    "_deg); default: estimated from the data (--noise-estimate)");
+    sub->add_option("--q", args->q,
+                    "White-jerk intensity q, one value or one per column, in file units^2/s^5 (deg^2/s^5 for "
+                    "_deg); default: estimated from the data (--noise-estimate)");
+  };
+  cli::AddOptions(sub, &args->opt, filter::AukfOptions::Table(),
+                  {{"--window", add_adapt}, {"--noise-estimate", add_lists}});
+  cli::AddOptions(sub, &args->out, filter::AukfOutputOptions::Table());
 
   return {sub, [args, sub](const Context& ctx) { return RunAukfCommand(*args, *sub, ctx); }};
 }

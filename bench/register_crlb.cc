@@ -71,8 +71,8 @@ int main(int argc, char** argv) {
   const int nt = o.targets, np = 12 + 6 * nt;
   Eigen::MatrixXd F_cv = Eigen::MatrixXd::Zero(np, np);
   Eigen::Matrix<double, 12, 12> F_pair = Eigen::Matrix<double, 12, 12>::Zero();
-  const Eigen::Vector3d rinv(1 / (noise.sigma_range_m * noise.sigma_range_m), 1 / (noise.sigma_az_rad * noise.sigma_az_rad),
-                             1 / (noise.sigma_el_rad * noise.sigma_el_rad));
+  const Eigen::Vector3d rinv(1 / (noise.sigma_range_m * noise.sigma_range_m), 1 / (noise.sigma_az_rad() * noise.sigma_az_rad()),
+                             1 / (noise.sigma_el_rad() * noise.sigma_el_rad()));
   for (int k = 0; k < o.steps; ++k) {
     const double t = sim.ScanTime(0, k);
     registration::PlatformPose pose[2];

@@ -33,12 +33,13 @@ Eigen::VectorXd BudgetModel::NominalInputs() const {
   return x;
 }
 
-bool BudgetOptions::Check(std::string* why) const {
-  if (samples < 0 || samples > 100000000) {
-    *why = "--samples must be in [0, 1e8]";
-    return false;
-  }
-  return true;
+const io::OptionTable<BudgetOptions>& BudgetOptions::Table() {
+  static const io::OptionTable<BudgetOptions> table =
+      io::OptionTable<BudgetOptions>()
+          .Count("--samples", &BudgetOptions::samples, "", io::Bounds::Closed(0, 1e8),
+                 "Monte Carlo draws (overrides the file; 0 = Jacobian only)")
+          .Count("--seed", &BudgetOptions::seed, "", io::Bounds::Any(), "Monte Carlo seed (overrides the file)");
+  return table;
 }
 
 namespace {
@@ -242,8 +243,8 @@ BudgetResult RunBudget(const BudgetModel& model, const std::vector<BudgetSource>
     o.sigma_mc = o.mean_mc = o.rms_mc = o.p95_abs_mc = std::nan("");
   }
   // Monte Carlo.
-  r.samples = options.samples;
-  if (options.samples > 0) {
+  r.samples = static_cast<std::int64_t>(options.samples);  // <= 1e8 (Check)
+  if (r.samples > 0) {
     std::seed_seq seq{options.seed, static_cast<std::uint64_t>(0xB0D6E7)};
     std::mt19937_64 rng(seq);
     std::normal_distribution<double> normal(0.0, 1.0);
@@ -251,7 +252,7 @@ BudgetResult RunBudget(const BudgetModel& model, const std::vector<BudgetSource>
     std::vector<std::vector<double>> errors(n_out);
     for (auto& e : errors) e.reserve(static_cast<std::size_t>(options.samples));
     Eigen::VectorXd x(x0.size()), y;
-    for (std::int64_t s = 0; s < options.samples; ++s) {
+    for (std::int64_t s = 0; s < r.samples; ++s) {
       x = x0;
       for (const BudgetSource& src : sources) {
         for (int i : src.inputs) {

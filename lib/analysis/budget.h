@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "io/json_util.h"
+#include "io/options.h"
 
 namespace rk::analysis {
 
@@ -85,9 +86,12 @@ std::vector<BudgetSource> ParseBudgetSources(const io::Json& sources, const Budg
                                              const std::string& where);
 
 struct BudgetOptions {
-  std::int64_t samples = 20000;  // Monte Carlo draws, [0, 1e8]; 0 = Jacobian only
+  std::uint64_t samples = 20000;  // Monte Carlo draws, [0, 1e8]; 0 = Jacobian only
   std::uint64_t seed = 1;
-  bool Check(std::string* why) const;
+  // --samples, --seed (io/options.h). rk-analyze budget: a flag given overrides the budget file's
+  // "monte_carlo" value, which overrides the default.
+  static const io::OptionTable<BudgetOptions>& Table();
+  bool Check(std::string* why) const { return Table().Check(*this, why); }
 };
 
 struct BudgetOutputResult {

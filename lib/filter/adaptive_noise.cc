@@ -23,15 +23,18 @@ const char* AdaptModeName(AdaptMode mode) {
   return "?";
 }
 
+const io::OptionTable<AdaptiveNoiseOptions>& AdaptiveNoiseOptions::Table() {
+  static const io::OptionTable<AdaptiveNoiseOptions> table =
+      io::OptionTable<AdaptiveNoiseOptions>()
+          .Integer("--window", &AdaptiveNoiseOptions::window, "samples", io::Bounds::Closed(2, 100000),
+                   "Innovation window N in samples (windowed memory, the default)")
+          .Real("--fading", &AdaptiveNoiseOptions::fading, "", io::Bounds::Open(0.0, 1.0),
+                "Fading-memory factor lambda in (0, 1) instead of a window");
+  return table;
+}
+
 bool AdaptiveNoiseOptions::Check(std::string* why) const {
-  if (memory == AdaptMemory::kWindow && !(window >= 2 && window <= 100000)) {
-    *why = "--window must be in [2, 100000] samples";
-    return false;
-  }
-  if (memory == AdaptMemory::kFading && !(fading > 0.0 && fading < 1.0)) {
-    *why = "--fading must be in (0, 1)";
-    return false;
-  }
+  if (!Table().Check(*this, why)) return false;
   if (!(r_floor > 0.0 && r_floor < 1.0) || !(q_floor > 0.0 && q_floor < 1.0) || !(r_ceiling > 1.0) ||
       !(q_ceiling > 1.0)) {
     *why = "adaptive noise floors must be in (0, 1) and ceilings > 1";

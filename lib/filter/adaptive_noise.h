@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "filter/ukf.h"
+#include "io/options.h"
 
 namespace rk::filter {
 
@@ -43,6 +44,9 @@ struct AdaptiveNoiseOptions {
   double r_ceiling = 1e2;    // σ_R ≤ 10 σ_R₀: the innovation-based R̂ absorbs model error and can run away
   double q_floor = 1e-10;
   double q_ceiling = 1e6;    // bounds Q̂ = K C Kᵀ in the same scaled space
+
+  // --window and --fading (io/options.h); both are checked whichever memory is used (defaults valid).
+  static const io::OptionTable<AdaptiveNoiseOptions>& Table();
   bool Check(std::string* why) const;
   // Samples needed before C_k is used: N (window) or ⌈1/(1−λ)⌉ (fading).
   int Warmup() const;

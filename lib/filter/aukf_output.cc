@@ -97,25 +97,20 @@ io::Json AukfReportJson(const Series& series, const AukfOptions& options, const 
     cols.push_back(col);
   }
   io::Json j;
-  j["options"] = {{"lead", options.lead},
-                  {"kappa", options.kappa},
-                  {"adapt", AdaptModeName(options.adapt.mode)},
-                  {"memory", options.adapt.memory == AdaptMemory::kWindow ? "window" : "fading"},
-                  {"window", options.adapt.window},
-                  {"fading", options.adapt.fading},
-                  {"r_floor", options.adapt.r_floor},
-                  {"q_floor", options.adapt.q_floor},
-                  {"r_ceiling", options.adapt.r_ceiling},
-                  {"q_ceiling", options.adapt.q_ceiling},
-                  {"smooth", options.smooth},
-                  {"meas_sigma_estimated", result.meas_sigma_estimated},
-                  {"q_estimated", result.q_estimated},
-                  {"noise_estimate", NoiseEstimatorName(options.noise_estimator)},
-                  {"noise_fit", NoiseFitName(options.noise_fit)},
-                  {"smooth_noise_fit", NoiseFitName(options.smooth_noise_fit)},
-                  {"process_model", "white jerk, Q(tau) = q [[tau^5/20, tau^4/8, tau^3/6], [tau^4/8, tau^3/3, "
-                                    "tau^2/2], [tau^3/6, tau^2/2, tau]] per column"},
-                  {"columns", cols}};
+  // The table's options (keys from the flags) and what the app or the run decided.
+  j["options"] = AukfOptions::Table().ToJson(options);
+  j["options"].update(io::Json::object(
+      {{"adapt", AdaptModeName(options.adapt.mode)},
+       {"memory", options.adapt.memory == AdaptMemory::kWindow ? "window" : "fading"},
+       {"r_floor", options.adapt.r_floor},
+       {"q_floor", options.adapt.q_floor},
+       {"r_ceiling", options.adapt.r_ceiling},
+       {"q_ceiling", options.adapt.q_ceiling},
+       {"meas_sigma_estimated", result.meas_sigma_estimated},
+       {"q_estimated", result.q_estimated},
+       {"process_model", "white jerk, Q(tau) = q [[tau^5/20, tau^4/8, tau^3/6], [tau^4/8, tau^3/3, "
+                         "tau^2/2], [tau^3/6, tau^2/2, tau]] per column"},
+       {"columns", cols}}));
   j["counts"] = {{"samples", result.samples},
                  {"nodes", result.t_s.size()},
                  {"updates", result.updates},

@@ -18,15 +18,43 @@ using ukf::SigmaMat;
 using ukf::StateMat;
 using ukf::StateVec;
 
+const io::OptionTable<AukfOptions>& AukfOptions::Table() {
+  using O = AukfOptions;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Real("--lead", &O::lead, "", io::Bounds::Open(0.0, 1.0),
+                "Fraction of each interval at which the prediction is output, in (0, 1)")
+          .Flag("--smooth", &O::smooth, "Add 'smoothed' rows (unscented RTS) at sample and mid-times")
+          .Sub(&O::adapt, AdaptiveNoiseOptions::Table())
+          .Choice("--noise-estimate", &O::noise_estimator,
+                  {NoiseEstimator::kMaxLikelihood, NoiseEstimator::kDifferences}, NoiseEstimatorName,
+                  "How --meas-sigma/--q not given are estimated per column: ml (sigma from high-order differences, "
+                  "q by maximum likelihood of the innovations) or moments (third differences at lags 1-8 only)")
+          .Choice("--noise-fit", &O::noise_fit, {NoiseFit::kCausal, NoiseFit::kFile}, NoiseFitName,
+                  "Data the fitted noise of the estimate/prediction rows may use: causal (the rows up to each "
+                  "time, refitted as the file goes: no row depends on a later sample) or file (the whole file, "
+                  "the old default: earlier rows then depend on later samples)")
+          .Choice("--smooth-noise-fit", &O::smooth_noise_fit, {NoiseFit::kCausal, NoiseFit::kFile}, NoiseFitName,
+                  "Noise fit behind the 'smoothed' rows: file (an extra forward pass with the whole-file fit) or "
+                  "causal (smooth the causal pass)")
+          // n + kappa > 0 for every n >= 1 columns' 3n states.
+          .Real("--kappa", &O::kappa, "", io::Bounds{.lo = -1.0, .lo_open = true, .finite = true},
+                "Sigma-point parameter kappa: W0 = kappa/(n+kappa)");
+  return table;
+}
+
+const io::OptionTable<AukfOutputOptions>& AukfOutputOptions::Table() {
+  static const io::OptionTable<AukfOutputOptions> table =
+      io::OptionTable<AukfOutputOptions>()
+          .Flag("--derivatives", &AukfOutputOptions::derivatives,
+                "Add <base>_rate_<unit>_s and <base>_accel_<unit>_s2 columns (e.g. yaw_rate_deg_s)")
+          .Flag("--sigmas", &AukfOutputOptions::sigmas,
+                "Add <base>_sigma_<unit> columns (1-sigma of each value, file units)");
+  return table;
+}
+
 bool AukfOptions::Check(std::string* why) const {
-  if (!(lead > 0.0 && lead < 1.0)) {
-    *why = "--lead must be in (0, 1)";
-    return false;
-  }
-  if (!(kappa > -1.0 && std::isfinite(kappa))) {
-    *why = "--kappa must be > -1 (and n + kappa > 0)";
-    return false;
-  }
+  if (!Table().Check(*this, why)) return false;
   for (double s : meas_sigma) {
     if (!(s > 0.0 && std::isfinite(s))) {
       *why = "--meas-sigma values must be > 0";
@@ -47,18 +75,7 @@ bool AukfOptions::Check(std::string* why) const {
   return adapt.Check(why) && causal.Check(why);
 }
 
-bool ParseNoiseEstimator(const std::string& s, NoiseEstimator* e) {
-  if (s == "ml") {
-    *e = NoiseEstimator::kMaxLikelihood;
-  } else if (s == "moments") {
-    *e = NoiseEstimator::kDifferences;
-  } else {
-    return false;
-  }
-  return true;
-}
-
-const char* NoiseEstimatorName(NoiseEstimator e) { return e == NoiseEstimator::kMaxLikelihood ? "ml" : "moments"; }
+std::string NoiseEstimatorName(NoiseEstimator e) { return e == NoiseEstimator::kMaxLikelihood ? "ml" : "moments"; }
 
 Eigen::Matrix3d WhiteJerkQ(double t, double q) {
   const double t2 = t * t, t3 = t2 * t, t4 = t3 * t, t5 = t4 * t;
@@ -282,18 +299,7 @@ bool CausalNoiseOptions::IsRefit(std::size_t rows) const {
   return (r & (r - 1)) == 0;  // dense · 2^j
 }
 
-bool ParseNoiseFit(const std::string& s, NoiseFit* f) {
-  if (s == "causal") {
-    *f = NoiseFit::kCausal;
-  } else if (s == "file") {
-    *f = NoiseFit::kFile;
-  } else {
-    return false;
-  }
-  return true;
-}
-
-const char* NoiseFitName(NoiseFit f) { return f == NoiseFit::kCausal ? "causal" : "file"; }
+std::string NoiseFitName(NoiseFit f) { return f == NoiseFit::kCausal ? "causal" : "file"; }
 
 namespace {
 

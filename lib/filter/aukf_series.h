@@ -68,17 +68,16 @@
 #include "filter/ukf.h"
 #include "io/csv.h"
 #include "io/json_util.h"
+#include "io/options.h"
 
 namespace rk::filter {
 
 enum class NoiseEstimator { kMaxLikelihood, kDifferences };
-bool ParseNoiseEstimator(const std::string& s, NoiseEstimator* e);
-const char* NoiseEstimatorName(NoiseEstimator e);
+std::string NoiseEstimatorName(NoiseEstimator e);  // "ml", "moments"
 
 // Which samples the fitted σ and q of the forward pass may use: those up to each time, or the whole file.
 enum class NoiseFit { kCausal, kFile };
-bool ParseNoiseFit(const std::string& s, NoiseFit* f);
-const char* NoiseFitName(NoiseFit f);
+std::string NoiseFitName(NoiseFit f);  // "causal", "file"
 
 // Refit schedule of NoiseFit::kCausal, in rows available (see the header comment).
 struct CausalNoiseOptions {
@@ -113,6 +112,11 @@ struct AukfOptions {
   // Run the unscented transform on the joint state even when the columns are independent (no adaptation),
   // instead of per column block; same results to rounding, slower (tests, benchmarks).
   bool joint_transform = false;
+
+  // --lead, --smooth, --window, --fading, --noise-estimate, --noise-fit, --smooth-noise-fit, --kappa
+  // (io/options.h): CLI flags, the bounds in Check() and the report's options keys. --adapt (with its
+  // "auto"), the lists --meas-sigma/--q and the choice of memory (--fading given) are read by the app.
+  static const io::OptionTable<AukfOptions>& Table();
   bool Check(std::string* why) const;
 };
 
@@ -188,6 +192,7 @@ struct AukfOutputOptions {
   bool derivatives = false;  // <base>_rate_<unit>_s, <base>_accel_<unit>_s2 columns (DerivedColumnName)
   bool sigmas = false;       // <base>_sigma_<unit> (1σ of the value) columns
   int decimals = 9;
+  static const io::OptionTable<AukfOutputOptions>& Table();  // --derivatives, --sigmas
 };
 
 // Output table `t_s,kind,<columns>,status[,<rate>,<accel> per column][,<base>_sigma_<unit> per column]`, rows in

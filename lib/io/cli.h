@@ -32,24 +32,27 @@ void AddCommonOptions(CLI::App& app, const std::string& tool, CommonOptions* com
 // io::CsvTable::Read with the rule of the file it reads.
 void AddBadRowsOption(CLI::App* app, io::BadRows* bad_rows);
 
-// One option of a table, as AddOptions registers it.
+// One option of a table, as AddOptions registers it. A number's shown default is captured from the member
+// (capture_default_str), never set with default_val: CLI11 runs the callback of a variable's option for a
+// default value, so default_val would write the 6-digit text back into the member (0.0087 rad given as
+// 0.4984732... deg would become 0.498473).
 template <class O>
 void AddOption(CLI::App* app, O* options, const io::OptionSpec<O>& s) {
   using Kind = typename io::OptionSpec<O>::Kind;
   switch (s.kind) {
     case Kind::kReal: {
       double& v = s.real(*options);
-      app->add_option(s.names(), v, s.help)->default_val(v);
+      app->add_option(s.names(), v, s.help)->capture_default_str();
       break;
     }
     case Kind::kInteger: {
       int& v = s.integer(*options);
-      app->add_option(s.names(), v, s.help)->default_val(v);
+      app->add_option(s.names(), v, s.help)->capture_default_str();
       break;
     }
     case Kind::kCount: {
       std::uint64_t& v = s.count(*options);
-      app->add_option(s.names(), v, s.help)->default_val(v);
+      app->add_option(s.names(), v, s.help)->capture_default_str();
       break;
     }
     case Kind::kFlag:

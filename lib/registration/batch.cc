@@ -176,19 +176,6 @@ SolveOutcome Solve(const RegistrationInput& in, const PairList& pairs, const Bia
 
 }  // namespace
 
-bool ParseBatchAssociation(const std::string& name, BatchAssociation* a) {
-  if (name == "gate") {
-    *a = BatchAssociation::kGate;
-  } else if (name == "bernoulli") {
-    *a = BatchAssociation::kBernoulli;
-  } else if (name == "track") {
-    *a = BatchAssociation::kTrack;
-  } else {
-    return false;
-  }
-  return true;
-}
-
 std::string BatchAssociationName(BatchAssociation a) {
   switch (a) {
     case BatchAssociation::kGate:
@@ -201,44 +188,35 @@ std::string BatchAssociationName(BatchAssociation a) {
   return "gate";
 }
 
-bool ParseRobustLoss(const std::string& name, RobustLoss* loss) {
-  if (name == "huber") {
-    *loss = RobustLoss::kHuber;
-  } else if (name == "cauchy") {
-    *loss = RobustLoss::kCauchy;
-  } else if (name == "none") {
-    *loss = RobustLoss::kNone;
-  } else {
-    return false;
-  }
-  return true;
-}
-
 std::string RobustLossName(RobustLoss loss) {
   return loss == RobustLoss::kHuber ? "huber" : loss == RobustLoss::kCauchy ? "cauchy" : "none";
 }
 
+const io::OptionTable<BatchOptions>& BatchOptions::Table() {
+  using O = BatchOptions;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Choice("--associate", &O::association,
+                  {BatchAssociation::kGate, BatchAssociation::kBernoulli, BatchAssociation::kTrack},
+                  BatchAssociationName, "gate, bernoulli or track")
+          .Choice("--loss", &O::loss, {RobustLoss::kHuber, RobustLoss::kCauchy, RobustLoss::kNone}, RobustLossName,
+                  "Robust loss: huber, cauchy or none")
+          .Real("--loss-scale", &O::loss_scale, "", io::Bounds::Positive().Finite(),
+                "Whitened residual norm beyond which the loss is no longer quadratic")
+          .Real("--gate", &O::gate_d2, "", io::Bounds::Positive().Finite(),
+                "Association gate on the pair's Mahalanobis distance squared")
+          .Integer("--rounds", &O::max_rounds, "", io::Bounds::Closed(1, 50), "Association rounds at most (gate)")
+          .Integer("--iterations", &O::max_iterations, "", io::Bounds::Closed(1, 1000),
+                   "Ceres iterations per solve at most");
+  return table;
+}
+
 bool BatchOptions::Check(std::string* why) const {
-  auto fail = [&](const std::string& w) {
-    if (why) *why = w;
-    return false;
-  };
-  if (!initial.Check(why)) return false;
-  if (!(loss_scale > 0 && std::isfinite(loss_scale))) return fail("loss scale must be > 0");
-  if (!(gate_d2 > 0 && std::isfinite(gate_d2))) return fail("gate must be > 0");
-  if (max_rounds < 1 || max_rounds > 50) return fail("rounds must be in [1, 50]");
-  if (max_iterations < 1 || max_iterations > 1000) return fail("iterations must be in [1, 1000]");
-  return true;
+  return initial.Check(why) && Table().Check(*this, why);
 }
 
 io::Json BatchOptions::ToJson() const {
-  io::Json j;
-  j["association"] = BatchAssociationName(association);
-  j["loss"] = RobustLossName(loss);
-  j["loss_scale"] = loss_scale;
-  j["gate_d2"] = gate_d2;
-  j["max_rounds"] = max_rounds;
-  j["max_iterations"] = max_iterations;
+  io::Json j = Table().ToJson(*this);
   j["initial_bernoulli"] = initial.ToJson();
   return j;
 }

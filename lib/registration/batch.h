@@ -28,6 +28,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/options.h"
 #include "registration/bernoulli.h"
 #include "registration/filter_common.h"
 #include "registration/input.h"
@@ -35,11 +36,9 @@
 namespace rk::registration {
 
 enum class BatchAssociation { kGate, kBernoulli, kTrack };
-bool ParseBatchAssociation(const std::string& name, BatchAssociation* a);
 std::string BatchAssociationName(BatchAssociation a);
 
 enum class RobustLoss { kHuber, kCauchy, kNone };
-bool ParseRobustLoss(const std::string& name, RobustLoss* loss);
 std::string RobustLossName(RobustLoss loss);
 
 struct BatchOptions {
@@ -51,8 +50,12 @@ struct BatchOptions {
   double gate_d2 = 16.27;     // chi-square 3 dof 0.999
   int max_rounds = 5;         // association rounds (gate), [1, 50]
   int max_iterations = 100;   // Ceres iterations per solve, [1, 1000]
+
+  // --associate, --loss, --loss-scale, --gate, --rounds, --iterations (io/options.h); the Bernoulli pass's
+  // options come from BernoulliOptions::PassTable().
+  static const io::OptionTable<BatchOptions>& Table();
   bool Check(std::string* why) const;
-  io::Json ToJson() const;
+  io::Json ToJson() const;  // the table's keys and initial_bernoulli
 };
 
 struct BatchStats {

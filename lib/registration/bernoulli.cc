@@ -191,10 +191,10 @@ class BernoulliFilter {
     ComputeTerms(path);
     const int na = static_cast<int>(lin_a_.size()), nb = static_cast<int>(lin_b_.size());
     for (int i = 0; i < na; ++i) {
-      if (opt_.exclusive_plots && path.UsesA(i)) continue;
+      if (opt_.exclusive_plots() && path.UsesA(i)) continue;
       const PlotTerms& ta = terms_a_[i];
       for (int j = 0; j < nb; ++j) {
-        if (opt_.exclusive_plots ? path.UsesB(j) : path.UsesPair(i, j)) continue;
+        if (opt_.exclusive_plots() ? path.UsesB(j) : path.UsesPair(i, j)) continue;
         const PlotTerms& tb = terms_b_[j];
         ++stats_.counters.pairs_evaluated;
         const Mat3 X = ta.W * lin_b_[j].J.transpose();
@@ -371,34 +371,58 @@ class BernoulliFilter {
 
 }  // namespace
 
+namespace {
+
+// The Bernoulli options in --help order; `standalone` adds those rk-register batch's pass does not take.
+io::OptionTable<BernoulliOptions> MakeBernoulliTable(bool standalone) {
+  using O = BernoulliOptions;
+  io::OptionTable<O> t;
+  t.Integer("--subsets", &O::subsets, "", io::Bounds::Closed(1, 64),
+            "Greedy partition: number of subsets K kept per component")
+      .Alias("-K")
+      .Integer("--subset-length", &O::subset_length, "", io::Bounds::Closed(1, kMaxSubsetLength),
+               "Greedy partition: subset length L (pairs per component and step); 1 = no partition")
+      .Alias("-L");
+  if (standalone) {
+    t.Real("--gate", &O::gate_d2, "", io::Bounds::Positive().Finite(),
+           "Gate on the pair's Mahalanobis distance squared (3 dof)");
+  }
+  t.Real("--pd", &O::detection_probability, "", io::Bounds::LeftOpen(0.0, 1.0),
+         "Detection probability p_D in (0, 1]; 1 = the paper's no-missed-detection subsets")
+      .Real("--clutter-density", &O::clutter_density, "per m^3", io::Bounds::AtLeast(0.0).Finite(),
+            "Density of false differences (per m^3); 0 = estimated per step")
+      .Real("--prune", &O::prune_weight, "", io::Bounds::RightOpen(0.0, 1.0),
+            "Prune components lighter than this weight")
+      .Real("--merge", &O::merge_d2, "", io::Bounds::AtLeast(0.0).Finite(),
+            "Merge components within this Mahalanobis distance squared")
+      .Integer("--max-components", &O::max_components, "", io::Bounds::Closed(1, 256),
+               "Keep at most this many Gaussian components");
+  if (standalone) {
+    t.Flag("--allow-plot-reuse", &O::allow_plot_reuse,
+           "Let a subset use one plot in several pairs (the paper excludes only repeated pairs)");
+  }
+  return t;
+}
+
+}  // namespace
+
+const io::OptionTable<BernoulliOptions>& BernoulliOptions::Table() {
+  static const io::OptionTable<BernoulliOptions> table = MakeBernoulliTable(true);
+  return table;
+}
+
+const io::OptionTable<BernoulliOptions>& BernoulliOptions::PassTable() {
+  static const io::OptionTable<BernoulliOptions> table = MakeBernoulliTable(false);
+  return table;
+}
+
 bool BernoulliOptions::Check(std::string* why) const {
-  auto fail = [&](const std::string& w) {
-    if (why) *why = w;
-    return false;
-  };
-  if (!filter.Check(why)) return false;
-  if (!(subsets >= 1 && subsets <= 64)) return fail("number of subsets K must be in [1, 64]");
-  if (!(subset_length >= 1 && subset_length <= kMaxSubsetLength)) return fail("subset length L must be in [1, 32]");
-  if (!(gate_d2 > 0 && std::isfinite(gate_d2))) return fail("gate must be > 0");
-  if (!(detection_probability > 0 && detection_probability <= 1)) return fail("detection probability must be in (0, 1]");
-  if (!(clutter_density >= 0 && std::isfinite(clutter_density))) return fail("clutter density must be >= 0");
-  if (!(prune_weight >= 0 && prune_weight < 1)) return fail("prune weight must be in [0, 1)");
-  if (!(merge_d2 >= 0 && std::isfinite(merge_d2))) return fail("merge distance must be >= 0");
-  if (!(max_components >= 1 && max_components <= 256)) return fail("max components must be in [1, 256]");
-  return true;
+  return filter.Check(why) && Table().Check(*this, why);
 }
 
 io::Json BernoulliOptions::ToJson() const {
   io::Json j = filter.ToJson();
-  j["subsets_K"] = subsets;
-  j["subset_length_L"] = subset_length;
-  j["gate_d2"] = gate_d2;
-  j["detection_probability"] = detection_probability;
-  j["clutter_density_per_m3"] = clutter_density > 0 ? io::Json(clutter_density) : io::Json("auto");
-  j["prune_weight"] = prune_weight;
-  j["merge_d2"] = merge_d2;
-  j["max_components"] = max_components;
-  j["exclusive_plots"] = exclusive_plots;
+  j.update(Table().ToJson(*this));
   return j;
 }
 

@@ -11,7 +11,7 @@
 //   level 1: for every pair compute the cost τ = −ln q(z | component) (eq. 31, q of eq. 36) and
 //            keep the K best one-member subsets;
 //   level n = 2..L: for each kept subset, the pairs not yet in it (eq. 32; with
-//            exclusive_plots also no plot already used in it: one plot comes from one target)
+//            exclusive_plots() also no plot already used in it: one plot comes from one target)
 //            are scored against the component updated sequentially with the subset's members
 //            (eqs. 34–39, Joseph form, with eq. 38's lost H restored: P = (I − K H) P); a subset's
 //            cost is the sum of its members' costs (= −ln of its joint likelihood, independent of
@@ -36,6 +36,7 @@
 #include <utility>
 #include <vector>
 
+#include "io/options.h"
 #include "registration/filter_common.h"
 #include "registration/input.h"
 
@@ -44,7 +45,7 @@ namespace rk::registration {
 inline constexpr int kMaxSubsetLength = 32;
 
 struct BernoulliOptions {
-  FilterOptions filter;
+  FilterOptions filter;           // its own table (FilterOptions::Table()), registered with the input options
   int subsets = 3;                // K, [1, 64]
   int subset_length = 5;          // L, [1, 32]; 1 = no partition
   double gate_d2 = 16.27;         // chi-square 3 dof at 0.999; > 0
@@ -53,9 +54,17 @@ struct BernoulliOptions {
   double prune_weight = 1e-5;     // [0, 1)
   double merge_d2 = 4.0;          // >= 0; 0 = no merging
   int max_components = 8;         // [1, 256]
-  bool exclusive_plots = true;    // a subset uses each plot at most once
+  bool allow_plot_reuse = false;  // a subset may use one plot in several pairs
+  bool exclusive_plots() const { return !allow_plot_reuse; }  // a subset uses each plot at most once
+
+  // -K, -L, --gate, --pd, --clutter-density, --prune, --merge, --max-components, --allow-plot-reuse
+  // (io/options.h): CLI flags, Check() and the report keys.
+  static const io::OptionTable<BernoulliOptions>& Table();
+  // The same without --gate and --allow-plot-reuse: the options of rk-register batch's Bernoulli pass, which
+  // keeps the default gate (batch's own --gate is its association gate) and exclusive plots.
+  static const io::OptionTable<BernoulliOptions>& PassTable();
   bool Check(std::string* why) const;
-  io::Json ToJson() const;
+  io::Json ToJson() const;  // filter's keys and the table's
 };
 
 struct BernoulliStats {

@@ -17,8 +17,19 @@ constexpr int kValueDecimals = 9;
 
 }  // namespace
 
+const io::OptionTable<FilterOptions>& FilterOptions::Table() {
+  static const io::OptionTable<FilterOptions> table =
+      io::OptionTable<FilterOptions>()
+          .Sub(&FilterOptions::noise, MeasurementNoise::Table())
+          .Choice("--linearize", &FilterOptions::linearization, {Linearization::kEstimate, Linearization::kMeasured},
+                  LinearizationName,
+                  "Linearisation point of the measurement model: estimate (current bias estimate) or measured "
+                  "(the paper's eqs. 2 and 7: about the measured values)");
+  return table;
+}
+
 bool FilterOptions::Check(std::string* why) const {
-  if (!noise.Check(why)) return false;
+  if (!Table().Check(*this, why)) return false;
   for (int i = 0; i < kRadarBiasDim; ++i) {
     if (!(initial_sigma[i] > 0 && std::isfinite(initial_sigma[i]))) {
       if (why) *why = std::string("initial sigma of ") + BiasName(i) + " must be > 0";
@@ -33,11 +44,7 @@ bool FilterOptions::Check(std::string* why) const {
 }
 
 io::Json FilterOptions::ToJson() const {
-  io::Json j;
-  j["sigma_range_m"] = noise.sigma_range_m;
-  j["sigma_az_deg"] = geo::RadToDeg(noise.sigma_az_rad);
-  j["sigma_el_deg"] = geo::RadToDeg(noise.sigma_el_rad);
-  j["linearize"] = LinearizationName(linearization);
+  io::Json j = Table().ToJson(*this);
   for (int i = 0; i < kRadarBiasDim; ++i) {
     j["initial_sigma"][BiasColumnSuffix(i)] = initial_sigma[i] * BiasToFileUnit(i);
     j["process_sigma_per_step"][BiasColumnSuffix(i)] = process_sigma[i] * BiasToFileUnit(i);

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "io/json_util.h"
+#include "io/options.h"
 #include "io/row_status.h"
 #include "registration/input.h"
 #include "registration/radar_model.h"
@@ -30,8 +31,12 @@ struct FilterOptions {
   RadarBias initial_sigma = (RadarBias() << 2000.0, 0.03, 0.03, 0.03, 0.03, 0.03).finished();
   // Q 1-sigma per step of the random walk (m, rad); > 0 keeps the filter from freezing.
   RadarBias process_sigma = (RadarBias() << 0.05, 2e-7, 2e-7, 2e-7, 2e-7, 2e-7).finished();
+
+  // The noise options and --linearize (io/options.h). The six-value lists initial_sigma and
+  // process_sigma (--p0, --q, in file units) are parsed by the app and checked by hand in Check().
+  static const io::OptionTable<FilterOptions>& Table();
   bool Check(std::string* why) const;
-  io::Json ToJson() const;
+  io::Json ToJson() const;  // the table's keys, plus initial_sigma and process_sigma_per_step (file units)
 };
 
 BiasMatrix InitialCovariance(const FilterOptions& opt);

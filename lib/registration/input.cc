@@ -81,12 +81,11 @@ struct NavSeries {
 
 }  // namespace
 
-bool InputOptions::Check(std::string* why) const {
-  if (!(pair_tol_s >= 0 && pair_tol_s <= kMaxPairTolS)) {
-    if (why) *why = "pair time tolerance must be in [0, 60] s";
-    return false;
-  }
-  return true;
+const io::OptionTable<InputOptions>& InputOptions::Table() {
+  static const io::OptionTable<InputOptions> table = io::OptionTable<InputOptions>().Real(
+      "--pair-tol", &InputOptions::pair_tol_s, "s", io::Bounds::Closed(0.0, kMaxPairTolS),
+      "Plots of both radars within this many seconds of a step's first plot form one step (s)");
+  return table;
 }
 
 io::Json InputSummary::ToJson(const std::array<std::string, 2>& radars) const {

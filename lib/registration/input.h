@@ -28,6 +28,7 @@
 
 #include "io/csv.h"
 #include "io/json_util.h"
+#include "io/options.h"
 #include "registration/radar_model.h"
 
 namespace rk::registration {
@@ -49,8 +50,10 @@ struct RegistrationStep {
 
 struct InputOptions {
   double pair_tol_s = 0.5;        // [0, 60] s
-  bool require_track_id = false;  // rk-register kf: the plots must carry track_id
-  bool Check(std::string* why) const;
+  bool require_track_id = false;  // rk-register kf: the plots must carry track_id (set by the subcommand)
+  // --pair-tol (io/options.h).
+  static const io::OptionTable<InputOptions>& Table();
+  bool Check(std::string* why) const { return Table().Check(*this, why); }
 };
 
 struct InputSummary {

@@ -71,16 +71,17 @@ Mat3 AttitudeBiasJacobian(const Vec3& p, double pitch, double roll) {
   return D;
 }
 
-bool MeasurementNoise::Check(std::string* why) const {
-  if (!(sigma_range_m > 0 && std::isfinite(sigma_range_m))) {
-    if (why) *why = "range noise sigma must be > 0 m";
-    return false;
-  }
-  if (!(sigma_az_rad > 0 && sigma_az_rad < 1) || !(sigma_el_rad > 0 && sigma_el_rad < 1)) {
-    if (why) *why = "azimuth and elevation noise sigmas must be in (0, 57) deg";
-    return false;
-  }
-  return true;
+const io::OptionTable<MeasurementNoise>& MeasurementNoise::Table() {
+  // Angles below 1 rad (57.3 deg): a larger 1-sigma makes the linearised model meaningless.
+  static const io::OptionTable<MeasurementNoise> table =
+      io::OptionTable<MeasurementNoise>()
+          .Real("--sigma-range", &MeasurementNoise::sigma_range_m, "m", io::Bounds::Positive().Finite(),
+                "Range noise 1-sigma of both radars (m)")
+          .Real("--sigma-az", &MeasurementNoise::sigma_az_deg, "deg", io::Bounds::Open(0.0, geo::RadToDeg(1.0)),
+                "Azimuth noise 1-sigma of both radars (deg)")
+          .Real("--sigma-el", &MeasurementNoise::sigma_el_deg, "deg", io::Bounds::Open(0.0, geo::RadToDeg(1.0)),
+                "Elevation noise 1-sigma of both radars (deg)");
+  return table;
 }
 
 PlatformPose MakePlatformPose(double lat, double lon, double h, double yaw, double pitch, double roll) {
@@ -118,8 +119,8 @@ PlotLinearization LinearizePlot(const RadarMeasurement& m, const PlatformPose& p
   const Mat3 A = T * SphericalBiasJacobian(r, th, ph);
   lin.J.leftCols<3>() = A;
   lin.J.rightCols<3>() = T * AttitudeBiasJacobian(p_platform, pitch, roll);
-  const Vec3 var(noise.sigma_range_m * noise.sigma_range_m, noise.sigma_az_rad * noise.sigma_az_rad,
-                 noise.sigma_el_rad * noise.sigma_el_rad);
+  const Vec3 var(noise.sigma_range_m * noise.sigma_range_m, noise.sigma_az_rad() * noise.sigma_az_rad(),
+                 noise.sigma_el_rad() * noise.sigma_el_rad());
   lin.noise_cov = A * var.asDiagonal() * A.transpose();
   lin.noise_cov = 0.5 * (lin.noise_cov + lin.noise_cov.transpose()).eval();
   return lin;

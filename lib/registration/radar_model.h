@@ -36,6 +36,9 @@
 #include <Eigen/Core>
 #include <string>
 
+#include "geo/angles.h"
+#include "io/options.h"
+
 namespace rk::registration {
 
 using Vec3 = Eigen::Vector3d;
@@ -71,12 +74,18 @@ Mat3 RotationEcefFromEnu(double lat_rad, double lon_rad);
 // D' of eq. 14: ∂(T_ie(ϑ−Δϑ, ϕ−Δϕ, α−Δα) p_B)/∂(Δϑ, Δϕ, Δα) = T_ie D' at Δ = 0.
 Mat3 AttitudeBiasJacobian(const Vec3& p_platform, double pitch_rad, double roll_rad);
 
-// Measurement noise 1-sigma of (r, θ, φ), the same for both radars (the paper's set-up).
+// Measurement noise 1-sigma of (r, θ, φ), the same for both radars (the paper's set-up). The angles are
+// kept in the options' unit (--sigma-az, --sigma-el: deg; default 0.0087 rad); the model reads radians.
 struct MeasurementNoise {
-  double sigma_range_m = 50.0;    // > 0
-  double sigma_az_rad = 0.0087;   // > 0
-  double sigma_el_rad = 0.0087;   // > 0
-  bool Check(std::string* why) const;
+  double sigma_range_m = 50.0;                      // > 0
+  double sigma_az_deg = geo::RadToDeg(0.0087);      // in (0, 1 rad)
+  double sigma_el_deg = geo::RadToDeg(0.0087);      // in (0, 1 rad)
+  double sigma_az_rad() const { return geo::DegToRad(sigma_az_deg); }
+  double sigma_el_rad() const { return geo::DegToRad(sigma_el_deg); }
+
+  // --sigma-range, --sigma-az, --sigma-el (io/options.h): CLI flags, Check() and the report keys.
+  static const io::OptionTable<MeasurementNoise>& Table();
+  bool Check(std::string* why) const { return Table().Check(*this, why); }
 };
 
 // A platform's navigation solution at one time (as measured: attitude includes its bias).

@@ -114,6 +114,28 @@ TEST(OptionTable, CliRegistrationParsesIntoTheMembers) {
   EXPECT_THROW(app2.parse(bad), CLI::ValidationError);
 }
 
+// Registering keeps a default that its shown text rounds (CLI11's default_val would write "0.498473" back).
+struct Fine {
+  double sigma_deg = 0.0087 * 180.0 / 3.14159265358979323846;  // 0.4984732818...
+  static const OptionTable<Fine>& Table() {
+    static const OptionTable<Fine> table =
+        OptionTable<Fine>().Real("--sigma", &Fine::sigma_deg, "deg", Bounds::Positive(), "Sigma (deg)");
+    return table;
+  }
+};
+
+TEST(OptionTable, CliRegistrationKeepsADefaultItsHelpRounds) {
+  Fine f;
+  const double exact = f.sigma_deg;
+  CLI::App app{"demo", "demo"};
+  cli::AddOptions(&app, &f, Fine::Table());
+  EXPECT_EQ(f.sigma_deg, exact);
+  std::vector<std::string> none;
+  app.parse(none);
+  EXPECT_EQ(f.sigma_deg, exact);
+  EXPECT_NE(app.help().find("--sigma FLOAT=0.498473"), std::string::npos) << app.help();
+}
+
 // A nested struct's table composes into the outer one (Sub), with switches, 64-bit counts and aliases.
 struct Inner {
   double speed_mps = 2.0;

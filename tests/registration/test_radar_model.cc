@@ -171,8 +171,8 @@ TEST(RadarModel, PlotJacobianMatchesNumerical) {
     }
     // Noise covariance = A R Aᵀ with A the first three columns.
     const Mat3 A = lin.J.leftCols<3>();
-    const Vec3 var(noise.sigma_range_m * noise.sigma_range_m, noise.sigma_az_rad * noise.sigma_az_rad,
-                   noise.sigma_el_rad * noise.sigma_el_rad);
+    const Vec3 var(noise.sigma_range_m * noise.sigma_range_m, noise.sigma_az_rad() * noise.sigma_az_rad(),
+                   noise.sigma_el_rad() * noise.sigma_el_rad());
     EXPECT_LT((lin.noise_cov - A * var.asDiagonal() * A.transpose()).norm(), 1e-9 * lin.noise_cov.norm());
   }
 }

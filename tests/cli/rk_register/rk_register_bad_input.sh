@@ -31,7 +31,7 @@ $expect 3 "$x" "no_id.csv:1:1: .*track_id" -- rk-register batch --associate trac
 rk-register bernoulli --plots "$o/no_id.csv" --nav "$N" -o "$o/ok.csv"   # bernoulli does not need it
 # Usage errors (2), I/O errors (4), output never replaces an input.
 $expect 2 "$x" 'linearize' -- rk-register bernoulli --plots "$P" --nav "$N" -o "$x" --linearize paper
-$expect 2 "$x" 'subset length' -- rk-register bernoulli --plots "$P" --nav "$N" -o "$x" -L 0
+$expect 2 "$x" 'subset-length must be in \[1, 32\]' -- rk-register bernoulli --plots "$P" --nav "$N" -o "$x" -L 0
 $expect 2 "$x" 'p0: give six values' -- rk-register kf --plots "$P" --nav "$N" -o "$x" --p0 1,2,3,4,5
 $expect 2 "$x" 'no plot has this track_id' -- rk-register kf --plots "$P" --nav "$N" -o "$x" --track 9
 $expect 2 "$x" 'both be stdin' -- rk-register kf --plots - --nav - -o "$x"
