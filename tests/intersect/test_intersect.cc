@@ -145,7 +145,7 @@ TEST(Intersect, StationsJsonErrorsNameLineAndColumn) {
             0u);
   EXPECT_EQ(message("{\"stations\": [\n {\"name\": \"a\", \"lat_deg\": 1, \"lon_deg\": 2, \"h_m\": 0, \"located\": \"a.csv\"},\n"
                     " {\"name\": \"b\", \"lat_deg\": \"x\", \"lon_deg\": 2, \"h_m\": 0, \"located\": \"b.csv\"}]}")
-                .rfind("st.json:3:29: stations[1].lat_deg must be a number", 0),
+                .rfind("st.json:3:27: stations[1].lat_deg must be a number", 0),
             0u);
   EXPECT_EQ(message("{\"stations\": [\n {\"name\": \"a\", \"lat_deg\": 1,,}]}").rfind("st.json:2:", 0), 0u);
   const StationsFile f = ParseStations(
