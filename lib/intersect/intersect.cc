@@ -15,13 +15,13 @@ const io::OptionTable<IntersectOptions>& IntersectOptions::Table() {
   static const io::OptionTable<IntersectOptions> table =
       io::OptionTable<IntersectOptions>()
           .Real("--rate", &IntersectOptions::rate_hz, "Hz", io::Bounds::AtLeast(0.0).Finite(),
-                "Output times on the grid k/HZ over the stations' span (0 = the union of the stations' row "
+                "Output times on the grid k/HZ (Hz) over the stations' span (0 = the union of the stations' row "
                 "times; exclusive with --at)")
           .Real("--sigma-angle", &IntersectOptions::sigma_angle_arcsec, "arcsec", io::Bounds::Positive().Finite(),
-                "1 sigma of azimuth (across the line: az x cos el) and elevation for files without "
-                "sigma_az_deg/sigma_el_deg columns")
+                "1 sigma (arcsec) of azimuth across the line (az x cos el) and of elevation, for files "
+                "without sigma_az_deg/sigma_el_deg columns")
           .Real("--sigma-range", &IntersectOptions::sigma_range_m, "m", io::Bounds::Positive().Finite(),
-                "1 sigma of a range for files without a sigma_range_m column")
+                "1 sigma (m) of a range, for files without a sigma_range_m column")
           .Real("--reject-sigma", &IntersectOptions::reject_sigma, "sigma", io::Bounds::Positive(),
                 "A station whose standardised residual exceeds this is dropped for the row (needs >= 3 lines "
                 "of sight; inf = never)")
