@@ -97,6 +97,7 @@ StationTrack::StationTrack(const io::CsvTable& table, const TrackDefaults& defau
     el.push_back(e ? std::optional<double>(geo::DegToRad(*e)) : std::nullopt);
     range.push_back(r);
   }
+  has_range_ = !tr_.empty();  // a range column that is always empty is no rangefinder
   std::vector<double> dt;
   for (std::size_t i = 1; i < row_t_.size(); ++i) dt.push_back(row_t_[i] - row_t_[i - 1]);
   frame_interval_s_ = dt.empty() ? 0.0 : Median(dt);
