@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
       {"attitude", rk::app::AddAttitudeCommand},
       {"radar", rk::app::AddRadarCommand},
       {"device", rk::app::AddDeviceCommand},
+      {"multistation", rk::app::AddMultistationCommand},
   };
   // clang-format on
   return rk::app::RunTool(

@@ -1,0 +1,101 @@
+// rk-intersect: two or more stations' located-target files → one trajectory with covariance (SPEC.md §7).
+// Thin CLI: the method lives in lib/intersect (intersect/intersect.h).
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+#include "intersect/intersect.h"
+#include "intersect/station_track.h"
+#include "intersect/stations.h"
+#include "io/cli.h"
+#include "io/csv.h"
+#include "io/error.h"
+#include "io/file_util.h"
+
+namespace {
+
+const char* const kTool = "rk-intersect";
+
+rk::io::CsvRowRule LocatedRowRule() {
+  rk::io::CsvRowRule rule;
+  rule.numbers = {"t_s"};
+  rule.optional_numbers = {"az_deg", "el_deg", "range_m", "sigma_az_deg", "sigma_el_deg", "sigma_range_m"};
+  rule.non_decreasing = "t_s";
+  rule.increasing = true;
+  return rule;
+}
+
+void CheckPaths(const std::string& out_path, const std::string& report_path, const std::vector<std::string>& inputs) {
+  int n_stdin = 0;
+  for (const auto& in : inputs) n_stdin += rk::io::IsStdStream(in) ? 1 : 0;
+  if (n_stdin > 1) throw rk::UsageError("only one input can be read from stdin ('-')");
+  rk::io::CheckOutputNotInput(out_path, inputs);
+  if (!report_path.empty()) {
+    rk::io::CheckOutputNotInput(report_path, inputs);
+    if (rk::io::IsStdStream(report_path) && rk::io::IsStdStream(out_path)) {
+      throw rk::UsageError("--report and -o cannot both be stdout");
+    }
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Intersect the lines of sight (and ranges) of two or more stations into one trajectory with its "
+      "covariance, in the origin's ENU frame and WGS-84 (SPEC.md section 7).",
+      kTool};
+  rk::cli::CommonOptions common;
+  rk::cli::AddCommonOptions(app, kTool, &common);
+  std::string stations_path, out_path, at_path;
+  rk::intersect::IntersectOptions opt;
+  app.add_option("--stations", stations_path,
+                 "stations.json: origin and, per station, lat_deg/lon_deg/h_m and its located.csv")
+      ->required();
+  app.add_option("-o,--output", out_path, "Trajectory CSV ('-' = stdout)")->required();
+  rk::cli::AddOptions(&app, &opt, rk::intersect::IntersectOptions::Table(),
+                      {{"--rate", [&] {
+                          app.add_option("--at", at_path, "Output times: CSV with a t_s column (exclusive with --rate)");
+                        }}});
+  rk::io::BadRows bad_rows = rk::io::BadRows::kError;
+  rk::cli::AddBadRowsOption(&app, &bad_rows);
+
+  return rk::cli::Run(app, kTool, argc, argv, [&]() -> int {
+    std::string why;
+    if (!opt.Check(&why)) throw rk::UsageError(why);
+    if (!at_path.empty() && opt.rate_hz > 0.0) throw rk::UsageError("--at and --rate exclude each other");
+    std::vector<std::string> inputs = {stations_path};
+    if (!at_path.empty()) inputs.push_back(at_path);
+    CheckPaths(out_path, common.report_path, inputs);
+
+    const rk::intersect::StationsFile stations = rk::intersect::LoadStations(stations_path);
+    for (const auto& s : stations.stations) inputs.push_back(s.located);
+    CheckPaths(out_path, common.report_path, inputs);
+    std::vector<rk::intersect::StationTrack> tracks;
+    for (const auto& s : stations.stations) {
+      tracks.emplace_back(rk::io::CsvTable::Read(s.located, {bad_rows, LocatedRowRule()}), opt.Defaults());
+    }
+    std::vector<double> at;
+    if (!at_path.empty()) at = rk::intersect::ReadTimes(rk::io::CsvTable::Read(at_path, {bad_rows, {}}));
+    const std::vector<double> times = rk::intersect::OutputTimes(tracks, opt, at);
+    const rk::intersect::IntersectResult result = rk::intersect::Intersect(stations, tracks, times, opt);
+    if (result.rows_lost > 0) {
+      rk::cli::Warn(kTool, common,
+                    std::to_string(result.rows_lost) + " of " + std::to_string(result.rows.size()) +
+                        " rows have fewer than two lines of sight (status lost)");
+    }
+    rk::intersect::TrajectoryCsv(result).Write(out_path);
+
+    if (!common.report_path.empty()) {
+      rk::io::Json report = rk::cli::MakeReport(kTool, argc, argv);
+      rk::cli::AddReportInput(&report, "stations", stations_path);
+      for (const auto& s : stations.stations) rk::cli::AddReportInput(&report, "located_" + s.name, s.located);
+      if (!at_path.empty()) rk::cli::AddReportInput(&report, "at", at_path);
+      report["output"] = out_path;
+      report["options"] = opt.ToJson();
+      report.update(result.ToJson());
+      rk::cli::WriteReport(common.report_path, report);
+    }
+    return 0;
+  });
+}

@@ -1,0 +1,53 @@
+// rk-sim multistation: two to four stations observing one target, each with its own frame times, noisy
+// angles (± range) with their 1σ columns; stations.json and truth for rk-intersect (issue 18). Thin edge:
+// CLI11 options → rk::sim::MultistationOptions → rk::sim::WriteMultistationTrial; docs/rk-sim.md.
+#include <memory>
+#include <string>
+
+#include "io/error.h"
+#include "sim/multistation_scenario.h"
+#include "sim_commands.h"
+
+namespace rk::app {
+namespace {
+
+struct MultistationCli {
+  rk::sim::MultistationOptions o;
+  std::string out;
+  bool force = false;
+};
+
+int RunMultistation(const MultistationCli& p, const Context& ctx) {
+  std::string why;
+  if (!p.o.Check(&why)) throw UsageError(why);
+  if (p.out.empty() || p.out == "-") throw UsageError("--out must name a folder");
+  const rk::sim::MultistationScenario sim(p.o);
+  rk::sim::WriteMultistationTrial(sim, p.out, p.force);
+  if (!ctx.common.report_path.empty()) {
+    io::Json r = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
+    r["subcommand"] = "multistation";
+    r["out"] = p.out;
+    r["options"] = p.o.ToJson();
+    io::Json st = io::Json::object();
+    for (const auto& s : sim.stations()) st[s.name] = {{"rows", s.t_s.size()}, {"has_range", s.has_range}};
+    r["summary"] = {{"stations", st}};
+    cli::WriteReport(ctx.common.report_path, r);
+  }
+  return 0;
+}
+
+}  // namespace
+
+Command AddMultistationCommand(CLI::App& app) {
+  auto p = std::make_shared<MultistationCli>();
+  CLI::App* s = app.add_subcommand(
+      "multistation",
+      "Two to four stations kilometres apart observing a ballistic arc or a crossing aircraft: each station's "
+      "located.csv (own frame times, noisy angles with 1 sigma, optional range), stations.json, truth.csv");
+  s->add_option("--out,-o", p->out, "Folder to create (refused if it exists and is not empty)")->required();
+  s->add_flag("--force", p->force, "Replace an existing output folder");
+  rk::cli::AddOptions(s, &p->o, rk::sim::MultistationOptions::Table());
+  return {s, [p](const Context& ctx) { return RunMultistation(*p, ctx); }};
+}
+
+}  // namespace rk::app

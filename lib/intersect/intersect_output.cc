@@ -1,0 +1,159 @@
+// rk-intersect's trajectory CSV and report; columns in docs/rk-intersect.md "Columns".
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "intersect/intersect.h"
+
+namespace rk::intersect {
+namespace {
+
+constexpr int kLengthDecimals = 4;  // 0.1 mm
+constexpr int kDegDecimals = 9;     // ~0.1 mm on the earth
+constexpr int kFigureDecimals = 4;
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+io::Json NumberOrNull(double x) { return std::isfinite(x) ? io::Json(x) : io::Json(nullptr); }
+
+void AddVector(io::CsvWriter* w, bool have, const Eigen::Vector3d& v, int decimals) {
+  for (int c = 0; c < 3; ++c) {
+    if (have) {
+      w->Add(v(c), decimals);
+    } else {
+      w->AddEmpty();
+    }
+  }
+}
+
+std::vector<std::string> Columns(const IntersectResult& r) {
+  std::vector<std::string> cols = {"t_s",       "e_m",       "n_m",       "u_m",        "lat_deg",
+                                   "lon_deg",   "h_m",       "sigma_e_m", "sigma_n_m",  "sigma_u_m",
+                                   "n_stations", "status",   "rms_residual_arcsec", "rho_en", "rho_eu",
+                                   "rho_nu",    "intersection_angle_deg", "gdop", "n_rejected"};
+  if (r.smoothed) {
+    for (const char* c : {"ve_mps", "vn_mps", "vu_mps", "sigma_ve_mps", "sigma_vn_mps", "sigma_vu_mps", "ae_mps2",
+                          "an_mps2", "au_mps2", "sigma_ae_mps2", "sigma_an_mps2", "sigma_au_mps2"}) {
+      cols.push_back(c);
+    }
+  }
+  for (std::size_t s = 0; s < r.names.size(); ++s) {
+    cols.push_back(r.names[s] + "_az_res_arcsec");
+    cols.push_back(r.names[s] + "_el_res_arcsec");
+    if (r.has_range[s]) cols.push_back(r.names[s] + "_range_res_m");
+    cols.push_back(r.names[s] + "_los");
+  }
+  return cols;
+}
+
+void AddSolution(io::CsvWriter* w, const TrajectoryRow& tr) {
+  const bool ok = tr.status == RowStatus::kOk;
+  const Solution& s = tr.result.solution;
+  AddVector(w, ok, s.p, kLengthDecimals);
+  w->Add(ok ? tr.wgs84.lat_deg : NAN, kDegDecimals);
+  w->Add(ok ? tr.wgs84.lon_deg : NAN, kDegDecimals);
+  w->Add(ok ? tr.wgs84.h_m : NAN, kLengthDecimals);
+  const Eigen::Vector3d sd = s.P.diagonal().cwiseSqrt();
+  AddVector(w, ok, sd, kLengthDecimals);
+  w->Add(ok ? std::popcount(tr.result.used) : tr.n_lines);
+  w->Add(RowStatusName(tr.status));
+  w->Add(ok ? tr.result.rms_residual_arcsec : NAN, kFigureDecimals);
+  const Eigen::Vector3d rho(s.P(0, 1) / (sd(0) * sd(1)), s.P(0, 2) / (sd(0) * sd(2)), s.P(1, 2) / (sd(1) * sd(2)));
+  AddVector(w, ok, rho, kFigureDecimals);
+  w->Add(ok ? tr.result.intersection_angle_deg : NAN, kFigureDecimals);
+  w->Add(ok ? tr.result.gdop : NAN, kFigureDecimals);
+  w->Add(std::popcount(tr.result.rejected));
+}
+
+}  // namespace
+
+io::CsvWriter TrajectoryCsv(const IntersectResult& r) {
+  io::CsvWriter w(Columns(r));
+  const std::size_t S = r.names.size();
+  for (std::size_t i = 0; i < r.rows.size(); ++i) {
+    const TrajectoryRow& tr = r.rows[i];
+    w.Add(tr.t_s, 9);
+    AddSolution(&w, tr);
+    if (r.smoothed) {
+      AddVector(&w, tr.has_kinematics, tr.v, kLengthDecimals);
+      AddVector(&w, tr.has_kinematics, tr.sigma_v, kLengthDecimals);
+      AddVector(&w, tr.has_kinematics, tr.a, kLengthDecimals);
+      AddVector(&w, tr.has_kinematics, tr.sigma_a, kLengthDecimals);
+    }
+    for (std::size_t s = 0; s < S; ++s) {
+      const LineUse u = r.Use(i, s);
+      const Eigen::Vector3d& res = r.residual[i * S + s];
+      const bool have = u != LineUse::kNone;
+      w.Add(have ? res(0) : NAN, 3);
+      w.Add(have ? res(1) : NAN, 3);
+      if (r.has_range[s]) w.Add(have ? res(2) : NAN, kLengthDecimals);
+      w.Add(u == LineUse::kUsed ? "used" : (u == LineUse::kRejected ? "rejected" : ""));
+    }
+    w.EndRow();
+  }
+  return w;
+}
+
+io::Json IntersectResult::SummaryJson() const {
+  std::vector<double> sigma, gdop, angle, rms;
+  for (const TrajectoryRow& tr : rows) {
+    if (tr.status != RowStatus::kOk) continue;
+    sigma.push_back(std::sqrt(tr.result.solution.P.trace()));
+    gdop.push_back(tr.result.gdop);
+    angle.push_back(tr.result.intersection_angle_deg);
+    rms.push_back(tr.result.rms_residual_arcsec);
+  }
+  return {{"rows_ok", rows_ok},
+          {"rows_lost", rows_lost},
+          {"rows_invalid", rows_invalid},
+          {"rows_with_rejection", rows_with_rejection},
+          {"median_sigma_3d_m", NumberOrNull(Median(sigma))},
+          {"median_gdop", NumberOrNull(Median(gdop))},
+          {"median_intersection_angle_deg", NumberOrNull(Median(angle))},
+          {"median_rms_residual_arcsec", NumberOrNull(Median(rms))}};
+}
+
+io::Json IntersectResult::ToJson() const {
+  io::Json j;
+  j["counts"] = {{"rows", rows.size()}, {"ok", rows_ok}, {"lost", rows_lost}, {"invalid", rows_invalid},
+                 {"with_rejection", rows_with_rejection}};
+  io::Json st = io::Json::object();
+  for (std::size_t s = 0; s < names.size(); ++s) {
+    const StationCounts& c = stations[s];
+    const double n = static_cast<double>(c.rows_used);
+    st[names[s]] = {{"rows_contributed", c.rows_contributed},
+                    {"rows_used", c.rows_used},
+                    {"rows_rejected", c.rows_rejected},
+                    {"rms_az_residual_arcsec", NumberOrNull(n > 0 ? std::sqrt(c.sum2_az / n) : NAN)},
+                    {"rms_el_residual_arcsec", NumberOrNull(n > 0 ? std::sqrt(c.sum2_el / n) : NAN)},
+                    {"rms_range_residual_m",
+                     NumberOrNull(c.n_range > 0 ? std::sqrt(c.sum2_range / static_cast<double>(c.n_range)) : NAN)}};
+  }
+  j["stations"] = st;
+  std::vector<double> rho[3];
+  for (const TrajectoryRow& tr : rows) {
+    if (tr.status != RowStatus::kOk) continue;
+    const Eigen::Matrix3d& P = tr.result.solution.P;
+    rho[0].push_back(P(0, 1) / std::sqrt(P(0, 0) * P(1, 1)));
+    rho[1].push_back(P(0, 2) / std::sqrt(P(0, 0) * P(2, 2)));
+    rho[2].push_back(P(1, 2) / std::sqrt(P(1, 1) * P(2, 2)));
+  }
+  j["correlations"] = {{"median_rho_en", NumberOrNull(Median(rho[0]))},
+                       {"median_rho_eu", NumberOrNull(Median(rho[1]))},
+                       {"median_rho_nu", NumberOrNull(Median(rho[2]))}};
+  if (smoothed) {
+    filter::Series s;
+    s.columns = {"e_m", "n_m", "u_m"};
+    s.is_angle = {false, false, false};
+    j["smooth"] = singer.ColumnsJson(s, false);
+  }
+  j["summary"] = SummaryJson();
+  return j;
+}
+
+}  // namespace rk::intersect

@@ -1,0 +1,138 @@
+// A station's located file aligned to any time; see station_track.h.
+#include "intersect/station_track.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "geo/angles.h"
+#include "io/row_status.h"
+#include "track/interp.h"
+
+namespace rk::intersect {
+namespace {
+
+// Rows k, k+1 of `t` around `ts` and the fraction f ∈ [0, 1]; false outside.
+bool Bracket(const std::vector<double>& t, double ts, std::size_t* k, double* f) {
+  if (t.empty() || ts < t.front() || ts > t.back()) return false;
+  const auto it = std::upper_bound(t.begin(), t.end(), ts);
+  std::size_t hi = static_cast<std::size_t>(it - t.begin());
+  if (hi == t.size()) hi = t.size() - 1;
+  if (hi == 0) hi = 1;
+  if (t.size() == 1) {
+    *k = 0, *f = 0.0;
+    return true;
+  }
+  *k = hi - 1;
+  *f = (ts - t[*k]) / (t[hi] - t[*k]);
+  return true;
+}
+
+// σ of the linear interpolation of white noise with per-row σ s at fraction f.
+double InterpSigma(const std::vector<double>& s, std::size_t k, double f) {
+  if (k + 1 >= s.size()) return s[k];
+  return std::sqrt((1.0 - f) * (1.0 - f) * s[k] * s[k] + f * f * s[k + 1] * s[k + 1]);
+}
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
+struct StationTrack::Impl {
+  std::optional<track::TimeSeriesInterpolator> az, el, range;
+};
+
+StationTrack::~StationTrack() = default;
+StationTrack::StationTrack(StationTrack&&) noexcept = default;
+
+StationTrack::StationTrack(const io::CsvTable& table, const TrackDefaults& defaults)
+    : impl_(std::make_unique<Impl>()), source_(table.name()) {
+  const int c_t = table.RequireColumn("t_s"), c_az = table.RequireColumn("az_deg"),
+            c_el = table.RequireColumn("el_deg");
+  const int c_r = table.Column("range_m"), c_st = table.Column("status");
+  const int c_saz = table.Column("sigma_az_deg"), c_sel = table.Column("sigma_el_deg"),
+            c_sr = table.Column("sigma_range_m");
+  has_range_ = c_r >= 0;
+  has_sigma_ = c_saz >= 0 && c_sel >= 0;
+  table.RequireIncreasing(c_t);
+  std::vector<std::optional<double>> az, el, range;
+  for (std::size_t i = 0; i < table.rows(); ++i) {
+    const double t = table.Double(i, c_t);
+    row_t_.push_back(t);
+    bool measured = true;
+    if (c_st >= 0 && !table.IsEmpty(i, c_st)) {
+      RowStatus st;
+      if (!ParseRowStatus(table.Cell(i, c_st), &st)) throw table.CellError(i, c_st, "unknown status");
+      measured = st == RowStatus::kOk || st == RowStatus::kReacquired;
+    }
+    std::optional<double> a = table.OptionalDouble(i, c_az), e = table.OptionalDouble(i, c_el);
+    if (!measured || !a || !e) a = e = std::nullopt;
+    std::optional<double> r = has_range_ && measured ? table.OptionalDouble(i, c_r) : std::nullopt;
+    if (a) {
+      const double ce = std::max(std::cos(geo::DegToRad(*e)), 1e-9);
+      double saz = defaults.sigma_angle_rad / ce, sel = defaults.sigma_angle_rad;
+      if (has_sigma_) {
+        const std::optional<double> sa = table.OptionalDouble(i, c_saz), se = table.OptionalDouble(i, c_sel);
+        if (sa && !(*sa > 0.0)) throw table.CellError(i, c_saz, "sigma_az_deg must be > 0");
+        if (se && !(*se > 0.0)) throw table.CellError(i, c_sel, "sigma_el_deg must be > 0");
+        if (sa) saz = geo::DegToRad(*sa);
+        if (se) sel = geo::DegToRad(*se);
+      }
+      t_.push_back(t), sig_az_.push_back(saz), sig_el_.push_back(sel);
+    }
+    if (r) {
+      double sr = defaults.sigma_range_m;
+      if (c_sr >= 0) {
+        const std::optional<double> s = table.OptionalDouble(i, c_sr);
+        if (s && !(*s > 0.0)) throw table.CellError(i, c_sr, "sigma_range_m must be > 0");
+        if (s) sr = *s;
+      }
+      tr_.push_back(t), sig_r_.push_back(sr);
+    }
+    az.push_back(a ? std::optional<double>(geo::DegToRad(*a)) : std::nullopt);
+    el.push_back(e ? std::optional<double>(geo::DegToRad(*e)) : std::nullopt);
+    range.push_back(r);
+  }
+  has_range_ = !tr_.empty();  // a range column that is always empty is no rangefinder
+  std::vector<double> dt;
+  for (std::size_t i = 1; i < row_t_.size(); ++i) dt.push_back(row_t_[i] - row_t_[i - 1]);
+  frame_interval_s_ = dt.empty() ? 0.0 : Median(dt);
+  track::InterpOptions io;
+  io.method = track::InterpMethod::kLinear;
+  io.max_gap_s = frame_interval_s_ > 0.0 ? defaults.max_gap_frames * frame_interval_s_ : 1.0;
+  io.angle = true;
+  impl_->az.emplace(row_t_, az, io);
+  io.angle = false;
+  impl_->el.emplace(row_t_, el, io);
+  if (has_range_) impl_->range.emplace(row_t_, range, io);
+}
+
+bool StationTrack::At(double t_s, LineObservation* o) const {
+  const track::InterpValue a = impl_->az->At(t_s);
+  if (!a.ok()) return false;
+  const track::InterpValue e = impl_->el->At(t_s);
+  if (!e.ok()) return false;
+  std::size_t k = 0;
+  double f = 0.0;
+  if (!Bracket(t_, t_s, &k, &f)) return false;
+  o->az_rad = geo::WrapTwoPi(a.value);
+  o->el_rad = e.value;
+  o->sigma_az_rad = InterpSigma(sig_az_, k, f);
+  o->sigma_el_rad = InterpSigma(sig_el_, k, f);
+  o->has_range = false;
+  if (impl_->range) {
+    const track::InterpValue r = impl_->range->At(t_s);
+    if (r.ok() && Bracket(tr_, t_s, &k, &f)) {
+      o->has_range = true;
+      o->range_m = r.value;
+      o->sigma_range_m = InterpSigma(sig_r_, k, f);
+    }
+  }
+  return true;
+}
+
+}  // namespace rk::intersect

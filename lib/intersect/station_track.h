@@ -1,0 +1,57 @@
+// One station's located-target file (SPEC.md §2.1, as rk-locate writes it) aligned to any time: the
+// station's azimuth and elevation (and range) interpolated linearly to t (lib/track's
+// TimeSeriesInterpolator; azimuth on its unwrapped sequence, so a pass through north is continuous), only
+// where two of its own usable rows bracket t no further apart than max_gap_frames × its median frame
+// interval (no extrapolation; a gap, a lost row or an empty value between them: no contribution).
+// Usable row: az_deg and el_deg present and status ok or reacquired (or no status column).
+// 1σ: sigma_az_deg / sigma_el_deg / sigma_range_m where the file has them (per row), else the defaults.
+// Linear interpolation of white noise at fraction f between rows k and k+1 has variance
+// (1−f)² σ_k² + f² σ_{k+1}² (≤ σ²): that is the σ given to the solver, so the covariance stays honest.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "intersect/solver.h"
+#include "io/csv.h"
+
+namespace rk::intersect {
+
+struct TrackDefaults {
+  double sigma_angle_rad = 0.0;  // cross-line σ for both angles when the file has no σ columns
+  double sigma_range_m = 0.0;
+  double max_gap_frames = 1.5;
+};
+
+class StationTrack {
+ public:
+  // Reads the table (DataError at file:line:col for bad values, times going backwards, unknown status).
+  StationTrack(const io::CsvTable& table, const TrackDefaults& defaults);
+  ~StationTrack();
+  StationTrack(StationTrack&&) noexcept;
+
+  // Fills o (angles, σ, range) at t; false when the station does not contribute at t.
+  bool At(double t_s, LineObservation* o) const;
+
+  const std::vector<double>& row_times() const { return row_t_; }  // every row of the file
+  std::size_t usable_rows() const { return t_.size(); }
+  bool has_range() const { return has_range_; }
+  bool has_sigma() const { return has_sigma_; }
+  double frame_interval_s() const { return frame_interval_s_; }
+  const std::string& source() const { return source_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::string source_;
+  std::vector<double> row_t_;
+  std::vector<double> t_, sig_az_, sig_el_;     // usable angle rows
+  std::vector<double> tr_, sig_r_;              // usable range rows
+  bool has_range_ = false, has_sigma_ = false;
+  double frame_interval_s_ = 0.0;
+};
+
+}  // namespace rk::intersect

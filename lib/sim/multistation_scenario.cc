@@ -1,0 +1,214 @@
+// rk-sim multistation; see multistation_scenario.h.
+#include "sim/multistation_scenario.h"
+
+#include <GeographicLib/LocalCartesian.hpp>
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include "geo/angles.h"
+#include "io/file_util.h"
+#include "sim/sim_common.h"
+#include "sim/trial_folder.h"
+
+namespace rk::sim {
+namespace {
+
+constexpr double kGravityMps2 = 9.80665;
+// Station layout in units of the baseline (origin ENU, x east, y north) and heights above the origin (m).
+constexpr double kLayout[4][3] = {{0.0, 0.0, 0.0}, {1.0, 0.0, 350.0}, {0.45, 0.75, 900.0}, {-0.3, 0.6, 150.0}};
+constexpr double kRateFactor[4] = {1.0, 1.25, 0.8, 1.5};
+constexpr std::uint64_t kStreamNoise = 1, kStreamPhase = 2;
+
+}  // namespace
+
+std::string MultistationPathName(MultistationPath p) { return p == MultistationPath::kBallistic ? "ballistic" : "crossing"; }
+
+const io::OptionTable<MultistationOptions>& MultistationOptions::Table() {
+  using O = MultistationOptions;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Integer("--stations", &O::stations, "", io::Bounds::Closed(2, 4), "Number of stations, 2..4")
+          .Real("--baseline", &O::baseline_km, "km", io::Bounds::Positive().Finite(),
+                "Distance from station 1 to station 2 (km); the other stations scale with it")
+          .Real("--duration", &O::duration_s, "s", io::Bounds::Positive().Finite(), "Length of the trial (s)")
+          .Real("--rate", &O::rate_hz, "Hz", io::Bounds::Positive().Finite(),
+                "Frame rate of station 1 (Hz); stations 2, 3, 4 run at 1.25, 0.8, 1.5 times it, each with a "
+                "random phase")
+          .Real("--sigma-angle", &O::sigma_angle_arcsec, "arcsec", io::Bounds::Positive().Finite(),
+                "1 sigma of the angle noise across the line of sight (arcsec)")
+          .Integer("--range-stations", &O::range_stations, "", io::Bounds::Closed(0, 4),
+                   "The first N stations also measure range")
+          .Real("--sigma-range", &O::sigma_range_m, "m", io::Bounds::Positive().Finite(), "1 sigma of a range (m)")
+          .Choice("--path", &O::path, {MultistationPath::kBallistic, MultistationPath::kCrossing},
+                  MultistationPathName, "Target path: ballistic (arc to --apex) or crossing (aircraft)")
+          .Real("--apex", &O::apex_m, "m", io::Bounds::Positive().Finite(), "Ballistic apex height (m)")
+          .Real("--speed", &O::speed_mps, "m/s", io::Bounds::Positive().Finite(), "Crossing speed (m/s)")
+          .Real("--height", &O::height_m, "m", io::Bounds::Positive().Finite(), "Crossing height (m)")
+          .Real("--origin-lat", &O::origin_lat_deg, "deg", io::Bounds::Closed(-89.0, 89.0), "Origin latitude (deg)")
+          .Real("--origin-lon", &O::origin_lon_deg, "deg", io::Bounds::Closed(-180.0, 180.0),
+                "Origin longitude (deg)")
+          .Real("--origin-h", &O::origin_h_m, "m", io::Bounds::Closed(-500.0, 9000.0),
+                "Origin ellipsoidal height (m)")
+          .Count("--seed", &O::seed, "", io::Bounds::Any(), "Random seed");
+  return table;
+}
+
+bool MultistationOptions::Check(std::string* why) const {
+  if (!Table().Check(*this, why)) return false;
+  if (range_stations > stations) {
+    if (why) *why = "--range-stations must be <= --stations";
+    return false;
+  }
+  return true;
+}
+
+struct MultistationScenario::Impl {
+  GeographicLib::LocalCartesian origin;
+  std::vector<GeographicLib::LocalCartesian> station;
+};
+
+MultistationScenario::~MultistationScenario() = default;
+
+MultistationScenario::MultistationScenario(const MultistationOptions& options)
+    : impl_(std::make_unique<Impl>()), o_(options) {
+  std::string why;
+  if (!o_.Check(&why)) throw UsageError(why);
+  impl_->origin.Reset(o_.origin_lat_deg, o_.origin_lon_deg, o_.origin_h_m);
+  const double b = 1000.0 * o_.baseline_km;
+  for (int s = 0; s < o_.stations; ++s) {
+    SimStation st;
+    st.name = "s" + std::to_string(s + 1);
+    st.p_enu = {kLayout[s][0] * b, kLayout[s][1] * b, kLayout[s][2]};
+    impl_->origin.Reverse(st.p_enu(0), st.p_enu(1), st.p_enu(2), st.lat_deg, st.lon_deg, st.h_m);
+    impl_->station.emplace_back(st.lat_deg, st.lon_deg, st.h_m);
+    st.has_range = s < o_.range_stations;
+    stations_.push_back(st);
+  }
+  for (std::size_t s = 0; s < stations_.size(); ++s) Measure(s, s);
+}
+
+Eigen::Vector3d MultistationScenario::Position(double t) const {
+  const double b = 1000.0 * o_.baseline_km;
+  if (o_.path == MultistationPath::kBallistic) {
+    const double vu = std::sqrt(2.0 * kGravityMps2 * o_.apex_m);
+    const Eigen::Vector3d p0(0.5 * b, 0.35 * b, 0.0), v0(120.0, 160.0, vu);
+    return p0 + v0 * t + Eigen::Vector3d(0.0, 0.0, -0.5 * kGravityMps2 * t * t);
+  }
+  const Eigen::Vector3d p0(0.5 * b - 0.5 * o_.speed_mps * o_.duration_s, 0.45 * b, o_.height_m);
+  return p0 + Eigen::Vector3d(o_.speed_mps, 0.0, 0.0) * t;
+}
+
+Eigen::Vector3d MultistationScenario::Velocity(double t) const {
+  if (o_.path == MultistationPath::kBallistic) {
+    const double vu = std::sqrt(2.0 * kGravityMps2 * o_.apex_m);
+    return {120.0, 160.0, vu - kGravityMps2 * t};
+  }
+  return {o_.speed_mps, 0.0, 0.0};
+}
+
+Eigen::Vector3d MultistationScenario::Geodetic(const Eigen::Vector3d& p) const {
+  Eigen::Vector3d g;
+  impl_->origin.Reverse(p(0), p(1), p(2), g(0), g(1), g(2));
+  return g;
+}
+
+Eigen::Vector3d MultistationScenario::AzElRange(std::size_t s, const Eigen::Vector3d& p) const {
+  const Eigen::Vector3d g = Geodetic(p);
+  Eigen::Vector3d d;
+  impl_->station[s].Forward(g(0), g(1), g(2), d(0), d(1), d(2));
+  return {geo::WrapTwoPi(std::atan2(d(0), d(1))), std::atan2(d(2), std::hypot(d(0), d(1))), d.norm()};
+}
+
+void MultistationScenario::Measure(std::size_t s, std::uint64_t index) {
+  SimStation& st = stations_[s];
+  std::mt19937_64 phase_rng = RandomStream(o_.seed, kStreamPhase, index);
+  std::mt19937_64 rng = RandomStream(o_.seed, kStreamNoise, index);
+  std::normal_distribution<double> n01(0.0, 1.0);
+  const double rate = o_.rate_hz * kRateFactor[s];
+  const double phase = std::uniform_real_distribution<double>(0.0, 1.0 / rate)(phase_rng);
+  const double sigma = o_.sigma_angle_arcsec / geo::kArcsecPerRad;
+  for (long k = 0;; ++k) {
+    const double t = phase + static_cast<double>(k) / rate;
+    if (t > o_.duration_s) break;
+    const Eigen::Vector3d aer = AzElRange(s, Position(t));
+    const double saz = sigma / std::max(std::cos(aer(1)), 1e-6);
+    st.t_s.push_back(t);
+    st.true_az_deg.push_back(geo::RadToDeg(aer(0)));
+    st.true_el_deg.push_back(geo::RadToDeg(aer(1)));
+    st.true_range_m.push_back(aer(2));
+    st.az_deg.push_back(geo::WrapDeg360(geo::RadToDeg(aer(0) + saz * n01(rng))));
+    st.el_deg.push_back(geo::RadToDeg(aer(1) + sigma * n01(rng)));
+    st.range_m.push_back(aer(2) + o_.sigma_range_m * n01(rng));
+    st.sigma_az_deg.push_back(geo::RadToDeg(saz));
+    st.sigma_el_deg.push_back(geo::RadToDeg(sigma));
+  }
+}
+
+io::CsvWriter MultistationScenario::LocatedCsv(std::size_t s) const {
+  const SimStation& st = stations_[s];
+  io::CsvWriter w({"t_s", "az_deg", "el_deg", "range_m", "e_m", "n_m", "u_m", "status", "sigma_az_deg",
+                   "sigma_el_deg", "sigma_range_m"});
+  for (std::size_t i = 0; i < st.t_s.size(); ++i) {
+    w.Add(st.t_s[i], kTimeDecimals).Add(st.az_deg[i], kAngleDecimals).Add(st.el_deg[i], kAngleDecimals);
+    if (st.has_range) {
+      const double a = geo::DegToRad(st.az_deg[i]), e = geo::DegToRad(st.el_deg[i]), r = st.range_m[i];
+      w.Add(r, kMetreDecimals).Add(r * std::sin(a) * std::cos(e), kMetreDecimals);
+      w.Add(r * std::cos(a) * std::cos(e), kMetreDecimals).Add(r * std::sin(e), kMetreDecimals);
+    } else {
+      w.AddEmpty().AddEmpty().AddEmpty().AddEmpty();
+    }
+    w.Add("ok").Add(st.sigma_az_deg[i], 12).Add(st.sigma_el_deg[i], 12);
+    if (st.has_range) {
+      w.Add(o_.sigma_range_m, kMetreDecimals);
+    } else {
+      w.AddEmpty();
+    }
+    w.EndRow();
+  }
+  return w;
+}
+
+io::Json MultistationScenario::StationsJson() const {
+  io::Json j;
+  j["origin"] = {{"lat_deg", o_.origin_lat_deg}, {"lon_deg", o_.origin_lon_deg}, {"h_m", o_.origin_h_m}};
+  j["stations"] = io::Json::array();
+  for (const SimStation& st : stations_) {
+    j["stations"].push_back({{"name", st.name},
+                             {"lat_deg", st.lat_deg},
+                             {"lon_deg", st.lon_deg},
+                             {"h_m", st.h_m},
+                             {"located", st.name + "/located.csv"}});
+  }
+  return j;
+}
+
+io::CsvWriter MultistationScenario::TruthCsv() const {
+  std::vector<double> t;
+  for (const SimStation& st : stations_) t.insert(t.end(), st.t_s.begin(), st.t_s.end());
+  std::sort(t.begin(), t.end());
+  t.erase(std::unique(t.begin(), t.end()), t.end());
+  io::CsvWriter w({"t_s", "e_m", "n_m", "u_m", "lat_deg", "lon_deg", "h_m", "ve_mps", "vn_mps", "vu_mps"});
+  for (double ts : t) {
+    const Eigen::Vector3d p = Position(ts), g = Geodetic(p), v = Velocity(ts);
+    w.Add(ts, kTimeDecimals);
+    for (int c = 0; c < 3; ++c) w.Add(p(c), kMetreDecimals);
+    w.Add(g(0), 10).Add(g(1), 10).Add(g(2), kMetreDecimals);
+    for (int c = 0; c < 3; ++c) w.Add(v(c), kMetreDecimals);
+    w.EndRow();
+  }
+  return w;
+}
+
+void WriteMultistationTrial(const MultistationScenario& sim, const std::string& out_dir, bool force) {
+  TrialFolder folder(out_dir, force);
+  for (std::size_t s = 0; s < sim.stations().size(); ++s) {
+    folder.MakeSubfolder(sim.stations()[s].name);
+    io::WriteFileAtomic(folder.Path(sim.stations()[s].name + "/located.csv"), sim.LocatedCsv(s).str());
+  }
+  io::WriteFileAtomic(folder.Path("stations.json"), sim.StationsJson().dump(2) + "\n");
+  io::WriteFileAtomic(folder.Path("truth.csv"), sim.TruthCsv().str());
+  folder.Commit();
+}
+
+}  // namespace rk::sim

@@ -1,0 +1,12 @@
+# CLI tests of rk-intersect (SPEC.md §7, §4). The fixture intersect_data writes an rk-sim multistation trial
+# (three stations, 5 s) and bad stations files to ${RK_CLI_DATA}/intersect; the other tests REQUIRE it.
+# Decisions (docs/rk-intersect.md "Errors"): fewer than two stations is invalid input (exit 3, at the
+# "stations" array's line:column); stations whose times never overlap is invalid input too (exit 3, naming
+# stations.json and each station's time span), as rk-locate's turret log that covers no frame.
+rk_cli_script(rk_intersect/rk_intersect_data SETUP intersect_data)
+
+# Good input: one row per union time, columns, statuses, error against truth within 5 σ, report, stdout.
+rk_cli_script(rk_intersect/rk_intersect_good REQUIRES intersect_data)
+
+# Bad input: exit codes 2/3/4, one-line errors with file:line:col, no partial output.
+rk_cli_script(rk_intersect/rk_intersect_bad_input REQUIRES intersect_data)
