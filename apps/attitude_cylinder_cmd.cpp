@@ -14,6 +14,7 @@
 #include "io/file_util.h"
 #include "locate/inputs.h"
 #include "video/frame_source.h"
+#include "video/stdin_video.h"
 
 namespace rk::app {
 namespace {
@@ -29,6 +30,7 @@ int RunCylinderCmd(const CylinderArgs& a, const Context& ctx) {
   const attitude::CylinderRunOptions& opt = a.opt;
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
+  video::RefuseStdinVideo(a.videos);
   std::vector<std::string> inputs = {a.points_path, a.theodolite_path, a.camera_path, a.target_path};
   inputs.insert(inputs.end(), a.videos.begin(), a.videos.end());
   int stdin_inputs = 0;
@@ -131,7 +133,7 @@ Command AddCylinderCommand(CLI::App& parent) {
   c->add_option("--video", a->videos,
                 "The frames the points came from (file or image-sequence pattern; repeat for segments): each "
                 "solution is then refined by fitting the projected target to its frame (image fit; needs the "
-                "points file's frame column)");
+                "points file's frame column). Not '-': a video is not read from stdin");
   cli::AddOptions(c, &a->opt, attitude::CylinderRunOptions::Table());
 
   return {c, [a](const Context& ctx) { return RunCylinderCmd(*a, ctx); }};

@@ -10,6 +10,7 @@
 #include "io/cli.h"
 #include "io/error.h"
 #include "subcommand.h"
+#include "video/stdin_video.h"
 
 namespace rk::app {
 
@@ -28,7 +29,7 @@ struct VideoInputArgs {
   void Add(CLI::App* app) {
     app->add_option("--video", videos,
                     "Video file (ffmpeg-readable, 8/16-bit mono) or image-sequence pattern dir/%06d.png; repeat "
-                    "for segments, read in the order given")
+                    "for segments, read in the order given. Not '-': a video is not read from stdin")
         ->required();
     auto* o_frames = app->add_option("--frames", frames_path, "Frame times CSV with columns frame,t_s");
     auto* o_fps = app->add_option("--fps", fps, "Constant frame rate (Hz): t = t0 + frame / fps");
@@ -38,6 +39,7 @@ struct VideoInputArgs {
   }
   // UsageError unless the frame times are given.
   void CheckFrameTimes() const {
+    video::RefuseStdinVideo(videos);
     if (frames_path.empty() && !fps) throw UsageError("give the frame times: --frames F.csv or --fps HZ [--t0 S]");
   }
   // The videos, then the frames file if any.

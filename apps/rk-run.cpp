@@ -69,6 +69,10 @@ int main(int argc, char** argv) {
     if (s.result == rk::run::TrialResult::kFailed || s.result == rk::run::TrialResult::kLocked) {
       throw rk::Error(s.exit_code, s.error);
     }
+    // The plan per unit (planned, skipped and why) on stderr, terminal or not, unless --quiet.
+    if (!common.quiet) {
+      for (const auto& line : s.units) std::cerr << kTool << ": " << line << "\n";
+    }
     // The table goes to stdout unless --quiet, or unless --report - already writes JSON there.
     const bool report_on_stdout = rk::io::IsStdStream(common.report_path);
     if ((opt.dry_run || !common.quiet) && !report_on_stdout) std::cout << rk::run::SummaryTable(s) << std::flush;

@@ -5,8 +5,18 @@
 # summary, the wall time, the sum of the tool times (each step's wall time measured by rk-run around the
 # child process), the ideal wall time tools / cores and their ratio; then a second rk-nightly run, where
 # every trial is up to date.
-#   bench/rk_nightly_bench.sh [--trials N] [--duration S] [--jobs J] [--no-plots] [--root DIR] [--regen] [--pages]
+#   bench/rk_nightly_bench.sh [--trials N] [--duration S] [--jobs J] [--no-plots] [--root DIR] [--regen]
+#                             [--kind beacon|theodolite] [--no-image-fit] [--pages]
 # Defaults: 20 trials, 10 s each (200 frames of 640x512, FFV1), J = nproc, plots on, ROOT=/tmp/rk-nightly-bench.
+# --kind theodolite (issue 20): seed 004 theodolite trials instead (rk-sim theodolite --images mkv: 1536x1536
+# frames at 20 Hz, the target ≈ 300 px), default 2 s each (41 frames), ROOT=/tmp/rk-nightly-bench-theo; the
+# table then adds, per trial, the attitude-cylinder step's wall time, its method and the image fit's seconds,
+# fits and model evaluations (from out/report.json). --no-image-fit sets "image-fit": false in every trial's
+# "steps" (the three-point solve; without it the key is removed), to measure what the image fit adds.
+# Release figures for docs/benchmarks.md "Issue 20":
+#   cmake -S . -B build -DCMAKE_BUILD_TYPE=Release && cmake --build build -j && \
+#   bench/rk_nightly_bench.sh --kind theodolite --trials 4 --jobs 1 --no-plots && \
+#   bench/rk_nightly_bench.sh --kind theodolite --trials 4 --jobs 1 --no-plots --no-image-fit
 # --pages (issue 19 targets) then measures what the report pages and the index add: four more forced passes,
 # alternately with rk-report replaced by a no-op (a copy of rk-run in a folder of links to the tools, where it
 # looks first) and with the real pages, the smaller wall of each and the difference (target <= 10 %);
@@ -16,7 +26,7 @@
 set -euo pipefail
 SRC=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 BIN=${RK_BIN:-$SRC/build/apps}
-N=20; DUR=10; JOBS=$(nproc); PLOTS=""; ROOT=/tmp/rk-nightly-bench; REGEN=0; PAGES=0
+N=20; DUR=""; JOBS=$(nproc); PLOTS=""; ROOT=""; REGEN=0; KIND=beacon; FIT=1; PAGES=0
 while [ $# -gt 0 ]; do
   case "$1" in
     --trials) N=$2; shift 2 ;;
@@ -26,21 +36,49 @@ while [ $# -gt 0 ]; do
     --root) ROOT=$2; shift 2 ;;
     --regen) REGEN=1; shift ;;
     --pages) PAGES=1; shift ;;
+    --kind) KIND=$2; shift 2 ;;
+    --no-image-fit) FIT=0; shift ;;
     *) echo "rk_nightly_bench.sh: error: unknown option $1" >&2; exit 2 ;;
   esac
 done
+case "$KIND" in
+  beacon) DUR=${DUR:-10}; ROOT=${ROOT:-/tmp/rk-nightly-bench} ;;
+  theodolite) DUR=${DUR:-2}; ROOT=${ROOT:-/tmp/rk-nightly-bench-theo} ;;
+  *) echo "rk_nightly_bench.sh: error: --kind must be beacon or theodolite" >&2; exit 2 ;;
+esac
 [ "$REGEN" = 1 ] && rm -rf "$ROOT"
 mkdir -p "$ROOT"
 made=0
 for k in $(seq -w 1 "$N"); do
   if [ ! -s "$ROOT/t$k/trial.json" ]; then
-    "$BIN/rk-sim" beacon --out "$ROOT/t$k" --force --preset small --duration "$DUR" --seed "$((10#$k))" --quiet &
+    if [ "$KIND" = beacon ]; then
+      "$BIN/rk-sim" beacon --out "$ROOT/t$k" --force --preset small --duration "$DUR" --seed "$((10#$k))" --quiet &
+    else
+      rm -rf "$ROOT/t$k"
+      "$BIN/rk-sim" theodolite --out "$ROOT/t$k" --images mkv --duration "$DUR" --seed "$((10#$k))" --quiet &
+    fi
     made=$((made + 1))
     if [ $((made % JOBS)) = 0 ]; then wait; fi
   fi
 done
 wait
-echo "== $N trials of $DUR s in $ROOT ($made generated now); machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
+if [ "$KIND" = theodolite ]; then
+  for k in $(seq -w 1 "$N"); do
+    python3 - "$ROOT/t$k/trial.json" "$FIT" <<'PY'
+import json, sys
+p, fit = sys.argv[1], sys.argv[2] == "1"
+m = json.load(open(p))
+steps = m.get("steps") or {}
+if fit:
+    steps.pop("attitude-cylinder", None)
+else:
+    steps["attitude-cylinder"] = {"image-fit": False}
+m["steps"] = steps
+json.dump(m, open(p, "w"), indent=1)
+PY
+  done
+fi
+echo "== $N $KIND trials of $DUR s in $ROOT ($made generated now); machine: $(nproc) cores, load $(cut -d' ' -f1-3 /proc/loadavg)"
 export PATH=$BIN:$PATH
 for pass in force again; do
   extra=""; [ "$pass" = force ] && extra=--force
@@ -57,6 +95,30 @@ print("   wall %.2f s; tools %.2f s (cpu %.2f s) on %d cores -> ideal %.2f s; wa
       % (s["wall_s"], s["tool_time_s"], s["tool_cpu_s"], s["cores_used"], s.get("ideal_wall_s", 0.0), s.get("wall_over_ideal", 0.0)))
 PY
 done
+if [ "$KIND" = theodolite ]; then
+  python3 - "$ROOT" "$N" <<'PY'
+import json, os, sys
+root, n = sys.argv[1], int(sys.argv[2])
+print("   per trial, step attitude-cylinder (last --force pass): wall_s, method, rows; image fit: seconds, fits, "
+      "model evaluations, per frame")
+tot = 0.0
+for k in range(1, n + 1):
+    name = "t%0*d" % (len(str(n)), k)
+    rep = json.load(open(os.path.join(root, name, "out", "report.json")))
+    for s in rep["steps"]:
+        if s["kind"] != "attitude-cylinder":
+            continue
+        q = s.get("quality", {})
+        f = q.get("image_fit", {})
+        rows = q.get("rows", 0) or 1
+        wall = s.get("time", {}).get("wall_s", 0.0)
+        tot += wall
+        print("   %s %s: %.2f s, %s, %d rows; fit %.2f s, %s fits, %s evaluations; %.3f s and %.0f evaluations per frame"
+              % (name, s["id"], wall, q.get("method", "?"), rows, f.get("seconds", 0.0), f.get("fits", "-"),
+                 f.get("model_evaluations", "-"), f.get("seconds", 0.0) / rows, f.get("model_evaluations", 0) / rows))
+print("   attitude-cylinder: %.2f s over %d trials, %.2f s per trial" % (tot, n, tot / max(n, 1)))
+PY
+fi
 [ "$PAGES" = 1 ] || { echo "load after: $(cut -d' ' -f1-3 /proc/loadavg)"; exit 0; }
 
 # -- issue 19: report pages and index --------------------------------------------------------------------

@@ -139,7 +139,8 @@ def run_all(bin_dir, work, keep_bytes=False):
         for stream, data in (("stdout", p.stdout), ("stderr", p.stderr)):
             text = normalise_text(data, subs)
             if name.startswith("run_") or name.startswith("sample"):
-                text = re.sub(r"(?m)^(\S+\s+\S+\s+)\d+\.\d+", r"\1<t>", text)  # rk-run's time_s column
+                # rk-run's time_s column, right-aligned: its padding depends on the time's digits too.
+                text = re.sub(r"(?m)^(\S+\s+\S+)\s+\d+\.\d+", r"\1 <t>", text)
             out["cmd %s %s" % (name, stream)] = (hashlib.sha256(text.encode()).hexdigest(), text.encode())
         out["cmd %s exit" % name] = (str(p.returncode), str(p.returncode).encode())
         for dirpath, dirnames, filenames in os.walk(work):

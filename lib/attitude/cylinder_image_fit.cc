@@ -230,15 +230,34 @@ double ScanNoseLength(Problem& prob, const Params start, double length_m, Params
 }
 
 // The noise variance per pixel modelled as c0 + c1 · signal (read + shot noise: the sky and the body differ
-// by their shot noise), fitted to the squared residuals r of the unweighted pass, becomes the weights.
-void WeightByNoiseModel(Problem& prob, const Eigen::VectorXd& r) {
+// by their shot noise), fitted to the squared (unwhitened) residuals r; a constant where the fit is unusable.
+Eigen::Vector2d NoiseModel(const Problem& prob, const Eigen::VectorXd& r) {
   const Eigen::VectorXd m = prob.Model(r), u2 = prob.Unwhiten(r).array().square().matrix();
   Eigen::Matrix2d Nv;
   Nv << static_cast<double>(m.size()), m.sum(), m.sum(), m.squaredNorm();
   const Eigen::Vector2d c = Nv.ldlt().solve(Eigen::Vector2d(u2.sum(), m.dot(u2)));
   const double mean = u2.mean();
   const bool usable = c.allFinite() && c(1) >= 0.0 && c(0) > 0.05 * mean;
-  prob.SetWeights(m, usable ? c(0) : mean, usable ? c(1) : 0.0);
+  return usable ? c : Eigen::Vector2d(mean, 0.0);
+}
+
+// The noise model of the residuals r of the unweighted pass becomes the weights.
+void WeightByNoiseModel(Problem& prob, const Eigen::VectorXd& r) {
+  const Eigen::Vector2d c = NoiseModel(prob, r);
+  prob.SetWeights(prob.Model(r), c(0), c(1));
+}
+
+// The start of the fit: a warm start's nuisance parameters and weights (the previous frame's noise model
+// at the start's model values), else the best nose-cone length of a coarse scan, unweighted. Returns the
+// cost (infinite if no model could be evaluated), the residuals in r.
+double StartFit(Problem& prob, const CylinderImageFitStart* start, double length_m, Params* p, Eigen::VectorXd* r) {
+  if (!start) return ScanNoseLength(prob, *p, length_m, p, r);
+  (*p)(5) = start->nose_cone_length_m;
+  (*p)(6) = std::clamp(start->psf_sigma_px, kMinSigmaPx, kMaxSigmaPx);
+  if (!prob.Residual(*p, r)) return std::numeric_limits<double>::infinity();
+  prob.SetWeights(prob.Model(*r), start->noise_c0, start->noise_c1);
+  if (!prob.Residual(*p, r)) return std::numeric_limits<double>::infinity();
+  return r->squaredNorm();
 }
 
 }  // namespace
@@ -278,10 +297,15 @@ const char* CylinderImageFitStatusName(CylinderImageFitStatus s) {
 CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::CameraModel& cam, double az_rad,
                                         double el_rad, const target::CylinderShape& target,
                                         const Eigen::Vector3d& tail_centre_enu, double yaw_rad,
-                                        double pitch_rad, const CylinderImageFitOptions& opt) {
+                                        double pitch_rad, const CylinderImageFitOptions& opt,
+                                        const CylinderImageFitStart* start) {
   CylinderImageFitResult out;
   if (frame.empty() || frame.channels() != 1 || (frame.depth() != CV_8U && frame.depth() != CV_16U))
     return out;
+  if (start && !(start->nose_cone_length_m > 0.0 && start->psf_sigma_px > 0.0 && start->noise_c0 > 0.0 &&
+                 start->noise_c1 >= 0.0)) {
+    start = nullptr;  // not a usable start: a cold fit
+  }
 
   // Window: the initial outline (nose cone at 1/4 of the length) + 4σ_max + margin, inside the frame.
   const double sigma_cap = std::max(2.0 * opt.initial_psf_sigma_px, 1.5);
@@ -304,9 +328,9 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
   Params p;
   p << 0.0, 0.0, 0.0, yaw_rad, pitch_rad, 0.25 * target.length_m, opt.initial_psf_sigma_px;
 
-  // Nose-cone length: best of a coarse scan.
+  // Nose-cone length: best of a coarse scan (or the previous frame's, with its weights).
   Eigen::VectorXd r;
-  double cost = ScanNoseLength(prob, p, target.length_m, &p, &r);
+  double cost = StartFit(prob, start, target.length_m, &p, &r);
   if (!std::isfinite(cost)) return out;
 
   // Levenberg–Marquardt from p (numeric::LevenbergMarquardt with the damping below); false if a model
@@ -337,15 +361,16 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
   // Pass 1 unweighted; then the noise variance per pixel modelled as c0 + c1 · signal (read + shot noise:
   // the sky and the body differ by their shot noise) from the squared residuals, and pass 2 weighted by it —
   // the maximum-likelihood fit for that noise.
-  // Pass 1 stops early (the weights need only a near solution: 0.1 σ), pass 2 at 0.01 σ.
+  // Pass 1 stops early (the weights need only a near solution: 0.1 σ), pass 2 at 0.01 σ. A warm start
+  // has its weights already: pass 2 only.
   bool converged = false;
-  if (!levenberg_marquardt(opt.max_iterations, 1e-2, 1e-2, &converged)) return out;
-  {
+  if (!start) {
+    if (!levenberg_marquardt(opt.max_iterations, 1e-2, 1e-2, &converged)) return out;
     WeightByNoiseModel(prob, r);
     if (!prob.Residual(p, &r)) return out;
     cost = r.squaredNorm();
-    if (!levenberg_marquardt(opt.max_iterations, 1e-3, 1e-4, &converged)) return out;
   }
+  if (!levenberg_marquardt(opt.max_iterations, 1e-3, 1e-4, &converged)) return out;
 
   // Final covariance from the last Jacobian (at the previous iterate: within 2e-5 px of the solution).
   const Eigen::Index dof = prob.size() - kNonlinear - kLinear;
@@ -370,6 +395,9 @@ CylinderImageFitResult FitCylinderImage(const cv::Mat& frame, const camera::Came
   out.iterations = it;
   out.evaluations = prob.evaluations();
   out.pixels = static_cast<int>(prob.size());
+  const Eigen::Vector2d noise = NoiseModel(prob, r);
+  out.noise_c0 = noise(0);
+  out.noise_c1 = noise(1);
   return out;
 }
 

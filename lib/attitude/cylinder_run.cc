@@ -71,6 +71,12 @@ const io::OptionTable<CylinderRunOptions>& CylinderRunOptions::Table() {
                 B::LeftOpen(0, 90),
                 "Solutions tilting the tail diameter further out of the image plane are not admissible (deg)")
           .Sub(&O::image_fit, CylinderImageFitOptions::Table())
+          .Real("--fit-both-within-deg", &O::fit_both_within_deg, "deg", B::Positive().Finite(),
+                "Image fit: both solutions are fitted when history cannot choose or they are closer than this "
+                "(deg; near side-on one start can lie in the other's basin); else only the chosen one")
+          .Real("--fit-time-limit", &O::fit_time_limit_s, "s", B::AtLeast(0).Finite(),
+                "Image fit: after this much fitting time (s) in all, the remaining frames keep the three-point "
+                "solution (fit column empty); 0 = no limit")
           .Real("--pixel-sigma", &O::pixel_sigma_px, "px", B::AtLeast(0).Finite(),
                 "Point error assumed for the sigma columns (px, each coordinate)")
           .Real("--angle-sigma-arcsec", &O::angle_sigma_arcsec, "arcsec", B::AtLeast(0).Finite(),
@@ -187,7 +193,12 @@ io::Json CylinderRunResult::SummaryJson() const {
     io::Json by_fit = io::Json::object();
     for (int s = 0; s < 3; ++s)
       by_fit[CylinderImageFitStatusName(static_cast<CylinderImageFitStatus>(s))] = rows_by_fit[static_cast<std::size_t>(s)];
-    j["image_fit"] = {{"fit_counts", by_fit}, {"model_evaluations", fit_evaluations}, {"seconds", fit_seconds}};
+    j["image_fit"] = {{"fit_counts", by_fit},
+                      {"rows_not_fitted_time_limit", rows_fit_time_limit},
+                      {"fits", fits},
+                      {"fits_warm_start", fits_warm},
+                      {"model_evaluations", fit_evaluations},
+                      {"seconds", fit_seconds}};
   }
   return j;
 }
@@ -253,6 +264,10 @@ bool OutsideImage(const CylinderFramePoints& f, const camera::CameraModel& cam) 
   }
   return outside;
 }
+
+// The image fit of the solution continuity chose starts from the predicted axis when that is within this of
+// the solution's three-point axis (the same branch; the three points' error is ≲ 0.5° at ≥ 100 px).
+constexpr double kStartFromHistoryRad = geo::DegToRad(2.0);
 
 // Solves the rows of one run in time order (the choice between two solutions uses the rows before).
 class CylinderRowSolver {
@@ -340,15 +355,34 @@ class CylinderRowSolver {
                                                               std::vector<CylinderSolution>* sols) {
     std::vector<std::optional<CylinderImageFitResult>> fits(sols->size());
     if (!frames_ || !f.frame) return fits;
+    if (options_.fit_time_limit_s > 0.0 && result_->fit_seconds >= options_.fit_time_limit_s) {
+      ++result_->rows_fit_time_limit;
+      return fits;
+    }
     const cv::Mat& image = (*frames_)(*f.frame);
+    const std::optional<std::size_t> only = ClearChoice(*sols, f.t_s);
     for (std::size_t k = 0; k < sols->size(); ++k) {
+      if (only && k != *only) continue;
       CylinderSolution& c = (*sols)[k];
+      // The chosen solution's fit starts from the axis the fitted history predicts (closer than the three
+      // points' by their noise), the position from the three points.
+      geo::AzEl start{c.yaw_rad, c.pitch_rad};
+      const std::optional<Eigen::Vector3d> predicted = history_.Predict(f.t_s, options_.continuity_gap_s);
+      if (only && predicted && AxisAngle(*predicted, c.axis_enu) < kStartFromHistoryRad) {
+        start = geo::AzElFromEnu(*predicted);
+      }
       const auto t0 = std::chrono::steady_clock::now();
-      const CylinderImageFitResult g = FitCylinderImage(image, cam_, boresight.az_rad, boresight.el_rad, target_,
-                                                        c.tail_centre_enu, c.yaw_rad, c.pitch_rad, options_.image_fit);
+      const CylinderImageFitResult g =
+          FitCylinderImage(image, cam_, boresight.az_rad, boresight.el_rad, target_, c.tail_centre_enu, start.az_rad,
+                           start.el_rad, options_.image_fit, warm_ ? &*warm_ : nullptr);
       result_->fit_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       result_->fit_evaluations += g.evaluations;
+      ++result_->fits;
+      if (warm_) ++result_->fits_warm;
       fits[k] = g;
+      // The next fit starts from this one when it converged; a fit that did not starts the next one cold.
+      warm_.reset();
+      if (g.status == CylinderImageFitStatus::kConverged) warm_ = g.NextStart();
       if (g.status == CylinderImageFitStatus::kFailed) continue;
       c.yaw_rad = g.yaw_rad;
       c.pitch_rad = g.pitch_rad;
@@ -360,6 +394,20 @@ class CylinderRowSolver {
                                   (g.tail_centre_enu - 0.5 * target_.diameter_m * n).norm());
     }
     return fits;
+  }
+
+  // The solution continuity chooses without doubt (two solutions further apart than fit_both_within_deg and
+  // ambiguity_deg, their distances to the predicted axis further apart than ambiguity_deg): then only it is
+  // fitted. None when history cannot choose (no
+  // history, ambiguous, side-on) or there is one solution (fitted anyway).
+  std::optional<std::size_t> ClearChoice(const std::vector<CylinderSolution>& sols, double t_s) {
+    if (sols.size() != 2) return std::nullopt;
+    const std::optional<Eigen::Vector3d> predicted = history_.Predict(t_s, options_.continuity_gap_s);
+    const double both_within = std::max(tau_, geo::DegToRad(options_.fit_both_within_deg));
+    if (!predicted || AxisAngle(sols[0].axis_enu, sols[1].axis_enu) < both_within) return std::nullopt;
+    const double d0 = AxisAngle(sols[0].axis_enu, *predicted), d1 = AxisAngle(sols[1].axis_enu, *predicted);
+    if (std::abs(d0 - d1) < tau_) return std::nullopt;
+    return d1 < d0 ? std::size_t{1} : std::size_t{0};
   }
 
   // The primary of one or two solutions, by continuity with the predicted axis (SPEC.md §3), and the
@@ -429,6 +477,7 @@ class CylinderRowSolver {
   CylinderSolveOptions solve_;
   double tau_ = 0.0, px_var_ = 0.0, ang_var_ = 0.0;
   AxisHistory history_;
+  std::optional<CylinderImageFitStart> warm_;  // the last converged fit's start for the next
 };
 
 }  // namespace

@@ -27,10 +27,15 @@
 //      cannot tell apart: none, or both within ambiguity_deg of the prediction — primary by the SPEC rule,
 //      the other in alt_*), `side_on` (two within ambiguity_deg of each other: the view is nearly
 //      perpendicular to the axis, the double root of the problem, where precision is poorest).
-//   5b. Optional image fit (with the frames: rk-attitude cylinder --video): each of the (up to two) solutions
-//      is refined by fitting the projected target to the frame itself (cylinder_image_fit.h) before step 6
-//      chooses between them (near the side-on double root the frame has two minima of equal cost close to the
-//      two three-point solutions: the image cannot tell them apart either). yaw, pitch, alt_*, the ranges and
+//   5b. Optional image fit (with the frames: rk-attitude cylinder --video): the solutions are refined by
+//      fitting the projected target to the frame itself (cylinder_image_fit.h) before step 6 chooses between
+//      them (near the side-on double root the frame has two minima of equal cost close to the two three-point
+//      solutions: the image cannot tell them apart either). Both are fitted only when history cannot tell them
+//      apart (step 6 would say ambiguous or side_on) or they are within fit_both_within_deg of each other; else
+//      only the one continuity chooses, and alt_* keep the other's three-point values. After the first converged fit each fit starts from the
+//      previous one's nuisance parameters and noise model (CylinderImageFitStart), and a fit of the solution
+//      continuity chose starts from the axis the history predicts (within 2° of its three-point axis). With fit_time_limit_s,
+//      rows after that much fitting time are not fitted. yaw, pitch, alt_*, the ranges and
 //      the σ columns are then the fit's (σ from its covariance); `fit` says converged / not_converged /
 //      failed (failed: that solution keeps its three-point values).
 //   8. Quality: σ of yaw and pitch from pixel_sigma_px on each coordinate and angle_sigma_arcsec on A and E,
@@ -110,6 +115,13 @@ struct CylinderRunOptions {
   double pixel_sigma_px = 0.3;              // for the σ columns, >= 0
   double angle_sigma_arcsec = 0.0;          // for the σ columns, >= 0
   CylinderImageFitOptions image_fit;        // used when frames are given
+  // Image fit: total fitting time (s) after which the remaining rows keep their three-point solution (fit
+  // column empty, counted in the summary); 0 = no limit, >= 0. Depends on the machine's speed.
+  double fit_time_limit_s = 0.0;
+  // Image fit: both solutions are fitted when they are closer than this (deg; near side-on the frame's two
+  // minima are a few degrees apart and a start from one solution can lie in the other's basin), as when history
+  // cannot choose; otherwise only the one continuity chooses. > 0.
+  double fit_both_within_deg = 10.0;
   // The command-line options of rk-attitude cylinder, solve's and image_fit's among them (io/options.h).
   static const io::OptionTable<CylinderRunOptions>& Table();
   bool Check(std::string* why) const;
@@ -142,6 +154,8 @@ struct CylinderRunResult {
   long solver_evaluations = 0;
   bool image_fit = false;
   std::array<std::size_t, 3> rows_by_fit{};  // by CylinderImageFitStatus
+  std::size_t rows_fit_time_limit = 0;       // rows not fitted: fit_time_limit_s was spent
+  std::size_t fits = 0, fits_warm = 0;       // fits run, of which from the previous frame's start
   long fit_evaluations = 0;
   double fit_seconds = 0.0;
   io::Json SummaryJson() const;

@@ -51,7 +51,14 @@ std::string WhyChanged(const Step& st, const ToolIdentity& tool, const Json& key
         which += (which.empty() ? "" : ", ") + path;
       }
     }
-    return which.empty() ? "inputs changed" : "input changed: " + which;
+    if (!which.empty()) return "input changed: " + which;
+    std::string dropped;  // an input the step no longer reads (the image fit switched off: the video)
+    for (const auto& entry : before) {
+      const std::string& path = entry.first;
+      const bool still = std::any_of(inputs.begin(), inputs.end(), [&](const Json& i) { return i["path"] == path; });
+      if (!still) dropped += (dropped.empty() ? "" : ", ") + path;
+    }
+    return dropped.empty() ? "inputs changed" : "input no longer read: " + dropped;
   }
   if (pk.value("args", Json()) != key_parts["args"]) return "command line or options changed";
   std::string which;

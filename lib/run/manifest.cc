@@ -24,7 +24,7 @@ const std::vector<StepKindInfo>& StepKinds() {
       {"extract-features", "features", "rk-extract", "features", {"video", "frames", "fps", "t0", "target"}},
       {"attitude-oi", "features", "rk-attitude", "oi", {"points", "camera", "target", "turret", "boresight"}},
       {"extract-silhouette", "silhouette", "rk-extract", "silhouette", kVideo},
-      {"attitude-cylinder", "silhouette", "rk-attitude", "cylinder", {"points", "theodolite", "camera", "target"}},
+      {"attitude-cylinder", "silhouette", "rk-attitude", "cylinder", {"points", "theodolite", "camera", "target", "video"}},
       {"register", "radar", "rk-register", "bernoulli", {"plots", "nav"}},
       {"register-batch", "radar", "rk-register", "batch", {"plots", "nav"}},
       {"plot", "*", "rk-plot", "", {"i", "input"}},
@@ -54,7 +54,13 @@ bool IsReservedOption(const std::string& kind, const std::string& option) {
 Json StepSettings::AsJson() const {
   Json j = Json::object();
   for (const auto& [k, v] : options) j[k] = v;
+  for (const auto& [k, v] : run.items()) j[k] = v;
   return j;
+}
+
+const std::vector<std::string>& RunSettingKeys(const std::string& kind) {
+  static const std::vector<std::string> none, cylinder = {kImageFitSetting};
+  return kind == "attitude-cylinder" ? cylinder : none;
 }
 
 namespace {
@@ -86,6 +92,11 @@ void CheckStepValue(const Checker& c, const Json& v, const std::string& pointer,
     std::string opt = name;
     while (!opt.empty() && opt[0] == '-') opt.erase(0, 1);
     if (!ValidOptionName(opt)) c.Fail(p, "'" + name + "' is not an option name", true);
+    const std::vector<std::string>& run_keys = RunSettingKeys(kind);
+    if (std::find(run_keys.begin(), run_keys.end(), opt) != run_keys.end()) {
+      if (!value.is_boolean()) c.Fail(p, "must be true or false (an rk-run setting of the step, not an option)");
+      continue;
+    }
     if (IsReservedOption(kind, opt)) {
       c.Fail(p, "option '--" + opt + "' is set by rk-run from the manifest and cannot be overridden", true);
     }
@@ -181,6 +192,11 @@ StepSettings TrialManifest::Settings(const std::string& unit, const std::string&
     for (const auto& [name, value] : v.items()) {
       std::string opt = name;
       while (!opt.empty() && opt[0] == '-') opt.erase(0, 1);
+      const std::vector<std::string>& run_keys = RunSettingKeys(kind);
+      if (std::find(run_keys.begin(), run_keys.end(), opt) != run_keys.end()) {
+        s.run[opt] = value;
+        continue;
+      }
       auto it = std::find_if(s.options.begin(), s.options.end(), [&](const auto& o) { return o.first == opt; });
       if (it != s.options.end())
         it->second = value;

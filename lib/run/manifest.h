@@ -5,7 +5,8 @@
 //             "az/extract-beacon": {"k-detect": 6},       // camera "az" only (merged over the above)
 //             "resample-range": false,                    // switch a step off
 //             "plot": false,
-//             "bad-rows": "skip"}                         // --bad-rows of every step that reads CSV
+//             "bad-rows": "skip",                         // --bad-rows of every step that reads CSV
+//             "attitude-cylinder": {"image-fit": false}}  // an rk-run key (RunSettingKeys), not an option
 // Option names are the tool's long options without "--"; a string or number value gives "--name
 // value", true gives the flag "--name", false leaves the flag out, an array gives "--name a,b,c".
 #pragma once
@@ -48,8 +49,18 @@ const StepKindInfo* FindStepKind(const std::string& kind);
 struct StepSettings {
   bool enabled = true;
   std::vector<std::pair<std::string, io::Json>> options;  // option name (no "--") → value, in order
-  io::Json AsJson() const;
+  // rk-run's own keys of the step (RunSettingKeys): read by the plan, never passed to the tool.
+  io::Json run = io::Json::object();
+  bool RunFlag(const std::string& key, bool default_value) const {
+    return run.contains(key) ? run.at(key).get<bool>() : default_value;
+  }
+  io::Json AsJson() const;  // options and run keys, as the manifest gave them
 };
+
+// Keys of a step's "steps" object that rk-run reads itself instead of passing them to the tool (all take
+// true/false): "image-fit" of attitude-cylinder (docs/rk-run.md, "Steps").
+inline constexpr const char* kImageFitSetting = "image-fit";
+const std::vector<std::string>& RunSettingKeys(const std::string& kind);
 
 // The key of "steps" that is not a step: the --bad-rows (error|skip) of every step that reads CSV.
 inline constexpr const char* kBadRowsSetting = "bad-rows";

@@ -273,6 +273,11 @@ class PlanBuilder {
     }
     In(&at, "camera", cam.model);
     In(&at, "target", cam.target);
+    // The image fit (the frames the points came from) unless "steps" switches it off.
+    at.method = at.settings.RunFlag(kImageFitSetting, true) ? "image-fit" : "three-point";
+    if (at.method == "image-fit") {
+      for (const auto& v : cam.video) In(&at, "video", v);
+    }
     Out(&at, "-o", dir + "axis.csv");
     at.table = dir + "axis.csv";
     Finish(&at);

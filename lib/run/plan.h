@@ -47,6 +47,8 @@ struct Step {
   bool tool_report = true;  // the tool takes --report
   PlanState state = PlanState::kActive;
   std::string note;         // why it is off / not applicable
+  std::string method;       // how the product is made, where a kind has several ways ("image-fit" or
+                            // "three-point" for attitude-cylinder); "" otherwise
 
   std::string FileStem() const;       // id with '/' → '.', for steps/<stem>.log
   std::string ReportFile() const { return "steps/" + FileStem() + ".report.json"; }
@@ -63,5 +65,30 @@ std::vector<Step> BuildPlan(const TrialManifest& manifest, const PlanOptions& op
 
 // "--name value" arguments of the overrides (false flags are left out).
 std::vector<std::string> OverrideArgs(const StepSettings& settings);
+
+// What the plan does for one unit of the trial (docs/rk-run.md, "Planned and skipped"): a camera, the radar,
+// a log that no step reads, or the trial itself when nothing at all is planned.
+struct UnitPlan {
+  std::string unit;  // camera name, "radar", the manifest key of a log ("theodolite"), or "trial"
+  std::string what;  // "beacon camera", "radar", "log theodolite.csv", "manifest"
+  std::vector<std::string> planned;  // active steps: kind (plot-<series> for plots), " (image-fit)" if a method
+  std::vector<std::pair<std::string, std::string>> skipped;  // step, why (off or not applicable)
+  std::string note;  // why nothing is planned for it ("" when something is)
+  // "az (beacon camera): planned extract-beacon, locate; skipped resample-range (the manifest has no range log)"
+  std::string Line() const;
+  io::Json ToJson() const;  // {"unit", "what", "planned": [...], "skipped": [{"step", "reason"}], "note"}
+};
+
+// One UnitPlan per camera (in plan order), the radar, each log of the manifest that no step reads, and
+// "trial" when the plan is empty. Pure: the manifest and BuildPlan's steps.
+std::vector<UnitPlan> PlanByUnit(const TrialManifest& manifest, const std::vector<Step>& plan);
+
+// The manifest asks for a product the plan cannot make: throws DataError "trial.json:LINE:COL: ..." at the
+// request. Requests are (1) each key of "steps" that is not false, for every unit it names (a KIND key: the
+// units of that kind there are; plots excepted: a plot is a warning), and (2) each camera's role, which asks
+// for its chain's last product (beacon: locate, features: attitude-oi, silhouette: attitude-cylinder) unless
+// "steps" switches that step or one before it off. A requested step that is not applicable fails, as does a
+// "radar/KIND" key without a radar block.
+void CheckRequestedProducts(const TrialManifest& manifest, const std::vector<Step>& plan);
 
 }  // namespace rk::run

@@ -82,6 +82,7 @@ Json TrialRun::StepOutcomeJson(const StepRun& r) const {
     }
     if (r.status == "ok" && !r.step.table.empty()) {
       Json q = TableQuality((fs::path(work_) / r.step.table).string());
+      if (!r.step.method.empty()) q["method"] = r.step.method;  // which method made the product
       AddToolSummary(j.value("tool_report", Json()), &q);
       j["quality"] = q;
     }
@@ -108,6 +109,7 @@ Json TrialRun::StepJson(const StepRun& r, bool full) const {
   j["tool"] = r.step.tool;
   if (!r.step.subcommand.empty()) j["subcommand"] = r.step.subcommand;
   j["options"] = r.step.settings.AsJson();
+  if (!r.step.method.empty()) j["method"] = r.step.method;
   if (r.decision == Decision::kInactive || r.key.empty()) return j;
   std::vector<std::string> cl;
   cl.push_back(r.step.tool);
@@ -156,6 +158,7 @@ Json TrialRun::BuildReport() const {
   Json steps = Json::array();
   for (const auto& r : runs_) steps.push_back(StepJson(r, true));
   rep["steps"] = steps;
+  rep["units"] = UnitsJson();
   rep["manifest"] = m_->json;
   return rep;
 }
@@ -184,7 +187,14 @@ Json TrialRun::BuildSummaryJson() const {
   Json steps = Json::array();
   for (const auto& r : runs_) steps.push_back(StepJson(r, false));
   j["steps"] = steps;
+  if (!units_.empty()) j["units"] = UnitsJson();
   return j;
+}
+
+Json TrialRun::UnitsJson() const {
+  Json units = Json::array();
+  for (const UnitPlan& u : units_) units.push_back(u.ToJson());
+  return units;
 }
 
 }  // namespace rk::run::internal

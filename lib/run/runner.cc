@@ -105,6 +105,14 @@ void TrialRun::Plan() {
   plan_ = BuildPlan(*m_, po);
   runs_.reserve(plan_.size());
   for (const auto& step : plan_) runs_.emplace_back(step);
+  // Per unit: the steps planned and skipped and why; then a product the manifest asks for and the plan
+  // cannot make fails the run (DataError at its place in trial.json, exit 3) before anything runs.
+  units_ = PlanByUnit(*m_, plan_);
+  for (const UnitPlan& u : units_) {
+    s_.units.push_back(u.Line());
+    if (log_) log_->Line("plan: " + u.Line());
+  }
+  CheckRequestedProducts(*m_, plan_);
 }
 
 // The last good report (trusted only if IsUsableReport), the input digests and the tool identities

@@ -56,6 +56,9 @@ struct RunSummary {
   std::string name;       // trial name
   io::Json summary;       // what TRIAL/last-run.json and --report get
   std::vector<StepLine> steps;
+  // One line per unit of the trial: the steps planned and skipped and why (run/plan.h UnitPlan::Line); rk-run
+  // prints them on stderr after a run that did not fail, unless --quiet (a failed run prints its one error line).
+  std::vector<std::string> units;
   int steps_run = 0, steps_skipped = 0, steps_failed = 0, steps_warned = 0;
   double wall_s = 0.0, tool_time_s = 0.0, tool_cpu_s = 0.0;
 };

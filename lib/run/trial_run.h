@@ -64,6 +64,7 @@ class TrialRun {
     if (o_.progress) o_.progress(s);
     if (log_) log_->Line(s);
   }
+
   void Fail(ExitCode code, const std::string& error) {
     if (s_.error.empty()) {
       s_.exit_code = code;
@@ -97,6 +98,7 @@ class TrialRun {
   io::Json StepOutcomeJson(const StepRun& r) const;
   io::Json BuildReport() const;
   io::Json BuildSummaryJson() const;
+  io::Json UnitsJson() const;
 
   const RunOptions& o_;
   std::chrono::steady_clock::time_point t0_;
@@ -110,6 +112,7 @@ class TrialRun {
   std::unique_ptr<DigestCache> digests_;
   std::unique_ptr<Tools> tools_;
   std::vector<Step> plan_;
+  std::vector<UnitPlan> units_;  // the plan per unit (PlanByUnit)
   std::vector<StepRun> runs_;  // one per step of plan_
   std::string work_;      // absolute working folder
   std::string work_rel_;  // its name (relative to the trial folder)

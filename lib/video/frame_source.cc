@@ -12,6 +12,7 @@
 
 #include "io/error.h"
 #include "io/run_record.h"
+#include "video/stdin_video.h"
 
 namespace rk::video {
 namespace fs = std::filesystem;
@@ -91,7 +92,17 @@ std::string MakeTempFile() {
   return buf.data();
 }
 
+void RefuseStdinVideo(const std::vector<std::string>& paths, const std::string& option) {
+  for (const std::string& p : paths) {
+    if (p != "-") continue;
+    throw UsageError(option + " -: a video cannot be read from stdin (it is probed with ffprobe, then decoded "
+                     "with ffmpeg, from a file); save the stream first, e.g. ffmpeg -i pipe:0 -c copy video.mkv, "
+                     "and give that file");
+  }
+}
+
 VideoInfo ProbeVideo(const std::string& path) {
+  RefuseStdinVideo({path});
   if (IsSequencePattern(path)) {
     for (std::int64_t start : {0, 1}) {
       std::string first = SequenceFramePath(path, start);
@@ -139,6 +150,7 @@ VideoInfo ProbeVideo(const std::string& path) {
 
 FrameSource::FrameSource(std::vector<std::string> segments) : segments_(std::move(segments)) {
   if (segments_.empty()) throw UsageError("no video given");
+  RefuseStdinVideo(segments_);
   // Fail early on paths that do not exist.
   for (const auto& s : segments_) {
     if (!IsSequencePattern(s)) CheckReadable(s);

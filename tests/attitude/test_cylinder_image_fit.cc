@@ -98,6 +98,49 @@ TEST(CylinderImageFit, NoisyFramesWithinFourSigmaAndHonestSigma) {
   }
 }
 
+// Warm start (issue 20): a fit started from the previous frame's nuisance parameters and noise model (no
+// cone-length scan, no noise-model fit) lands within the same tolerances, near the cold fit's result (within
+// 0.5 σ: the weights differ a little) with the same honest σ, and costs fewer model evaluations; an unusable
+// start is a cold fit.
+TEST(CylinderImageFit, WarmStartFromThePreviousFrameIsAsGoodAndCheaper) {
+  sim::SilhouetteRenderOptions ro;
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> U(-10, 10);
+  Scene s = MakeScene(U(rng), U(rng));
+  const cv::Mat first = sim::RenderSilhouetteFrame(s.cam, s.truth, s.shape, ro, rng);
+  const CylinderImageFitResult g0 = FitFrom(s, first, -0.2, 0.1, Eigen::Vector3d(-0.05, 0.05, 0.0));
+  ASSERT_EQ(g0.status, CylinderImageFitStatus::kConverged);
+  EXPECT_GT(g0.noise_c0, 0.0);
+  const CylinderImageFitStart start = g0.NextStart();
+  for (int k = 0; k < 2; ++k) {
+    s = MakeScene(U(rng), U(rng));
+    const cv::Mat img = sim::RenderSilhouetteFrame(s.cam, s.truth, s.shape, ro, rng);
+    const Eigen::Vector3d dpos(0.05, -0.05, 0.02);
+    const CylinderImageFitResult cold = FitFrom(s, img, 0.2, -0.1, dpos);
+    const CylinderImageFitResult warm =
+        FitCylinderImage(img, s.cam, s.truth.boresight_az_rad, s.truth.boresight_el_rad, s.shape,
+                         s.truth.pose.tail_centre_enu + dpos, s.truth.pose.yaw_rad + DegToRad(0.2),
+                         s.truth.pose.pitch_rad + DegToRad(-0.1), CylinderImageFitOptions{}, &start);
+    ASSERT_EQ(warm.status, CylinderImageFitStatus::kConverged) << k;
+    EXPECT_LT(std::abs(RadToDeg(geo::AngleDiff(warm.yaw_rad, s.truth.pose.yaw_rad))), kYawTolDeg) << k;
+    EXPECT_LT(std::abs(RadToDeg(warm.pitch_rad - s.truth.pose.pitch_rad)), kPitchTolDeg) << k;
+    // The same minimum as the cold fit, to a small fraction of the fit's σ.
+    EXPECT_LT(std::abs(RadToDeg(geo::AngleDiff(warm.yaw_rad, cold.yaw_rad))), 0.5 * RadToDeg(cold.sigma_yaw_rad)) << k;
+    EXPECT_LT(std::abs(RadToDeg(warm.pitch_rad - cold.pitch_rad)), 0.5 * RadToDeg(cold.sigma_pitch_rad)) << k;
+    EXPECT_NEAR(warm.sigma_yaw_rad, cold.sigma_yaw_rad, 0.1 * cold.sigma_yaw_rad) << k;
+    EXPECT_NEAR(warm.sigma_pitch_rad, cold.sigma_pitch_rad, 0.1 * cold.sigma_pitch_rad) << k;
+    EXPECT_LT(warm.evaluations, cold.evaluations) << k << ": warm " << warm.evaluations << ", cold " << cold.evaluations;
+    CylinderImageFitStart unusable = start;
+    unusable.noise_c0 = 0.0;
+    const CylinderImageFitResult again =
+        FitCylinderImage(img, s.cam, s.truth.boresight_az_rad, s.truth.boresight_el_rad, s.shape,
+                         s.truth.pose.tail_centre_enu + dpos, s.truth.pose.yaw_rad + DegToRad(0.2),
+                         s.truth.pose.pitch_rad + DegToRad(-0.1), CylinderImageFitOptions{}, &unusable);
+    EXPECT_EQ(again.evaluations, cold.evaluations) << k;  // an unusable start is a cold fit
+    EXPECT_EQ(again.yaw_rad, cold.yaw_rad) << k;
+  }
+}
+
 TEST(CylinderImageFit, OutlineLeavingTheFrameOrWrongImageFails) {
   const Scene s = MakeScene(0, 0);
   sim::SilhouetteRenderOptions ro;

@@ -3,12 +3,15 @@
 
 #include <cmath>
 #include <map>
+#include <random>
 #include <sstream>
+#include <vector>
 
 #include "attitude/cylinder_run.h"
 #include "geo/angles.h"
 #include "io/csv.h"
 #include "io/error.h"
+#include "sim/theodolite_render.h"
 #include "sim/theodolite_scene.h"
 
 namespace rk::attitude {
@@ -109,6 +112,53 @@ TEST(CylinderRun, ContinuityThroughTheSideOnView) {
   // The last frames are nose-farther (view < 90°): a single-frame solve would take the nose-nearer mirror;
   // continuity keeps the truth (checked in the loop above).
   EXPECT_EQ(r.rows.back().solution, CylinderSolutionStatus::kContinuity);
+}
+
+// Issue 20, the image fit's cost: both solutions are fitted only where history cannot choose (the first row:
+// ambiguous) or they are within --fit-both-within-deg, one where continuity chooses; every fit after the first converged one starts warm; the fitted
+// rows stay within the image fit's tolerance of the truth. With --fit-time-limit spent after the first row, the
+// other rows keep the three-point solution (no fit) and are counted.
+TEST(CylinderRun, ImageFitOnlyTheChosenSolutionWarmStarted) {
+  sim::TheodoliteSimOptions o;
+  o.camera.width_px = o.camera.height_px = 640;
+  o.camera.principal_point_px = {319.5, 319.5};
+  o.speed_mps = 50.0;
+  o.track_error_px = 10.0;
+  o.duration_s = 0.3;  // 7 frames
+  const Trial t = MakeTrial(o);
+  sim::SilhouetteRenderOptions ro;
+  std::mt19937_64 rng(5);
+  std::vector<cv::Mat> frames;
+  for (const auto& f : t.sim.frames()) frames.push_back(sim::RenderSilhouetteFrame(o.camera, f, o.shape, ro, rng));
+  const CylinderFrameReader reader = [&](std::int64_t frame) -> const cv::Mat& {
+    return frames.at(static_cast<std::size_t>(frame));
+  };
+  const CylinderRunResult r = RunCylinder(t.points, t.theo, o.camera, t.shape, CylinderRunOptions{}, &reader);
+  std::size_t two = 0, one = 0;
+  for (std::size_t k = 0; k < r.rows.size(); ++k) {
+    const CylinderRow& row = r.rows[k];
+    ASSERT_TRUE(row.fit.has_value()) << k;
+    ASSERT_EQ(*row.fit, CylinderImageFitStatus::kConverged) << k;
+    const bool both = row.solution == CylinderSolutionStatus::kAmbiguous ||
+                      row.solution == CylinderSolutionStatus::kSideOn ||
+                      (row.separation_rad && RadToDeg(*row.separation_rad) < CylinderRunOptions{}.fit_both_within_deg);
+    (both ? two : one) += 1;
+    // The fit's tolerance on a 640-px crop of seed 004 (test_cylinder_image_fit.cc: 4σ of one frame).
+    EXPECT_LT(RadToDeg(AxisAngle(*row.axis_enu, t.sim.frames()[k].pose.Axis())), 0.25) << k;
+  }
+  EXPECT_EQ(r.rows.front().solution, CylinderSolutionStatus::kAmbiguous);
+  EXPECT_GT(one, 0u);
+  EXPECT_EQ(r.fits, 2 * two + one);
+  EXPECT_EQ(r.fits_warm, r.fits - 1);
+  EXPECT_EQ(r.rows_fit_time_limit, 0u);
+
+  CylinderRunOptions limited;
+  limited.fit_time_limit_s = 1e-9;
+  const CylinderRunResult l = RunCylinder(t.points, t.theo, o.camera, t.shape, limited, &reader);
+  EXPECT_EQ(l.rows_fit_time_limit, l.rows.size() - 1);
+  EXPECT_TRUE(l.rows.front().fit.has_value());
+  EXPECT_FALSE(l.rows.back().fit.has_value());
+  EXPECT_EQ(l.SummaryJson()["image_fit"]["rows_not_fitted_time_limit"], l.rows.size() - 1);
 }
 
 TEST(CylinderRun, YawThroughNorthStaysContinuous) {

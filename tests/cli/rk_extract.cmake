@@ -28,6 +28,9 @@ rk_cli_test(extract_cli_no_times REQUIRES extract_inputs COMMAND ${RK_EXPECT} 2 
 rk_cli_test(extract_cli_unknown_option REQUIRES extract_inputs COMMAND ${RK_EXPECT} 2 ${RKX_DIR}/bad.csv --
   ${RKX} beacon --video ${RKX_DIR}/beacon.mkv --fps 20 --bogus 3 -o ${RKX_DIR}/bad.csv)
 rk_cli_test(extract_cli_no_subcommand COMMAND ${RK_EXPECT} 2 - -- ${RKX})
+# --video - (a video on stdin) is a usage error with a clear message in every tool that takes --video
+# (rk-extract beacon/features/silhouette, rk-attitude cylinder): exit 2, no output.
+rk_cli_script(rk_extract/video_stdin_refused REQUIRES extract_inputs)
 rk_cli_test(extract_cli_missing_video COMMAND ${RK_EXPECT} 4 ${RKX_DIR}/bad.csv "nope.mkv" --
   ${RKX} beacon --video ${RKX_DIR}/nope.mkv --fps 20 -o ${RKX_DIR}/bad.csv)
 rk_cli_test(extract_cli_truncated_video REQUIRES extract_inputs COMMAND ${RK_EXPECT} 3 ${RKX_DIR}/bad.csv "truncated.mkv" --

@@ -24,6 +24,13 @@ rk_cli_script(rk_run/rk_run_lock_and_recovery REQUIRES sim_small)
 # Malformed manifests and usage: SPEC codes, one-line errors with trial.json:LINE:COL.
 rk_cli_script(rk_run/rk_run_bad_input REQUIRES sim_small)
 
+# The plan per unit (issue 20): one line per camera / unit / unused log on stderr and in report.json and
+# last-run.json (planned steps, skipped steps and why), none with --quiet; a theodolite trial with no images
+# says there is nothing to run; a product the manifest asks for that cannot be made (a "steps" key, a camera's
+# role) is exit 3 at its line:col; a radar block without nav and a silhouette camera without target are
+# manifest errors; a chain switched off asks for nothing.
+rk_cli_script(rk_run/rk_run_plan_by_unit REQUIRES sim_small)
+
 # rk-nightly: parallel run over a root of trials, a failing trial reported with its reason, summary JSON
 # and text table, log file, non-zero exit; the second run finds everything up to date; a second
 # instance exits at once (75).

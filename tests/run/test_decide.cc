@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "run/decide.h"
+#include "run/manifest.h"
+#include "run/plan.h"
 #include "run/previous_report.h"
 #include "run/sha256.h"
 
@@ -195,6 +197,40 @@ TEST(Decide, CommandLineOrOptionsChanged) {
   const RunDecision d = c.Run(report);
   EXPECT_EQ(Of(d, 0).reason, "command line or options changed");
   EXPECT_EQ(Of(d, 1).reason, "upstream changed: a/extract");
+}
+
+// attitude-cylinder's image fit (on by default) reads the frames; switching it off in "steps" re-runs that
+// step alone (the video is no longer among its inputs), and switching it on again re-runs it again.
+TEST(Decide, ImageFitSwitchedOffRerunsOnlyTheCylinderStep) {
+  const auto plan_with = [](const std::string& steps) {
+    std::string t = R"({"cameras": {"sil": {"video": ["sil/v.mkv"], "fps": 25, "model": "sil/camera.json",
+        "role": "silhouette", "target": "cyl.json"}}, "theodolite": "theo.csv", "steps": STEPS})";
+    t.replace(t.find("STEPS"), 5, steps);
+    return BuildPlan(ParseManifest(t, "/t/trial.json"), PlanOptions{false});
+  };
+  Chain c;
+  c.steps = plan_with("{}");
+  ASSERT_EQ(c.steps.size(), 2u);
+  ASSERT_EQ(c.steps[1].kind, "attitude-cylinder");
+  EXPECT_EQ(c.steps[1].method, "image-fit");
+  c.tools.clear();
+  for (const auto& st : c.steps) c.tools.push_back({st.tool, "/bin/" + st.tool, "1.0", "build-id:" + st.tool, 1000, 5});
+  c.sha = {{"sil/v.mkv", Sha256Hex("video")}, {"theo.csv", Sha256Hex("theo")}, {"sil/camera.json", Sha256Hex("cam")},
+           {"cyl.json", Sha256Hex("cyl")}};
+  const Json with_fit = c.ReportOf(c.Run(Json(nullptr)));
+
+  c.steps = plan_with(R"({"sil/attitude-cylinder": {"image-fit": false}})");
+  EXPECT_EQ(c.steps[1].method, "three-point");
+  RunDecision d = c.Run(with_fit);
+  EXPECT_EQ(Of(d, 0).decision, Decision::kSkip);
+  EXPECT_EQ(Of(d, 1).decision, Decision::kRun);
+  EXPECT_EQ(Of(d, 1).reason, "input no longer read: sil/v.mkv");
+
+  const Json without_fit = c.ReportOf(d);
+  c.steps = plan_with("{}");
+  d = c.Run(without_fit);
+  EXPECT_EQ(Of(d, 0).decision, Decision::kSkip);
+  EXPECT_EQ(Of(d, 1).reason, "input changed: sil/v.mkv");
 }
 
 TEST(Decide, MissingOrChangedProductsAndLogsRerun) {

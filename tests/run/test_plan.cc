@@ -112,8 +112,9 @@ TEST(Plan, FeaturesSilhouetteRadar) {
                                       "-o", "out/sil/points.csv"}));
   EXPECT_EQ(Argv(Find(plan, "sil/attitude-cylinder")),
             (std::vector<std::string>{"rk-attitude", "cylinder", "--points", "out/sil/points.csv", "--theodolite",
-                                      "theo.csv", "--camera", "sil/camera.json", "--target", "cyl.json", "-o",
-                                      "out/sil/axis.csv"}));
+                                      "theo.csv", "--camera", "sil/camera.json", "--target", "cyl.json", "--video",
+                                      "sil/v.mkv", "-o", "out/sil/axis.csv"}));
+  EXPECT_EQ(Find(plan, "sil/attitude-cylinder").method, "image-fit");
   EXPECT_EQ(Argv(Find(plan, "radar/register")),
             (std::vector<std::string>{"rk-register", "bernoulli", "--plots", "radar/plots.csv", "--nav",
                                       "radar/nav.csv", "-o", "out/radar/biases.csv"}));
@@ -148,6 +149,129 @@ TEST(Plan, EveryBoundOptionIsReserved) {
   EXPECT_NE(ManifestError(WithSteps(R"({"smooth": {"input": "x.csv"}})"))
                 .find("option '--input' is set by rk-run from the manifest and cannot be overridden"),
             std::string::npos);
+}
+
+const char* const kSilhouetteTrial = R"({"cameras": {
+      "sil": {"video": ["sil/a.mkv", "sil/b.mkv"], "frames": "sil/frames.csv", "model": "sil/camera.json",
+              "role": "silhouette", "target": "cyl.json"}},
+    "theodolite": "theo.csv", "steps": STEPS})";
+std::string Silhouette(const std::string& steps) {
+  std::string t = kSilhouetteTrial;
+  return t.replace(t.find("STEPS"), 5, steps);
+}
+std::string Replaced(std::string t, const std::string& from, const std::string& to) {
+  const auto at = t.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? t : t.replace(at, from.size(), to);
+}
+std::string RequestError(const TrialManifest& m, const std::vector<Step>& plan) {
+  try {
+    CheckRequestedProducts(m, plan);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kInvalidData);
+    return e.what();
+  }
+  return "";
+}
+
+// attitude-cylinder fits the image (every segment of the camera's video) unless "steps" says
+// "image-fit": false; the key is rk-run's (not passed on), takes only true/false, and the time cap is the
+// tool's --fit-time-limit, passed through.
+TEST(Plan, CylinderImageFitByDefaultAndItsSwitch) {
+  std::vector<Step> plan = BuildPlan(ParseManifest(Silhouette("{}"), "/t/trial.json"), PlanOptions{false});
+  std::vector<std::string> argv = Argv(Find(plan, "sil/attitude-cylinder"));
+  EXPECT_EQ(std::count(argv.begin(), argv.end(), "--video"), 2);
+  EXPECT_EQ(Find(plan, "sil/attitude-cylinder").inputs.back().path, "sil/b.mkv");
+  EXPECT_EQ(Find(plan, "sil/attitude-cylinder").method, "image-fit");
+
+  const TrialManifest off = ParseManifest(
+      Silhouette(R"({"attitude-cylinder": {"fit-time-limit": 30}, "sil/attitude-cylinder": {"image-fit": false}})"),
+      "/t/trial.json");
+  plan = BuildPlan(off, PlanOptions{false});
+  const Step& at = Find(plan, "sil/attitude-cylinder");
+  argv = Argv(at);
+  EXPECT_EQ(std::count(argv.begin(), argv.end(), "--video"), 0);
+  EXPECT_EQ(std::count(argv.begin(), argv.end(), "--image-fit"), 0);
+  EXPECT_EQ(argv.back(), "30");
+  EXPECT_EQ(at.method, "three-point");
+  EXPECT_EQ(at.settings.AsJson(), (io::Json{{"fit-time-limit", 30}, {"image-fit", false}}));
+  EXPECT_EQ(PlanByUnit(off, plan)[0].Line(), "sil (silhouette camera): planned extract-silhouette, "
+                                             "attitude-cylinder (three-point)");
+
+  EXPECT_NE(ManifestError(Silhouette(R"({"attitude-cylinder": {"image-fit": "yes"}})"))
+                .find("steps.attitude-cylinder.image-fit: must be true or false"),
+            std::string::npos);
+  EXPECT_NE(ManifestError(Silhouette(R"({"attitude-cylinder": {"video": "x.mkv"}})"))
+                .find("option '--video' is set by rk-run"),
+            std::string::npos);
+  // Only attitude-cylinder has the key: elsewhere it is an option name like any other (passed on).
+  EXPECT_EQ(ManifestError(WithSteps(R"({"locate": {"image-fit": true}})")), "");
+}
+
+// One line per unit: the steps planned and those skipped with the reason; logs no step reads; an empty plan.
+TEST(Plan, PlanByUnitSaysWhatIsPlannedAndSkipped) {
+  const std::string text = Replaced(WithSteps(R"({"resample-range": false})"), "\"theodolite\": null",
+                                    "\"theodolite\": \"theo.csv\"");
+  const TrialManifest m = ParseManifest(text, "/t/trial.json");
+  const std::vector<UnitPlan> units = PlanByUnit(m, BuildPlan(m, PlanOptions{}));
+  ASSERT_EQ(units.size(), 2u);
+  EXPECT_EQ(units[0].Line(),
+            "az (beacon camera): planned extract-beacon, locate, plot-located, smooth, plot-rates; skipped "
+            "resample-range (off: switched off in trial.json \"steps\")");
+  EXPECT_EQ(units[1].unit, "theodolite");
+  EXPECT_EQ(units[1].Line(),
+            "theodolite (log theo.csv): not used: no silhouette camera, and the beacon cameras use the turret log");
+  const io::Json j = units[0].ToJson();
+  EXPECT_EQ(j["skipped"][0]["step"], "resample-range");
+  EXPECT_EQ(j["planned"].size(), 5u);
+
+  // A theodolite trial whose manifest lists no images (rk-sim theodolite --images none): no camera.
+  const TrialManifest theo = ParseManifest(R"({"theodolite": "theodolite.csv"})", "/t/trial.json");
+  const std::vector<UnitPlan> t_units = PlanByUnit(theo, BuildPlan(theo, PlanOptions{}));
+  ASSERT_EQ(t_units.size(), 2u);
+  EXPECT_NE(t_units[0].Line().find("theodolite (log theodolite.csv): not used: \"cameras\" lists no camera"),
+            std::string::npos);
+  EXPECT_EQ(t_units[1].Line(), "trial (manifest): nothing to run: the manifest lists no camera and no radar");
+  EXPECT_EQ(t_units[1].ToJson()["planned"], io::Json::array());
+  EXPECT_EQ(RequestError(theo, BuildPlan(theo, PlanOptions{})), "");  // nothing asked for: not an error
+}
+
+// A product the manifest asks for that cannot be made: a "steps" key (not false) whose step is not
+// applicable, a radar key without radar, or a camera role whose last product is not applicable; errors at
+// the request's place in trial.json.
+TEST(Plan, RequestedProductThatCannotBeMadeIsAnError) {
+  // The role asks for it: a silhouette camera without a theodolite or turret log.
+  std::string text = Replaced(Silhouette("{}"), "\"theodolite\": \"theo.csv\", ", "");
+  TrialManifest m = ParseManifest(text, "/t/trial.json");
+  std::string e = RequestError(m, BuildPlan(m, PlanOptions{}));
+  EXPECT_NE(e.find("/t/trial.json:3:23: cameras.sil.role: a silhouette camera asks for sil/attitude-cylinder, "
+                   "which cannot run: the manifest has no theodolite or turret log"),
+            std::string::npos)
+      << e;
+  // ... unless "steps" switches that step off.
+  text = Replaced(text, "\"steps\": {}", R"("steps": {"attitude-cylinder": false})");
+  m = ParseManifest(text, "/t/trial.json");
+  EXPECT_EQ(RequestError(m, BuildPlan(m, PlanOptions{})), "");
+
+  // "steps" asks for it: resample-range options without a range log (the key's line:col).
+  const std::string beacon =
+      Replaced(WithSteps("{\n  \"az/resample-range\": {\"method\": \"cubic\"}}"), ", \"range\": \"range.csv\"", "");
+  m = ParseManifest(beacon, "/t/trial.json");
+  e = RequestError(m, BuildPlan(m, PlanOptions{}));
+  EXPECT_NE(e.find(":8:3: steps.az/resample-range: asks for az/resample-range, which cannot run: the manifest "
+                   "has no range log"),
+            std::string::npos)
+      << e;
+  // A radar step without a radar block.
+  m = ParseManifest(WithSteps(R"({"radar/register": {"pd": 0.9}})"), "/t/trial.json");
+  EXPECT_NE(RequestError(m, BuildPlan(m, PlanOptions{})).find("steps.radar/register: asks for register of the radar, but "
+                                                         "the manifest has no \"radar\" block"),
+            std::string::npos);
+  // A chain switched off by "steps" asks for nothing after it; a plot and "bad-rows" ask for nothing.
+  m = ParseManifest(WithSteps(R"({"az/extract-beacon": false, "locate": {"range-interp": "linear"},
+                                  "plot": {"dpi": 50}, "bad-rows": "skip"})"),
+                    "/t/trial.json");
+  EXPECT_EQ(RequestError(m, BuildPlan(m, PlanOptions{})), "");
 }
 
 // A binding added to a kind's table is reserved at once; the common options are reserved for every kind.

@@ -48,7 +48,7 @@ cat > "$data/run/standin.expected" <<'EOF2'
 rk-extract features --video att/%06d.png --frames att/frames.csv --target target.json -o out/att/points.csv
 rk-attitude oi --points out/att/points.csv --camera att/camera.json --target target.json --turret turret.csv -o out/att/pose.csv
 rk-extract silhouette --video sil/video.mkv --fps 25 -o out/sil/points.csv
-rk-attitude cylinder --points out/sil/points.csv --theodolite theodolite.csv --camera sil/camera.json --target cylinder.json -o out/sil/axis.csv
+rk-attitude cylinder --points out/sil/points.csv --theodolite theodolite.csv --camera sil/camera.json --target cylinder.json --video sil/video.mkv -o out/sil/axis.csv
 rk-register bernoulli --plots radar/plots.csv --nav radar/nav.csv -o out/radar/biases.csv --pd 0.9
 rk-register batch --plots radar/plots.csv --nav radar/nav.csv -o out/radar/biases_batch.csv
 EOF2
