@@ -1,6 +1,7 @@
 // rk-attitude cylinder: single-station axis attitude of a cylindrical target from three silhouette points
 // (seed 004, SPEC.md §1.1, §3). Thin CLI: the method lives in lib/attitude (attitude/cylinder_run.h), user
 // page docs/rk-attitude-cylinder.md.
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -51,7 +52,12 @@ int RunCylinderCmd(const CylinderArgs& a, const Context& ctx) {
   cv::Mat image;
   std::int64_t next_frame = 0;
   const std::string video_name = a.videos.empty() ? "" : a.videos.front();
+  // The image fit's progress on a terminal: one frame read per row fitted.
+  cli::ProgressMeter meter(ctx.tool, "frames fitted", static_cast<std::int64_t>(points.frames.size()),
+                           cli::ShowProgress(ctx.common));
+  std::int64_t frames_asked = 0;
   const attitude::CylinderFrameReader reader = [&](std::int64_t frame) -> const cv::Mat& {
+    meter.Update(++frames_asked);
     if (frame < next_frame - 1 || frame < 0)
       throw DataError(a.points_path, 0, 0,
                       "frame " + std::to_string(frame) + " comes after a later frame; the image fit reads " +
@@ -73,6 +79,7 @@ int RunCylinderCmd(const CylinderArgs& a, const Context& ctx) {
   if (!a.videos.empty()) source = std::make_unique<video::FrameSource>(a.videos);
   const attitude::CylinderRunResult res =
       attitude::RunCylinder(points, theo, cam, target, opt, a.videos.empty() ? nullptr : &reader);
+  meter.Finish();
   attitude::CylinderCsv(res).Write(a.out_path);
 
   using S = attitude::CylinderSolutionStatus;
@@ -108,6 +115,11 @@ int RunCylinderCmd(const CylinderArgs& a, const Context& ctx) {
       cli::AddReportInput(&rep, "video_" + std::to_string(i), a.videos[i]);
     rep["summary"] = res.SummaryJson();
     cli::WriteReport(ctx.common.report_path, rep);
+  }
+  if (cli::ShowProgress(ctx.common)) {
+    std::cerr << ctx.tool << ": " << points.frames.size() << " frames: "
+              << res.rows_by_status[static_cast<std::size_t>(RowStatus::kOk)] << " ok, " << invalid << " invalid, "
+              << n(S::kAmbiguous) << " ambiguous\n";
   }
   return 0;
 }

@@ -1,5 +1,7 @@
 // rk-register bernoulli: Gaussian-mixture Bernoulli filter with the modified greedy measurement
 // partition (seed 002, unknown association, clutter). Thin CLI over lib/registration/bernoulli.h.
+#include <cstdint>
+#include <iostream>
 #include <memory>
 
 #include "register_commands.h"
@@ -35,8 +37,16 @@ Command AddBernoulliCommand(CLI::App& app) {
     if (!opt.Check(&why)) throw UsageError(why);
     reg::CheckPaths(a.in, ctx);
     const registration::RegistrationInput in = reg::ReadInput(a.in, false);
-    const registration::BernoulliResult res = registration::RunBernoulli(in, opt);
+    const bool progress = cli::ShowProgress(ctx.common);
+    cli::ProgressMeter meter(ctx.tool, "steps", static_cast<std::int64_t>(in.steps.size()), progress);
+    const registration::BernoulliResult res =
+        registration::RunBernoulli(in, opt, [&](std::int64_t k) { meter.Update(k); });
+    meter.Finish();
     reg::WriteOutputs(a.in, ctx, "bernoulli", in, res.result);
+    if (progress) {
+      std::cerr << ctx.tool << ": " << in.steps.size() << " steps: " << res.stats.counters.steps_updated
+                << " updated, " << res.stats.counters.steps_predicted << " predicted\n";
+    }
     if (res.stats.counters.steps_updated == 0) {
       cli::Warn(ctx.tool, ctx.common, "no step could be updated (no pair passed the gate): the biases are the prior");
     }

@@ -89,7 +89,7 @@ class BernoulliFilter {
     comps_.push_back(c);
   }
 
-  BernoulliResult Run() {
+  BernoulliResult Run(const std::function<void(std::int64_t)>& progress) {
     BernoulliResult out;
     out.result.method = "bernoulli";
     out.result.steps.reserve(in_.steps.size());
@@ -120,6 +120,7 @@ class BernoulliFilter {
       comp_sum += est.components;
       out.selected[k] = std::move(selected);
       out.result.steps.push_back(est);
+      if (progress) progress(static_cast<std::int64_t>(k) + 1);
     }
     stats_.mean_components = in_.steps.empty() ? 0.0 : comp_sum / static_cast<double>(in_.steps.size());
     out.result.x = comps_.front().m;
@@ -439,11 +440,12 @@ io::Json BernoulliStats::ToJson() const {
   return j;
 }
 
-BernoulliResult RunBernoulli(const RegistrationInput& input, const BernoulliOptions& options) {
+BernoulliResult RunBernoulli(const RegistrationInput& input, const BernoulliOptions& options,
+                             const std::function<void(std::int64_t)>& progress) {
   std::string why;
   if (!options.Check(&why)) throw UsageError(why);
   BernoulliFilter f(input, options);
-  return f.Run();
+  return f.Run(progress);
 }
 
 }  // namespace rk::registration

@@ -32,6 +32,9 @@
 // "before" column.
 #pragma once
 
+#include <cstdint>
+#include <functional>
+
 #include <string>
 #include <utility>
 #include <vector>
@@ -86,6 +89,8 @@ struct BernoulliResult {
   BernoulliStats stats;
 };
 
-BernoulliResult RunBernoulli(const RegistrationInput& input, const BernoulliOptions& options);
+// `progress(k)` (optional) is called after each of the input's steps, k = steps done.
+BernoulliResult RunBernoulli(const RegistrationInput& input, const BernoulliOptions& options,
+                             const std::function<void(std::int64_t)>& progress = {});
 
 }  // namespace rk::registration
