@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
       {"attitude", rk::app::AddAttitudeCommand},
       {"radar", rk::app::AddRadarCommand},
       {"device", rk::app::AddDeviceCommand},
+      {"pointing", rk::app::AddPointingCommand},
   };
   // clang-format on
   return rk::app::RunTool(

@@ -12,5 +12,6 @@ Command AddTheodoliteCommand(CLI::App& app);  // sim_theodolite_cmd.cpp
 Command AddAttitudeCommand(CLI::App& app);    // sim_attitude_cmd.cpp
 Command AddRadarCommand(CLI::App& app);       // sim_radar_cmd.cpp
 Command AddDeviceCommand(CLI::App& app);      // sim_device_cmd.cpp
+Command AddPointingCommand(CLI::App& app);    // sim_pointing_cmd.cpp
 
 }  // namespace rk::app
