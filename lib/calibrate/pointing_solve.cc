@@ -23,6 +23,12 @@ constexpr double kMaxInitElevationRad = 70.0 * geo::kPi / 180.0;  // azimuth too
 constexpr double kTauConvergedS = 1e-6;   // τ moved less than this: no re-evaluation of the turret log
 constexpr double kChi2WarnHigh = 2.0;     // χ²/dof above this: the stated σ are too small for the data
 constexpr double kSmallEigenvalue = 1e-4; // of the correlation matrix: a combination poorly determined
+// Ceres stops when the cost changes by less than 1e-10 relatively (≪ 1/N of χ² for any session) or the
+// parameters by less than 1e-10 relatively (0.02 mas of az_offset).
+constexpr double kFunctionTolerance = 1e-10, kParameterTolerance = 1e-10;
+// More than this fraction of the observations above kOutlierChi2 is not a few outliers but a model that does
+// not fit (an unestimated focal error or latency, a wrong epoch): nothing is rejected and a warning says so.
+constexpr double kMaxOutlierFraction = 0.2;
 
 // A prior residual a/σ on a two-component nuisance block.
 struct PriorCost {
@@ -57,6 +63,7 @@ int RunCeres(const EstimateSet& est, int max_iterations, Problem* p, std::string
   ceres::Problem::Options po;
   po.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   po.manifold_ownership = ceres::TAKE_OWNERSHIP;
+  std::vector<std::unique_ptr<ceres::CostFunction>> priors;  // outlive the problem (it does not own costs)
   ceres::Problem problem(po);
   std::vector<Eigen::Vector2d> fixed(p->obs->obs.size(), Eigen::Vector2d::Zero());
   std::vector<char> cluster_used(p->c.size(), 0), target_used(p->t.size(), 0);
@@ -76,8 +83,8 @@ int RunCeres(const EstimateSet& est, int max_iterations, Problem* p, std::string
     if (!cluster_used[k]) continue;
     const Eigen::Vector2d s = p->obs->cluster_sigma_rad[k];
     if (s.minCoeff() > 0.0) {
-      problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PriorCost, 2, 2>(new PriorCost{s.cwiseInverse()}),
-                               nullptr, p->c[k].data());
+      priors.emplace_back(new ceres::AutoDiffCostFunction<PriorCost, 2, 2>(new PriorCost{s.cwiseInverse()}));
+      problem.AddResidualBlock(priors.back().get(), nullptr, p->c[k].data());
     } else {
       problem.SetParameterBlockConstant(p->c[k].data());
     }
@@ -85,9 +92,9 @@ int RunCeres(const EstimateSet& est, int max_iterations, Problem* p, std::string
   for (std::size_t j = 0; j < p->t.size(); ++j) {
     const double s = p->obs->target_sigma_rad[j];
     if (!target_used[j] || !HasPrior(s)) continue;
-    problem.AddResidualBlock(
-        new ceres::AutoDiffCostFunction<PriorCost, 2, 2>(new PriorCost{Eigen::Vector2d::Constant(1.0 / s)}), nullptr,
-        p->t[j].data());
+    priors.emplace_back(
+        new ceres::AutoDiffCostFunction<PriorCost, 2, 2>(new PriorCost{Eigen::Vector2d::Constant(1.0 / s)}));
+    problem.AddResidualBlock(priors.back().get(), nullptr, p->t[j].data());
   }
   std::vector<int> constant;
   for (int k = 0; k < kNumPointingParams; ++k) {
@@ -97,9 +104,8 @@ int RunCeres(const EstimateSet& est, int max_iterations, Problem* p, std::string
   ceres::Solver::Options so;
   so.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
   so.max_num_iterations = max_iterations;
-  so.function_tolerance = 1e-12;
-  so.parameter_tolerance = 1e-12;
-  so.gradient_tolerance = 1e-14;
+  so.function_tolerance = kFunctionTolerance;
+  so.parameter_tolerance = kParameterTolerance;
   so.num_threads = 1;
   std::string why;
   if (!so.IsValid(&why)) so.linear_solver_type = ceres::DENSE_QR;
@@ -289,14 +295,20 @@ void FillStatistics(const Problem& p, PointingSolution* s) {
   s->chi2_per_dof = dof > 0 ? chi2 / dof : 0.0;
 }
 
-// Rejects the active observations above kOutlierChi2; returns how many.
-std::size_t RejectOutliers(const PointingSolution& s, Problem* p) {
-  std::size_t n = 0;
+// Rejects the active observations above kOutlierChi2 and returns how many, unless more than
+// kMaxOutlierFraction of them are: then none is rejected and *misfit says how many.
+std::size_t RejectOutliers(const PointingSolution& s, Problem* p, std::size_t* misfit) {
+  std::size_t n = 0, active = 0;
   for (std::size_t i = 0; i < p->active.size(); ++i) {
-    if (p->active[i] && s.residuals[i].chi2 > kOutlierChi2) {
-      p->active[i] = 0;
-      ++n;
-    }
+    active += p->active[i] ? 1 : 0;
+    n += p->active[i] && s.residuals[i].chi2 > kOutlierChi2 ? 1 : 0;
+  }
+  if (static_cast<double>(n) > kMaxOutlierFraction * static_cast<double>(active)) {
+    *misfit = n;
+    return 0;
+  }
+  for (std::size_t i = 0; i < p->active.size(); ++i) {
+    if (p->active[i] && s.residuals[i].chi2 > kOutlierChi2) p->active[i] = 0;
   }
   return n;
 }
@@ -436,11 +448,13 @@ PointingSolution SolvePointing(const ObservationBuilder& build, const camera::Ca
   ResetProblem(obs, cam, &p);
   p.x = {0, 0, 0, 0, cam.mount_yaw_rad, cam.mount_pitch_rad, cam.mount_roll_rad, 0.0, cam.time_offset_s};
   if (est[kParamAzOffset]) p.x[kParamAzOffset] = InitialAzOffset(obs, cam);
+  std::size_t misfit = 0;
   for (;;) {
+    misfit = 0;
     for (int round = 0;; ++round) {
       s.iterations += RunCeres(est, opt.max_iterations, &p, &s.termination);
       Residuals(p, &s);
-      if (round >= kMaxOutlierRounds || RejectOutliers(s, &p) == 0) break;
+      if (round >= kMaxOutlierRounds || RejectOutliers(s, &p, &misfit) == 0) break;
       RequireEnough(ActiveCount(p), s.estimated_params.size(), " left after rejecting outliers");
     }
     const double tau = p.x[kParamTimeOffset];
@@ -463,6 +477,12 @@ PointingSolution SolvePointing(const ObservationBuilder& build, const camera::Ca
   FillCovariance(p, est, &s);
   FillStatistics(p, &s);
   s.warnings = SeparabilityWarnings(s);
+  if (misfit > 0) {
+    s.warnings.push_back(std::to_string(misfit) + " of " + std::to_string(s.used) +
+                         " observations do not fit the model (chi2 > " + PointingFmt(kOutlierChi2, 0) +
+                         "), too many to be outliers: none rejected; estimate focal or time_offset, or check the "
+                         "epoch, station and target positions");
+  }
   if (s.chi2_per_dof > kChi2WarnHigh) {
     s.warnings.push_back("the residuals are " + PointingFmt(std::sqrt(s.chi2_per_dof), 2) +
                          " times larger than the stated errors (chi2/dof " + PointingFmt(s.chi2_per_dof, 2) +

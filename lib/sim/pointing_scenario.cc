@@ -7,6 +7,7 @@
 
 #include "geo/angles.h"
 #include "io/error.h"
+#include "geo/line_of_sight.h"
 #include "sim/sim_common.h"
 
 namespace rk::sim {
@@ -175,6 +176,48 @@ void Observe(const PointingSimOptions& o, const TurretCommand& cmd, const std::v
   s->frames = static_cast<std::size_t>(frame);
 }
 
+// The validation target: straight flight 3 km out at 60 m/s crossing from azimuth 200° upward, turret
+// commanded at its true direction (minus az_offset), logged quantised; 20 Hz frames.
+constexpr double kValidationRateHz = 20.0, kValidationRangeM = 3000.0, kValidationSpeedMps = 60.0;
+constexpr std::uint64_t kStreamValidation = 4;
+
+Eigen::Vector3d ValidationPosition(double t) {
+  const Eigen::Vector3d p0 = kValidationRangeM * target::DirectionEnu(geo::DegToRad(200.0), geo::DegToRad(15.0));
+  const Eigen::Vector3d v = kValidationSpeedMps * Eigen::Vector3d(0.8, -0.3, 0.52).normalized();
+  return p0 + v * t;
+}
+
+void SimulateValidation(const PointingSimOptions& o, PointingSession* s) {
+  if (!(o.validation_s > 0.0)) return;
+  ValidationTrack& v = s->validation;
+  auto command = [&](double t) {
+    const geo::AzEl d = geo::AzElFromEnu(ValidationPosition(t));
+    return Eigen::Vector2d(d.az_rad - s->truth.az_offset_rad, d.el_rad);
+  };
+  const double step = o.encoder_step_deg;
+  auto quantise = [step](double x) { return step > 0 ? std::round(x / step) * step : x; };
+  for (double t = 0.0; t <= o.validation_s + 2 * kSampleMarginS + 1e-9; t += 1.0 / o.turret_rate_hz) {
+    const Eigen::Vector2d c = command(t);
+    v.turret_t_s.push_back(t);
+    v.turret_az_deg.push_back(geo::WrapDeg360(quantise(geo::WrapDeg360(geo::RadToDeg(c.x())))));
+    v.turret_el_deg.push_back(quantise(geo::RadToDeg(c.y())));
+  }
+  std::mt19937_64 rng = RandomStream(o.seed, kStreamValidation);
+  std::normal_distribution<double> noise(0.0, o.centroid_sigma_px);
+  const camera::CameraModel& cam = s->camera_truth;
+  for (double t = kSampleMarginS; t <= o.validation_s + kSampleMarginS; t += 1.0 / kValidationRateHz) {
+    const double t_true = t + o.time_offset_s;
+    const Eigen::Vector2d c = command(t_true);
+    const Eigen::Matrix3d R_enu_cam = geo::RotationEnuFromTurret(c.x(), c.y(), s->truth) * cam.RotationTurretFromCamera();
+    const Eigen::Vector3d p = ValidationPosition(t_true);
+    const auto px = cam.Project(R_enu_cam.transpose() * p.normalized());
+    if (!px) continue;
+    v.frame_t_s.push_back(t);
+    v.px.push_back(*px + Eigen::Vector2d(noise(rng), noise(rng)));
+    v.p_enu.push_back(p);
+  }
+}
+
 }  // namespace
 
 const io::OptionTable<PointingSimOptions>& PointingSimOptions::Table() {
@@ -203,7 +246,9 @@ const io::OptionTable<PointingSimOptions>& PointingSimOptions::Table() {
           .Real("--mount-pitch-deg", &O::mount_pitch_deg, "deg", io::Bounds::Closed(-2, 2), "True camera mount pitch (deg)")
           .Real("--mount-roll-deg", &O::mount_roll_deg, "deg", io::Bounds::Closed(-5, 5), "True camera mount roll (deg)")
           .Real("--focal-error", &O::focal_error, "", io::Bounds::Closed(-0.05, 0.05), "True focal length / nominal - 1")
-          .Real("--time-offset", &O::time_offset_s, "s", io::Bounds::Closed(-1, 1), "True camera time offset (s)");
+          .Real("--time-offset", &O::time_offset_s, "s", io::Bounds::Closed(-1, 1), "True camera time offset (s)")
+          .Real("--validation", &O::validation_s, "s", io::Bounds::Closed(0, 3600),
+                "Length of the tracked validation target (s); 0 = none");
   return table;
 }
 
@@ -259,6 +304,7 @@ PointingSession SimulatePointingSession(const PointingSimOptions& o) {
   s.duration_s = end;
   LogTurret(o, cmd, end, &s);
   Observe(o, cmd, targets, kSampleMarginS, cmd.end() - std::abs(o.time_offset_s), &s);
+  SimulateValidation(o, &s);
   return s;
 }
 

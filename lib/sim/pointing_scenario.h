@@ -52,6 +52,7 @@ struct PointingSimOptions {
   double time_offset_s = 0.012;       // camera latency
   double lat_deg = 32.5, lon_deg = -106.6, h_m = 1300.0;
   std::string epoch_utc = "2026-03-20T03:00:00Z";
+  double validation_s = 20.0;         // length of the tracked validation target (s); 0 = none
 
   static const io::OptionTable<PointingSimOptions>& Table();
   bool Check(std::string* why) const;
@@ -66,6 +67,16 @@ struct PointingObservationRow {
   Eigen::Vector2d truth_px = Eigen::Vector2d::Zero();
 };
 
+// A tracked validation target after the session (same station, same errors): a target flying a straight
+// line 3 km out, the turret following it, a beacon track with the same centroid noise. rk-locate
+// --pointing on it must give the truth's az/el; without the pointing model it is off by the station errors.
+struct ValidationTrack {
+  std::vector<double> frame_t_s;
+  std::vector<Eigen::Vector2d> px;                               // observed beacon pixel per frame
+  std::vector<double> turret_t_s, turret_az_deg, turret_el_deg;  // logged turret
+  std::vector<Eigen::Vector3d> p_enu;                            // true target position per frame (m)
+};
+
 struct PointingSession {
   target::Geodetic station;
   target::UtcJd epoch;
@@ -78,6 +89,7 @@ struct PointingSession {
   std::vector<PointingObservationRow> observations;
   std::size_t frames = 0, dwells = 0;
   double duration_s = 0.0;
+  ValidationTrack validation;
 };
 
 // Throws UsageError for options that fail Check().

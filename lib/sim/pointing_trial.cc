@@ -48,6 +48,35 @@ void WriteLogs(const PointingSession& s, const TrialFolder& dir) {
   truth.Write(dir.Path("truth/points.csv"));
 }
 
+// validation/: a tracked target for rk-locate --pointing (frames, beacon track, turret, truth).
+void WriteValidation(const PointingSession& s, const TrialFolder& dir) {
+  const ValidationTrack& v = s.validation;
+  if (v.frame_t_s.empty()) return;
+  dir.MakeSubfolder("validation");
+  io::CsvWriter turret({"t_s", "az_deg", "el_deg"});
+  for (std::size_t k = 0; k < v.turret_t_s.size(); ++k) {
+    turret.Add(v.turret_t_s[k], kTimeDecimals).Add(v.turret_az_deg[k], kAngleDecimals).Add(v.turret_el_deg[k], kAngleDecimals).EndRow();
+  }
+  turret.Write(dir.Path("validation/turret.csv"));
+  io::CsvWriter frames({"frame", "t_s"}), track({"frame", "t_s", "x_px", "y_px", "status"});
+  io::CsvWriter truth({"t_s", "az_deg", "el_deg", "range_m", "e_m", "n_m", "u_m"});
+  for (std::size_t k = 0; k < v.frame_t_s.size(); ++k) {
+    const auto f = static_cast<std::int64_t>(k);
+    frames.Add(f).Add(v.frame_t_s[k], kTimeDecimals).EndRow();
+    track.Add(f).Add(v.frame_t_s[k], kTimeDecimals).Add(v.px[k].x(), kPixelDecimals).Add(v.px[k].y(), kPixelDecimals).Add("ok").EndRow();
+    // Truth at the frame's true (mid-exposure) time: the camera's time offset later than its stamp.
+    const Eigen::Vector3d& p = v.p_enu[k];
+    truth.Add(v.frame_t_s[k], kTimeDecimals)
+        .Add(geo::RadToDeg(geo::WrapTwoPi(std::atan2(p.x(), p.y()))), kAngleDecimals)
+        .Add(geo::RadToDeg(std::atan2(p.z(), std::hypot(p.x(), p.y()))), kAngleDecimals)
+        .Add(p.norm(), kMetreDecimals).Add(p.x(), kMetreDecimals).Add(p.y(), kMetreDecimals).Add(p.z(), kMetreDecimals)
+        .EndRow();
+  }
+  frames.Write(dir.Path("validation/frames.csv"));
+  track.Write(dir.Path("validation/track.csv"));
+  truth.Write(dir.Path("validation/truth.csv"));
+}
+
 }  // namespace
 
 io::Json PointingTrialSummary::ToJson() const {
@@ -62,6 +91,7 @@ PointingTrialSummary WritePointingTrial(const PointingSimOptions& o, const Point
   dir.MakeSubfolder("truth");
   WriteTargets(s, dir);
   WriteLogs(s, dir);
+  WriteValidation(s, dir);
   io::WriteFileAtomic(dir.Path(trial::kCameraModelFile), camera::CameraModelToJson(s.camera_nominal).dump(2) + "\n");
   io::WriteFileAtomic(dir.Path("truth/camera.json"), camera::CameraModelToJson(s.camera_truth).dump(2) + "\n");
   camera::PointingModel truth;
@@ -88,6 +118,10 @@ PointingTrialSummary WritePointingTrial(const PointingSimOptions& o, const Point
   simj["calibration"] = {{"observations", "points.csv"}, {"landmarks", "landmarks.csv"}, {"stars", "stars.csv"},
                          {"camera", trial::kCameraModelFile}};
   simj["truth"] = {{"pointing", "truth/pointing.json"}, {"camera", "truth/camera.json"}, {"points", "truth/points.csv"}};
+  if (!s.validation.frame_t_s.empty()) {
+    simj["validation"] = {{"frames", "validation/frames.csv"}, {"track", "validation/track.csv"},
+                          {"turret", "validation/turret.csv"}, {"truth", "validation/truth.csv"}};
+  }
   simj["summary"] = sum.ToJson();
   m.extra["sim"] = simj;
   trial::WriteManifest(dir.Path(trial::kManifestFile), m);

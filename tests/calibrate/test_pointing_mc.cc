@@ -25,6 +25,7 @@ TEST(PointingMonteCarlo, MeanNeesOfEveryParameterIsNearOne) {
     o.stars = 8;
     o.dwell_s = 0.6;
     o.frame_rate_hz = 5.0;
+    o.validation_s = 0.0;
     const sim::PointingSession s = sim::SimulatePointingSession(o);
     const testing::SessionInputs in = testing::InputsOf(s);
     PointingCalibrationOptions opt;
