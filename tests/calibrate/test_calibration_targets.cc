@@ -10,7 +10,9 @@
 namespace rk::target {
 namespace {
 
-constexpr double kRoundTripMas = 1.0;       // eraAtoc13 inverts eraAtco13 to well below a milliarcsecond
+// eraAtoc13 inverts eraAtco13 to < 1 mas above 15° elevation; lower, its inverse refraction is approximate
+// (53 mas at 5°). The simulator only uses the inverse to place stars, the forward model decides the truth.
+constexpr double kRoundTripMas = 1.0, kRoundTripLowMas = 100.0;
 constexpr double kCurvatureTolM = 1e-3;     // 1 km north on the ellipsoid drops by ≈ 0.078 m
 
 TEST(CalibrationTargets, StarObservedPlaceInvertsCatalogue) {
@@ -23,8 +25,9 @@ TEST(CalibrationTargets, StarObservedPlaceInvertsCatalogue) {
       const Star star = StarFromObservedPlace("s", want, station, utc, 0.0, atm);
       const ObservedPlace got = StarObservedPlace(star, station, utc, 0.0, atm);
       const double mas = geo::kArcsecPerRad * 1e3;
-      EXPECT_LT(std::abs(geo::WrapPi(got.az_rad - want.az_rad)) * std::cos(want.el_rad) * mas, kRoundTripMas);
-      EXPECT_LT(std::abs(got.el_rad - want.el_rad) * mas, kRoundTripMas);
+      const double tol = el_deg < 15.0 ? kRoundTripLowMas : kRoundTripMas;
+      EXPECT_LT(std::abs(geo::WrapPi(got.az_rad - want.az_rad)) * std::cos(want.el_rad) * mas, tol);
+      EXPECT_LT(std::abs(got.el_rad - want.el_rad) * mas, tol);
     }
   }
 }
