@@ -58,27 +58,29 @@ void TurretAt(const locate::BoresightSource& turret, const ImagePoints& pts, con
   }
 }
 
-// Groups consecutive observations with bit-identical logged angles (one dwell's encoder reading).
+// Groups consecutive observations with bit-identical logged angles: one dwell's encoder reading, or, during
+// a slew, the one interpolated reading of a frame in which several targets are seen.
 void AssignClusters(double step_rad, PointingObservations* out) {
   const double sigma_q = step_rad / std::sqrt(12.0);
   int current = -1;
+  std::vector<char> moving;
   for (std::size_t i = 0; i < out->obs.size(); ++i) {
     PointingObservation& o = out->obs[i];
-    const bool same = i > 0 && o.az_log_rad == out->obs[i - 1].az_log_rad &&
-                      o.el_log_rad == out->obs[i - 1].el_log_rad && o.az_rate_rps == 0.0 && o.el_rate_rps == 0.0;
+    const bool same = i > 0 && o.az_log_rad == out->obs[i - 1].az_log_rad && o.el_log_rad == out->obs[i - 1].el_log_rad;
     if (!same) {
       current = static_cast<int>(out->cluster_sigma_rad.size());
       out->cluster_sigma_rad.push_back(Eigen::Vector2d::Constant(sigma_q));
       out->cluster_size.push_back(0);
+      moving.push_back(o.az_rate_rps != 0.0 || o.el_rate_rps != 0.0);
     }
     o.cluster = current;
     ++out->cluster_size[static_cast<std::size_t>(current)];
   }
   for (std::size_t c = 0; c < out->cluster_size.size(); ++c) {
-    if (out->cluster_size[c] > 1) {
-      ++out->dwells;
-    } else {
+    if (moving[c]) {
       out->cluster_sigma_rad[c] *= std::sqrt(kInterpolatedQuantFactor);
+    } else if (out->cluster_size[c] > 1) {
+      ++out->dwells;
     }
   }
 }

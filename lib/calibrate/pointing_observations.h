@@ -9,9 +9,9 @@
 //
 // Shared errors. A stepper turret holding still logs one encoder value for every frame of a dwell: its
 // quantisation error (uniform, σ = step/√12 per axis) is one draw per dwell. Observations are grouped
-// into clusters: consecutive observations with bit-identical logged angles (a dwell) share one; any other
-// observation (during a slew) has its own, with σ for the interpolation between two readings,
-// step/√12 · √((1−w)² + w²). A landmark with `sigma_m` contributes one shared direction error per
+// into clusters: consecutive observations with bit-identical logged angles share one: a dwell, or the
+// targets seen in one frame during a slew (σ for a reading interpolated between two, on average
+// step/√12 · √(2/3)); an observation during a slew alone in its frame has its own. A landmark with `sigma_m` contributes one shared direction error per
 // landmark (σ = sigma_m / range per axis).
 #pragma once
 
@@ -77,7 +77,7 @@ struct PointingObservations {
   std::vector<double> target_sigma_rad;         // shared direction error per target (0 = exact)
   std::vector<Eigen::Vector2d> cluster_sigma_rad;  // per cluster: σ of the az and el readings
   std::vector<int> cluster_size;
-  std::size_t dwells = 0;  // clusters with more than one observation
+  std::size_t dwells = 0;  // clusters of a still turret with more than one observation
 };
 
 // Builds the observations at time offset tau0_s. Throws DataError at the observation's file:line:col for
