@@ -60,7 +60,7 @@ struct SimTarget {
 
 double Uniform(std::mt19937_64& rng, double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); }
 
-void MakeTargets(const PointingSimOptions& o, PointingSession* s, std::vector<SimTarget>* targets) {
+void MakePointingTargets(const PointingSimOptions& o, PointingSession* s, std::vector<SimTarget>* targets) {
   std::mt19937_64 rng = RandomStream(o.seed, kStreamTargets);
   const target::Atmosphere atm;
   for (int i = 0; i < o.landmarks; ++i) {
@@ -288,7 +288,7 @@ PointingSession SimulatePointingSession(const PointingSimOptions& o) {
   s.truth = {geo::DegToRad(o.az_offset_deg), geo::DegToRad(o.tilt_north_deg), geo::DegToRad(o.tilt_east_deg),
              geo::DegToRad(o.el_axis_tilt_deg)};
   std::vector<SimTarget> targets;
-  MakeTargets(o, &s, &targets);
+  MakePointingTargets(o, &s, &targets);
   const double half_fov = std::atan(0.5 * o.width_px * o.pixel_size_mm / o.focal_length_mm);
   // Star directions for aiming: tabulated over a generous bound of the session, then again exactly.
   double bound = kSampleMarginS + static_cast<double>(targets.size()) * (o.dwell_s + 40.0 / o.slew_rate_deg_s);

@@ -16,7 +16,7 @@ namespace {
 
 constexpr int kCatalogueDecimals = 10;  // degrees: 1e-10° = 0.4 µas
 
-void WriteTargets(const PointingSession& s, const TrialFolder& dir) {
+void WritePointingTargets(const PointingSession& s, const TrialFolder& dir) {
   io::CsvWriter lm({"id", "lat_deg", "lon_deg", "h_m", "e_m", "n_m", "u_m"});
   for (const target::Landmark& l : s.landmarks) {
     const target::Geodetic g = target::GeodeticFromEnu(s.station, l.p_enu);
@@ -33,7 +33,7 @@ void WriteTargets(const PointingSession& s, const TrialFolder& dir) {
   st.Write(dir.Path("stars.csv"));
 }
 
-void WriteLogs(const PointingSession& s, const TrialFolder& dir) {
+void WritePointingLogs(const PointingSession& s, const TrialFolder& dir) {
   io::CsvWriter turret({"t_s", "az_deg", "el_deg"});
   for (std::size_t k = 0; k < s.turret_t_s.size(); ++k) {
     turret.Add(s.turret_t_s[k], kTimeDecimals).Add(s.turret_az_deg[k], kAngleDecimals).Add(s.turret_el_deg[k], kAngleDecimals).EndRow();
@@ -89,8 +89,8 @@ PointingTrialSummary WritePointingTrial(const PointingSimOptions& o, const Point
                                         const std::string& out_dir, bool force) {
   TrialFolder dir(out_dir, force);
   dir.MakeSubfolder("truth");
-  WriteTargets(s, dir);
-  WriteLogs(s, dir);
+  WritePointingTargets(s, dir);
+  WritePointingLogs(s, dir);
   WriteValidation(s, dir);
   io::WriteFileAtomic(dir.Path(trial::kCameraModelFile), camera::CameraModelToJson(s.camera_nominal).dump(2) + "\n");
   io::WriteFileAtomic(dir.Path("truth/camera.json"), camera::CameraModelToJson(s.camera_truth).dump(2) + "\n");
