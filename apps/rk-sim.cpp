@@ -13,6 +13,7 @@ int main(int argc, char** argv) {
       {"radar", rk::app::AddRadarCommand},
       {"device", rk::app::AddDeviceCommand},
       {"multistation", rk::app::AddMultistationCommand},
+      {"pointing", rk::app::AddPointingCommand},
   };
   // clang-format on
   return rk::app::RunTool(

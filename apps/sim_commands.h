@@ -13,5 +13,6 @@ Command AddAttitudeCommand(CLI::App& app);    // sim_attitude_cmd.cpp
 Command AddRadarCommand(CLI::App& app);       // sim_radar_cmd.cpp
 Command AddDeviceCommand(CLI::App& app);      // sim_device_cmd.cpp
 Command AddMultistationCommand(CLI::App& app);  // sim_multistation_cmd.cpp
+Command AddPointingCommand(CLI::App& app);    // sim_pointing_cmd.cpp
 
 }  // namespace rk::app

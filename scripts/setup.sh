@@ -27,7 +27,7 @@ done
 
 PACKAGES=(
   build-essential cmake pkg-config git
-  libopencv-dev libeigen3-dev libceres-dev libcli11-dev nlohmann-json3-dev libgeographiclib-dev libssl-dev
+  libopencv-dev libeigen3-dev libceres-dev libcli11-dev nlohmann-json3-dev libgeographiclib-dev liberfa-dev libssl-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   python3 python3-matplotlib ffmpeg
   help2man bash-completion bsdutils

@@ -1,0 +1,170 @@
+// rk-calibrate pointing: image points of landmarks and stars + turret log + camera → pointing.json (SPEC.md
+// §1.1, §3.1) and the updated camera. Thin edge: CLI11 options → rk::calibrate (lib/calibrate); docs in
+// docs/rk-calibrate.md.
+#include <ctime>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "calibrate/pointing_observations.h"
+#include "calibrate/pointing_output.h"
+#include "calibrate/pointing_solve.h"
+#include "calibrate_commands.h"
+#include "camera/camera_model.h"
+#include "io/csv.h"
+#include "io/error.h"
+#include "io/file_util.h"
+#include "io/json_util.h"
+#include "locate/boresight.h"
+#include "locate/inputs.h"
+
+namespace rk::app {
+namespace {
+
+struct PointingCli {
+  calibrate::PointingCalibrationOptions o;
+  std::string observations, turret, camera, landmarks, stars, epoch_utc, station, out, camera_out, plot;
+  std::string estimate = "az_offset,tilt,el_axis_tilt,mount";
+  io::BadRows bad_rows = io::BadRows::kError;
+  CLI::Option* dut1 = nullptr;
+};
+
+std::string NowUtc() {
+  const std::time_t now = std::time(nullptr);
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char buf[32];
+  std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return buf;
+}
+
+// Every path the command reads, and the refusal of outputs that would overwrite one of them.
+std::vector<std::string> CheckPaths(const PointingCli& c, const Context& ctx) {
+  std::vector<std::string> inputs = {c.observations, c.turret, c.camera};
+  if (!c.landmarks.empty()) inputs.push_back(c.landmarks);
+  if (!c.stars.empty()) inputs.push_back(c.stars);
+  int n_stdin = 0;
+  for (const auto& in : inputs) n_stdin += io::IsStdStream(in) ? 1 : 0;
+  if (n_stdin > 1) throw UsageError("only one input can be read from stdin ('-')");
+  std::vector<std::string> outs = {c.out};
+  for (const std::string& p : {c.camera_out, c.plot, ctx.common.report_path}) {
+    if (!p.empty()) outs.push_back(p);
+  }
+  int n_stdout = 0;
+  for (const auto& p : outs) {
+    io::CheckOutputNotInput(p, inputs);
+    n_stdout += io::IsStdStream(p) ? 1 : 0;
+  }
+  if (n_stdout > 1) throw UsageError("only one output can be written to stdout ('-')");
+  return inputs;
+}
+
+calibrate::TargetCatalogue ReadTargets(const PointingCli& c) {
+  calibrate::TargetCatalogue t;
+  t.station = target::ParseStation(c.station, "--station");
+  if (!c.landmarks.empty()) {
+    t.landmarks = target::ReadLandmarks(io::CsvTable::Read(c.landmarks, {c.bad_rows, {}}), t.station);
+    t.landmarks_source = c.landmarks;
+  }
+  if (!c.stars.empty()) {
+    t.stars = target::ReadStars(io::CsvTable::Read(c.stars, {c.bad_rows, {}}));
+    t.stars_source = c.stars;
+    t.epoch_utc = target::ParseUtc(c.epoch_utc, "--epoch-utc");
+  }
+  t.dut1_s = c.o.dut1_s;
+  t.atmosphere = {c.o.pressure_hpa, c.o.temperature_c, c.o.humidity, c.o.wavelength_um};
+  return t;
+}
+
+void WriteReportFile(const PointingCli& c, const Context& ctx, const calibrate::PointingSolution& sol,
+                     const camera::CameraModel& cam) {
+  io::Json r = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
+  r["subcommand"] = "pointing";
+  cli::AddReportInput(&r, "observations", c.observations);
+  cli::AddReportInput(&r, "turret", c.turret);
+  cli::AddReportInput(&r, "camera", c.camera);
+  if (!c.landmarks.empty()) cli::AddReportInput(&r, "landmarks", c.landmarks);
+  if (!c.stars.empty()) cli::AddReportInput(&r, "stars", c.stars);
+  r["output"] = c.out;
+  if (!c.camera_out.empty()) r["camera_out"] = c.camera_out;
+  if (!c.plot.empty()) r["plot"] = c.plot;
+  io::Json opts = c.o.ToJson();
+  opts["estimate"] = c.estimate;
+  opts["station"] = c.station;
+  if (!c.epoch_utc.empty()) opts["epoch_utc"] = c.epoch_utc;
+  r["options"] = opts;
+  r["summary"] = calibrate::PointingSummaryJson(sol, cam);
+  r["warnings"] = sol.warnings;
+  cli::WriteReport(ctx.common.report_path, r);
+}
+
+int RunPointing(const PointingCli& c, const Context& ctx) {
+  std::string why;
+  if (!c.o.Check(&why)) throw UsageError(why);
+  const calibrate::EstimateSet est = calibrate::ParseEstimate(c.estimate);
+  if (c.landmarks.empty() && c.stars.empty()) throw UsageError("give --landmarks, --stars or both");
+  if (!c.stars.empty() && c.epoch_utc.empty()) throw UsageError("--stars needs --epoch-utc (the UTC of t_s = 0)");
+  target::ParseStation(c.station, "--station");
+  if (!c.epoch_utc.empty()) target::ParseUtc(c.epoch_utc, "--epoch-utc");
+  CheckPaths(c, ctx);
+  if (!c.stars.empty() && c.dut1->count() == 0) {
+    cli::Warn(ctx.tool, ctx.common, "--dut1 not given: UT1 - UTC taken as 0 s (up to 0.9 s = 13.5\" of star azimuth at the equator)");
+  }
+
+  const calibrate::ImagePoints points = calibrate::ReadImagePoints(io::CsvTable::Read(c.observations, {c.bad_rows, {}}));
+  const locate::TurretLog log = locate::ReadTurretLog(io::CsvTable::Read(c.turret, {c.bad_rows, locate::TurretLogRowRule()}));
+  const camera::CameraModel cam = camera::LoadCameraModel(c.camera);
+  const calibrate::TargetCatalogue targets = ReadTargets(c);
+  const locate::BoresightSource turret =
+      locate::BoresightSource::FromLog(log, track::InterpMethod::kLinear, c.o.turret_max_gap_s);
+  const auto build = [&](double tau) {
+    return calibrate::BuildObservations(points, targets, turret, c.o.encoder_step_rad(), c.o.pixel_sigma_px, tau);
+  };
+  const calibrate::PointingSolution sol = calibrate::SolvePointing(build, cam, est, c.o);
+  for (const std::string& w : sol.warnings) cli::Warn(ctx.tool, ctx.common, w);
+  if (sol.rejected > 0) {
+    cli::Warn(ctx.tool, ctx.common, std::to_string(sol.rejected) + " of " + std::to_string(sol.residuals.size()) +
+                                        " observations rejected as outliers (listed under \"rejected\" in " + c.out + ")");
+  }
+  // Everything is computed before the first file is written.
+  const std::string pointing_text = calibrate::PointingFileJson(sol, points, cam, NowUtc()).dump(2) + "\n";
+  const std::string camera_text = camera::CameraModelToJson(sol.Camera(cam)).dump(2) + "\n";
+  const std::string plot_png = c.plot.empty() ? "" : calibrate::ResidualPlotPng(sol);
+  io::WriteFileAtomic(c.out, pointing_text);
+  if (!c.camera_out.empty()) io::WriteFileAtomic(c.camera_out, camera_text);
+  if (!c.plot.empty()) io::WriteFileAtomic(c.plot, plot_png);
+  if (!ctx.common.report_path.empty()) WriteReportFile(c, ctx, sol, cam);
+  return 0;
+}
+
+}  // namespace
+
+Command AddPointingCommand(CLI::App& parent) {
+  CLI::App* cmd = parent.add_subcommand(
+      "pointing",
+      "Turret pointing model (SPEC.md 3.1), camera mount, focal length and time offset from image points of "
+      "landmarks and stars");
+  auto a = std::make_shared<PointingCli>();
+  PointingCli& c = *a;
+  cmd->add_option("--observations", c.observations,
+                  "Image points CSV: frame,t_s,id,x_px,y_px[,sigma_x_px,sigma_y_px] ('-' = stdin)")
+      ->required();
+  cmd->add_option("--turret", c.turret, "Turret log CSV: t_s,az_deg,el_deg (logged angles)")->required();
+  cmd->add_option("--camera", c.camera, "Camera model JSON (SPEC.md section 3): the starting values")->required();
+  cmd->add_option("--landmarks", c.landmarks, "Landmarks CSV: id,lat_deg,lon_deg,h_m or id,e_m,n_m,u_m [,sigma_m]");
+  cmd->add_option("--stars", c.stars, "Stars CSV: id,ra_deg,dec_deg[,pm_ra_mas_yr,pm_dec_mas_yr,parallax_mas,rv_kms]");
+  cmd->add_option("--epoch-utc", c.epoch_utc, "UTC of t_s = 0, ISO-8601 (needed with --stars)");
+  cmd->add_option("--station", c.station, "Station WGS-84 position LAT,LON,H (deg, deg, m)")->required();
+  cmd->add_option("-o,--output", c.out, "pointing.json to write ('-' = stdout)")->required();
+  cmd->add_option("--camera-out", c.camera_out, "Camera model JSON to write with the estimated mount, focal, time offset");
+  cmd->add_option("--estimate", c.estimate,
+                  "Terms to estimate: az_offset,tilt,el_axis_tilt,mount,focal,time_offset")
+      ->capture_default_str();
+  cmd->add_option("--plot", c.plot, "Residual plot PNG to write (residuals against target azimuth and elevation)");
+  cli::AddOptions(cmd, &c.o, calibrate::PointingCalibrationOptions::Table());
+  c.dut1 = cmd->get_option("--dut1");
+  cli::AddBadRowsOption(cmd, &c.bad_rows);
+  return {cmd, [a](const Context& ctx) { return RunPointing(*a, ctx); }};
+}
+
+}  // namespace rk::app

@@ -1,0 +1,14 @@
+// rk-calibrate: station calibration (SPEC.md §1). Subcommands: apps/calibrate_<name>_cmd.cpp
+// (pointing: turret pointing model, camera mount, focal length and time offset from landmarks and stars).
+#include "calibrate_commands.h"
+
+int main(int argc, char** argv) {
+  // --help lists the subcommands in this order.
+  // clang-format off
+  static constexpr rk::app::Subcommand kSubcommands[] = {
+      {"pointing", rk::app::AddPointingCommand},
+  };
+  // clang-format on
+  return rk::app::RunTool("rk-calibrate", "rk-calibrate: station calibration (lens intrinsics, turret pointing model)",
+                          kSubcommands, argc, argv);
+}

@@ -1,0 +1,90 @@
+// The inputs of rk-calibrate pointing (SPEC.md §1.1, §3.1) turned into what the solver fits: for each
+// image point of a known target, the logged turret angles at the frame's true time, the target's
+// direction in station ENU at that time, and which errors it shares with other observations.
+//
+//   observations  frame,t_s,id,x_px,y_px[,sigma_x_px,sigma_y_px]   (SPEC.md §2.1 image points)
+//   true time     t_s + time_offset_s (camera latency, SPEC.md §3); the turret log's times are true
+//   turret        locate::BoresightSource (linear interpolation, no extrapolation) at the true time
+//   target        landmark: constant ENU direction; star: observed place at epoch_utc + true time
+//
+// Shared errors. A stepper turret holding still logs one encoder value for every frame of a dwell: its
+// quantisation error (uniform, σ = step/√12 per axis) is one draw per dwell. Observations are grouped
+// into clusters: consecutive observations with bit-identical logged angles share one: a dwell, or the
+// targets seen in one frame during a slew (σ for a reading interpolated between two, on average
+// step/√12 · √(2/3)); an observation during a slew alone in its frame has its own. A landmark with `sigma_m` contributes one shared direction error per
+// landmark (σ = sigma_m / range per axis).
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "io/csv.h"
+#include "locate/boresight.h"
+#include "target/calibration_targets.h"
+
+namespace rk::calibrate {
+
+// One row of the observations file.
+struct ImagePoint {
+  std::int64_t frame = 0;
+  double t_s = 0.0;
+  std::string id;
+  Eigen::Vector2d px = Eigen::Vector2d::Zero();
+  std::optional<Eigen::Vector2d> sigma_px;  // from sigma_x_px,sigma_y_px when both are given
+  std::size_t line = 0;                     // file line
+  int id_column = 0;                        // 1-based character column of the id cell (messages)
+};
+struct ImagePoints {
+  std::string source;
+  std::vector<ImagePoint> rows;
+};
+// Reads and checks the observations table (t_s non-decreasing; sigma > 0 where given).
+ImagePoints ReadImagePoints(const io::CsvTable& table);
+
+// The targets the observations may name, with where they came from (messages).
+struct TargetCatalogue {
+  std::vector<target::Landmark> landmarks;
+  std::string landmarks_source;
+  std::vector<target::Star> stars;
+  std::string stars_source;
+  target::Geodetic station;
+  std::optional<target::UtcJd> epoch_utc;  // required when stars are given
+  double dut1_s = 0.0;
+  target::Atmosphere atmosphere;
+};
+
+// One observation ready for the solver: everything at the linearisation time offset tau0_s.
+struct PointingObservation {
+  std::size_t row = 0;  // index into ImagePoints::rows
+  Eigen::Vector2d px = Eigen::Vector2d::Zero();
+  Eigen::Vector2d sigma_px = Eigen::Vector2d::Ones();
+  double az_log_rad = 0.0, el_log_rad = 0.0;    // logged boresight at t_s + tau0_s (unwrapped az)
+  double az_rate_rps = 0.0, el_rate_rps = 0.0;  // their time derivatives (rad/s) there
+  Eigen::Vector3d dir_enu = Eigen::Vector3d::UnitY();  // unit target direction at t_s + tau0_s
+  Eigen::Vector3d dir_rate_enu = Eigen::Vector3d::Zero();  // its time derivative (stars move; 1/s)
+  int target = 0;         // index into PointingObservations::target_ids
+  int cluster = 0;        // shared turret-reading error (index into cluster_sigma_rad)
+  bool is_star = false;
+};
+struct PointingObservations {
+  double tau0_s = 0.0;  // time offset the turret and targets were evaluated at
+  std::vector<PointingObservation> obs;
+  std::vector<std::string> target_ids;
+  std::vector<double> target_sigma_rad;         // shared direction error per target (0 = exact)
+  std::vector<Eigen::Vector2d> cluster_sigma_rad;  // per cluster: σ of the az and el readings
+  std::vector<int> cluster_size;
+  std::size_t dwells = 0;  // clusters of a still turret with more than one observation
+};
+
+// Builds the observations at time offset tau0_s. Throws DataError at the observation's file:line:col for
+// an id that is neither a landmark nor a star, a star without an epoch, a target below the horizon, a
+// frame time the turret log does not cover. Rows without sigma_x_px,sigma_y_px get default_sigma_px.
+PointingObservations BuildObservations(const ImagePoints& points, const TargetCatalogue& targets,
+                                       const locate::BoresightSource& turret, double encoder_step_rad,
+                                       double default_sigma_px, double tau0_s);
+
+}  // namespace rk::calibrate
