@@ -52,6 +52,7 @@
 #include "attitude/cylinder_image_fit.h"
 #include "attitude/cylinder_solve.h"
 #include "camera/camera_model.h"
+#include "geo/pointing.h"
 #include "io/csv.h"
 #include "io/json_util.h"
 #include "io/row_status.h"
@@ -110,6 +111,9 @@ struct CylinderRunOptions {
   double pixel_sigma_px = 0.3;              // for the σ columns, >= 0
   double angle_sigma_arcsec = 0.0;          // for the σ columns, >= 0
   CylinderImageFitOptions image_fit;        // used when frames are given
+  // Not in the table: the theodolite/turret pointing model of SPEC.md §3.1 (rk-attitude cylinder --pointing),
+  // applied exactly through camera::ApplyPointing (camera/station_view.h); all zero = a perfect instrument.
+  geo::PointingTerms pointing;
   // The command-line options of rk-attitude cylinder, solve's and image_fit's among them (io/options.h).
   static const io::OptionTable<CylinderRunOptions>& Table();
   bool Check(std::string* why) const;
