@@ -205,7 +205,8 @@ McRun RunOnce(std::mt19937_64& rng, const McConfig& c, bool station_errors, bool
   const double A = geo::kTwoPi * u01(rng), E = geo::DegToRad(5.0 + 55.0 * u01(rng));
   const double q = geo::DegToRad(c.step_deg);
   const double A_log = q * std::round(A / q), E_log = q * std::round(E / q);
-  const Eigen::Matrix3d R_enu_cam = geo::RotationEnuFromTurret(A, E, truth_terms) * truth_cam.RotationTurretFromCamera();
+  const Eigen::Matrix3d R_enu_cam =
+      geo::RotationEnuFromTurret(A, E, truth_terms) * truth_cam.RotationTurretFromCamera();
   TurretLog log = StillTurret(geo::RadToDeg(A_log), geo::RadToDeg(E_log), 0.0, 1.2);
   Track track;
   std::vector<Eigen::Vector3d> dirs;

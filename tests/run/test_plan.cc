@@ -123,7 +123,8 @@ TEST(Plan, FeaturesSilhouetteRadar) {
 // SPEC.md §3.1: the manifest's station.pointing reaches rk-locate and both rk-attitude steps as --pointing (an
 // input: its digest decides re-runs), the station's position reaches rk-locate as --station; both are reserved.
 TEST(Plan, StationPointingAndPositionArePassedOn) {
-  const std::string text = R"({"station": {"lat_deg": -33.5, "lon_deg": 18.25, "h_m": 12, "pointing": "cal/pointing.json"},
+  const std::string text = R"({
+    "station": {"lat_deg": -33.5, "lon_deg": 18.25, "h_m": 12, "pointing": "cal/pointing.json"},
     "cameras": {
       "az": {"video": ["az/v.mkv"], "frames": "az/frames.csv", "model": "az/camera.json", "role": "beacon"},
       "att": {"video": "att/%06d.png", "frames": "att/frames.csv", "model": "att/camera.json",
@@ -148,10 +149,12 @@ TEST(Plan, StationPointingAndPositionArePassedOn) {
             (std::vector<std::string>{"rk-attitude", "cylinder", "--points", "out/sil/points.csv", "--theodolite",
                                       "turret.csv", "--camera", "sil/camera.json", "--target", "cyl.json",
                                       "--pointing", "cal/pointing.json", "-o", "out/sil/axis.csv"}));
-  for (const char* kind : {"locate", "attitude-oi", "attitude-cylinder"}) EXPECT_TRUE(IsReservedOption(kind, "pointing"));
+  for (const char* kind : {"locate", "attitude-oi", "attitude-cylinder"}) {
+    EXPECT_TRUE(IsReservedOption(kind, "pointing"));
+  }
   EXPECT_TRUE(IsReservedOption("locate", "station"));
-  EXPECT_NE(ManifestError(R"({"station": {"lat_deg": 0, "lon_deg": 0, "h_m": 0, "pointing": 3}})").find("station.pointing"),
-            std::string::npos);
+  const std::string bad = ManifestError(R"({"station": {"lat_deg": 0, "lon_deg": 0, "h_m": 0, "pointing": 3}})");
+  EXPECT_NE(bad.find("station.pointing"), std::string::npos) << bad;
 }
 
 // The reserved options come from the plan's bindings: every option the plan gives a step from the
