@@ -11,13 +11,13 @@
 namespace rk::geo {
 namespace {
 
-constexpr double kExact = 1e-12;  // pure trigonometry, double precision
+constexpr double kPointingExact = 1e-12;  // pure trigonometry, double precision
 
 TEST(Pointing, ZeroTermsAreSpecTurretFrameAtEveryAngle) {
   for (double az : {0.0, 1e-9, 0.3, kPi - 1e-9, kPi, 3.5, kTwoPi - 1e-9}) {
     for (double el : {-1.2, -0.5, 0.0, 0.7, 1.39, kPi / 2}) {
       Eigen::Matrix3d R = RotationEnuFromTurret(az, el, PointingTerms{});
-      EXPECT_NEAR((R - RotationEnuFromTurret(az, el)).norm(), 0.0, kExact) << az << " " << el;
+      EXPECT_NEAR((R - RotationEnuFromTurret(az, el)).norm(), 0.0, kPointingExact) << az << " " << el;
     }
   }
 }
@@ -28,7 +28,7 @@ TEST(Pointing, AzimuthOffsetAddsToTheLoggedAzimuthAcrossNorth) {
   for (double az_deg : {359.5, 0.0, 179.6, 180.0}) {
     const double az = DegToRad(az_deg), el = DegToRad(30.0);
     Eigen::Matrix3d R = RotationEnuFromTurret(az, el, p);
-    EXPECT_NEAR((R - RotationEnuFromTurret(az + p.az_offset_rad, el)).norm(), 0.0, kExact);
+    EXPECT_NEAR((R - RotationEnuFromTurret(az + p.az_offset_rad, el)).norm(), 0.0, kPointingExact);
     AzEl ae = AzElFromEnu(R.col(2));
     EXPECT_NEAR(AngleDiff(ae.az_rad, WrapTwoPi(az + p.az_offset_rad)), 0.0, 1e-12);
   }
@@ -40,14 +40,14 @@ TEST(Pointing, TiltsLeanTheAzimuthAxisTowardNorthAndEast) {
   PointingTerms north;
   north.tilt_north_rad = t;
   Eigen::Vector3d axis = RotationEnuFromTurret(1.234, kPi / 2, north).col(2);
-  EXPECT_NEAR(axis.x(), 0.0, kExact);
-  EXPECT_NEAR(axis.y(), std::sin(t), kExact);  // top leans north
-  EXPECT_NEAR(axis.z(), std::cos(t), kExact);
+  EXPECT_NEAR(axis.x(), 0.0, kPointingExact);
+  EXPECT_NEAR(axis.y(), std::sin(t), kPointingExact);  // top leans north
+  EXPECT_NEAR(axis.z(), std::cos(t), kPointingExact);
   PointingTerms east;
   east.tilt_east_rad = t;
   axis = RotationEnuFromTurret(4.0, kPi / 2, east).col(2);
-  EXPECT_NEAR(axis.x(), std::sin(t), kExact);  // top leans east
-  EXPECT_NEAR(axis.y(), 0.0, kExact);
+  EXPECT_NEAR(axis.x(), std::sin(t), kPointingExact);  // top leans east
+  EXPECT_NEAR(axis.y(), 0.0, kPointingExact);
 }
 
 TEST(Pointing, PositiveElevationAxisTiltLowersItsRightHandEnd) {
@@ -57,10 +57,10 @@ TEST(Pointing, PositiveElevationAxisTiltLowersItsRightHandEnd) {
     const double az = DegToRad(az_deg);
     // The elevation axis is the image-x (right) axis at E = 0: its right-hand end goes down.
     Eigen::Vector3d right = RotationEnuFromTurret(az, 0.0, p).col(0);
-    EXPECT_NEAR(right.z(), -std::sin(p.el_axis_tilt_rad), kExact);
+    EXPECT_NEAR(right.z(), -std::sin(p.el_axis_tilt_rad), kPointingExact);
     // At the horizon the boresight is unaffected.
     Eigen::Vector3d b0 = RotationEnuFromTurret(az, 0.0, p).col(2);
-    EXPECT_NEAR((b0 - DirectionFromAzEl(az, 0.0)).norm(), 0.0, kExact);
+    EXPECT_NEAR((b0 - DirectionFromAzEl(az, 0.0)).norm(), 0.0, kPointingExact);
   }
   const double el = DegToRad(60.0);
   AzEl ae = AzElFromEnu(RotationEnuFromTurret(0.0, el, p).col(2));
@@ -74,8 +74,8 @@ TEST(Pointing, IsARotationForAnyTerms) {
   for (double az : {0.0, 2.0, 6.0}) {
     for (double el : {-0.3, 0.9}) {
       Eigen::Matrix3d R = RotationEnuFromTurret(az, el, p);
-      EXPECT_NEAR((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 0.0, kExact);
-      EXPECT_NEAR(R.determinant(), 1.0, kExact);
+      EXPECT_NEAR((R.transpose() * R - Eigen::Matrix3d::Identity()).norm(), 0.0, kPointingExact);
+      EXPECT_NEAR(R.determinant(), 1.0, kPointingExact);
     }
   }
 }
@@ -84,11 +84,11 @@ TEST(Pointing, MountRotationMatchesTheContract) {
   // yaw turns the optical axis right, pitch up, roll turns image x toward image down.
   const double a = DegToRad(0.4);
   EXPECT_NEAR((RotationTurretFromCameraT(a, 0.0, 0.0).col(2) - Eigen::Vector3d(std::sin(a), 0, std::cos(a))).norm(),
-              0.0, kExact);
+              0.0, kPointingExact);
   EXPECT_NEAR((RotationTurretFromCameraT(0.0, a, 0.0).col(2) - Eigen::Vector3d(0, -std::sin(a), std::cos(a))).norm(),
-              0.0, kExact);
+              0.0, kPointingExact);
   EXPECT_NEAR((RotationTurretFromCameraT(0.0, 0.0, a).col(0) - Eigen::Vector3d(std::cos(a), std::sin(a), 0)).norm(),
-              0.0, kExact);
+              0.0, kPointingExact);
 }
 
 }  // namespace
