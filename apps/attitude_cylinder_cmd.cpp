@@ -9,6 +9,7 @@
 #include "attitude/cylinder_run.h"
 #include "attitude_commands.h"
 #include "camera/camera_model.h"
+#include "camera/pointing_model.h"
 #include "geo/angles.h"
 #include "io/csv.h"
 #include "io/error.h"
@@ -21,18 +22,19 @@ namespace rk::app {
 namespace {
 
 struct CylinderArgs {
-  std::string points_path, theodolite_path, camera_path, target_path, out_path;
+  std::string points_path, theodolite_path, camera_path, target_path, pointing_path, out_path;
   std::vector<std::string> videos;
   attitude::CylinderRunOptions opt;
   io::BadRows bad_rows = io::BadRows::kError;
 };
 
 int RunCylinderCmd(const CylinderArgs& a, const Context& ctx) {
-  const attitude::CylinderRunOptions& opt = a.opt;
+  attitude::CylinderRunOptions opt = a.opt;
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
   video::RefuseStdinVideo(a.videos);
   std::vector<std::string> inputs = {a.points_path, a.theodolite_path, a.camera_path, a.target_path};
+  if (!a.pointing_path.empty()) inputs.push_back(a.pointing_path);
   inputs.insert(inputs.end(), a.videos.begin(), a.videos.end());
   int stdin_inputs = 0;
   for (const std::string& p : inputs) stdin_inputs += io::IsStdStream(p) ? 1 : 0;
@@ -43,6 +45,7 @@ int RunCylinderCmd(const CylinderArgs& a, const Context& ctx) {
     throw UsageError("--report and -o name the same file " + a.out_path);
 
   const camera::CameraModel cam = camera::LoadCameraModel(a.camera_path);
+  if (!a.pointing_path.empty()) opt.pointing = camera::LoadPointingModel(a.pointing_path).terms;
   const target::CylinderShape target = target::LoadCylinderShape(a.target_path);
   const attitude::CylinderPointsFile points = attitude::ReadCylinderPoints(
       io::CsvTable::Read(a.points_path, {a.bad_rows, attitude::CylinderPointsRowRule()}));
@@ -107,6 +110,7 @@ int RunCylinderCmd(const CylinderArgs& a, const Context& ctx) {
     cli::AddReportInput(&rep, "theodolite", a.theodolite_path);
     cli::AddReportInput(&rep, "camera", a.camera_path);
     cli::AddReportInput(&rep, "target", a.target_path);
+    if (!a.pointing_path.empty()) cli::AddReportInput(&rep, "pointing", a.pointing_path);
     rep["subcommand"] = "cylinder";
     rep["output"] = a.out_path;
     rep["target"] = {{"length_m", target.length_m}, {"diameter_m", target.diameter_m}};
@@ -139,6 +143,9 @@ Command AddCylinderCommand(CLI::App& parent) {
   c->add_option("--theodolite", a->theodolite_path, "Theodolite log CSV t_s,az_deg,el_deg (boresight)")->required();
   cli::AddBadRowsOption(c, &a->bad_rows);
   c->add_option("--camera", a->camera_path, "Camera model JSON (SPEC.md 3)")->required();
+  c->add_option("--pointing", a->pointing_path,
+                "Theodolite/turret pointing model JSON (SPEC.md 3.1, rk-calibrate pointing); without it a perfect "
+                "instrument");
   c->add_option("--target", a->target_path, "Target model JSON {\"length_m\", \"diameter_m\"} (length = nose to tail plane)")
       ->required();
   c->add_option("-o,--output", a->out_path, "Axis attitude CSV ('-' = stdout)")->required();

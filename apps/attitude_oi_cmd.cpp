@@ -9,6 +9,7 @@
 
 #include "attitude_commands.h"
 #include "camera/camera_model.h"
+#include "camera/pointing_model.h"
 #include "geo/angles.h"
 #include "io/cli.h"
 #include "io/csv.h"
@@ -23,7 +24,7 @@ namespace rk::app {
 namespace {
 
 struct OiArgs {
-  std::string points, camera, target, turret, boresight, output;
+  std::string points, camera, target, turret, boresight, pointing, output;
   pose::AttitudeOiOptions opt;
   io::BadRows bad_rows = io::BadRows::kError;
 };
@@ -52,12 +53,13 @@ geo::AzEl ParseBoresight(const std::string& text) {
 }
 
 int RunOi(const OiArgs& a, const Context& ctx) {
-  const pose::AttitudeOiOptions& opt = a.opt;
+  pose::AttitudeOiOptions opt = a.opt;
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
 
   std::vector<std::string> inputs = {a.points, a.camera, a.target};
   if (!a.turret.empty()) inputs.push_back(a.turret);
+  if (!a.pointing.empty()) inputs.push_back(a.pointing);
   int n_stdin = 0;
   for (const auto& in : inputs) n_stdin += io::IsStdStream(in) ? 1 : 0;
   if (n_stdin > 1) throw UsageError("only one input can be read from stdin ('-')");
@@ -73,6 +75,7 @@ int RunOi(const OiArgs& a, const Context& ctx) {
 
   const target::FeatureModel model = target::LoadFeatureModel(a.target);
   const camera::CameraModel camera = camera::LoadCameraModel(a.camera);
+  if (!a.pointing.empty()) opt.pointing = camera::LoadPointingModel(a.pointing).terms;
   const pose::ImagePoints points =
       pose::ReadImagePoints(io::CsvTable::Read(a.points, {a.bad_rows, pose::ImagePointsRowRule()}), model);
   if (points.frames.empty()) throw DataError(points.source, 0, 0, "no image points (header only)");
@@ -111,6 +114,7 @@ int RunOi(const OiArgs& a, const Context& ctx) {
     cli::AddReportInput(&r, "camera", a.camera);
     cli::AddReportInput(&r, "target", a.target);
     if (!a.turret.empty()) cli::AddReportInput(&r, "turret", a.turret);
+    if (!a.pointing.empty()) cli::AddReportInput(&r, "pointing", a.pointing);
     r["output"] = a.output;
     io::Json status = io::Json::object();
     for (int s = 0; s < 5; ++s) status[RowStatusName(static_cast<RowStatus>(s))] = res.rows_by_status[static_cast<std::size_t>(s)];
@@ -154,6 +158,8 @@ Command AddOiCommand(CLI::App& parent) {
   auto* o_turret = s->add_option("--turret", a->turret, "Turret log CSV t_s,az_deg,el_deg (the camera rides on the turret)");
   auto* o_bore = s->add_option("--boresight", a->boresight, "Fixed boresight AZ,EL (degrees) instead of a turret log");
   o_turret->excludes(o_bore);
+  s->add_option("--pointing", a->pointing,
+                "Turret pointing model JSON (SPEC.md section 3.1, rk-calibrate pointing); without it a perfect turret");
   cli::AddBadRowsOption(s, &a->bad_rows);
   s->add_option("-o,--output", a->output, "Pose CSV ('-' = stdout)")->required();
   cli::AddOptions(s, &a->opt, pose::AttitudeOiOptions::Table());

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "camera/camera_model.h"
+#include "camera/pointing_model.h"
+#include "geo/wgs84.h"
 #include "io/cli.h"
 #include "io/csv.h"
 #include "io/error.h"
@@ -27,14 +29,19 @@ int main(int argc, char** argv) {
       kTool};
   rk::cli::CommonOptions common;
   rk::cli::AddCommonOptions(app, kTool, &common);
-  std::string track_path, camera_path, turret_path, range_path, out_path;
+  std::string track_path, camera_path, turret_path, range_path, pointing_path, station_text, out_path;
   rk::locate::LocateOptions opt;
-  app.add_option("--track", track_path, "Beacon track CSV: frame,t_s,x_px,y_px[,status] ('-' = stdin)")
+  app.add_option("--track", track_path,
+                 "Beacon track CSV: frame,t_s,x_px,y_px[,status][,sigma_x_px,sigma_y_px] ('-' = stdin)")
       ->required();
   app.add_option("--camera", camera_path, "Camera model JSON (SPEC.md section 3)")->required();
   app.add_option("--turret", turret_path, "Turret log CSV: t_s,az_deg,el_deg (boresight)")->required();
   app.add_option("--range", range_path,
                  "Range log CSV: t_s,range_m[,status]; without it no range/ENU is given");
+  app.add_option("--pointing", pointing_path,
+                 "Turret pointing model JSON (SPEC.md section 3.1, rk-calibrate pointing); without it a perfect turret");
+  app.add_option("--station", station_text,
+                 "Station position LAT,LON,H (deg, deg, m WGS-84): adds lat_deg,lon_deg,h_m columns");
   app.add_option("-o,--output", out_path, "Located target CSV ('-' = stdout)")->required();
   rk::cli::AddOptions(&app, &opt, rk::locate::LocateOptions::Table());
   rk::io::BadRows bad_rows = rk::io::BadRows::kError;
@@ -43,8 +50,14 @@ int main(int argc, char** argv) {
   return rk::cli::Run(app, kTool, argc, argv, [&]() -> int {
     std::string why;
     if (!opt.Check(&why)) throw rk::UsageError(why);
+    if (!station_text.empty()) {
+      rk::geo::Geodetic station;
+      if (!rk::geo::ParseGeodetic(station_text, &station, &why)) throw rk::UsageError("--station: " + why);
+      opt.station = station;
+    }
     std::vector<std::string> inputs = {track_path, camera_path, turret_path};
     if (!range_path.empty()) inputs.push_back(range_path);
+    if (!pointing_path.empty()) inputs.push_back(pointing_path);
     int n_stdin = 0;
     for (const auto& in : inputs) n_stdin += rk::io::IsStdStream(in) ? 1 : 0;
     if (n_stdin > 1) throw rk::UsageError("only one input can be read from stdin ('-')");
@@ -58,6 +71,8 @@ int main(int argc, char** argv) {
 
     const rk::locate::Track track = rk::locate::ReadTrack(rk::io::CsvTable::Read(track_path, {bad_rows, rk::locate::TrackRowRule()}));
     const rk::camera::CameraModel camera = rk::camera::LoadCameraModel(camera_path);
+    opt.camera_source = camera_path;
+    if (!pointing_path.empty()) opt.pointing = rk::camera::LoadPointingModel(pointing_path);
     const rk::locate::TurretLog turret = rk::locate::ReadTurretLog(rk::io::CsvTable::Read(turret_path, {bad_rows, rk::locate::TurretLogRowRule()}));
     std::optional<rk::locate::RangeLog> range;
     if (!range_path.empty()) range = rk::locate::ReadRangeLog(rk::io::CsvTable::Read(range_path, {bad_rows, rk::locate::RangeLogRowRule()}));
@@ -83,8 +98,14 @@ int main(int argc, char** argv) {
       rk::cli::AddReportInput(&report, "camera", camera_path);
       rk::cli::AddReportInput(&report, "turret", turret_path);
       if (range) rk::cli::AddReportInput(&report, "range", range_path);
+      if (opt.pointing) rk::cli::AddReportInput(&report, "pointing", pointing_path);
       report["output"] = out_path;
       report["options"] = opt.ToJson();
+      if (opt.station) {
+        report["station"] = {{"lat_deg", opt.station->lat_deg}, {"lon_deg", opt.station->lon_deg},
+                             {"h_m", opt.station->h_m}};
+      }
+      if (camera.time_offset_s != 0.0) report["time_offset_s"] = camera.time_offset_s;
       rk::io::Json status = rk::io::Json::object();
       for (int s = 0; s < 5; ++s) {
         status[rk::locate::TrackStatusName(static_cast<rk::locate::TrackStatus>(s))] =

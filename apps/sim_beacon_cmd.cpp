@@ -30,6 +30,8 @@ struct BeaconCli {
   double range_m = NAN, speed_mps = NAN, azimuth_deg = NAN, elevation_deg = NAN, turn_rate_deg_s = NAN;
   bool range_given = false;  // --range-m on the command line (NaN there is refused)
   std::vector<std::string> occlusions, servo_holds;
+  // Station errors (docs/rk-sim.md "Station errors"): the turret's true pointing model and the camera's latency.
+  double az_offset_deg = 0, tilt_north_deg = 0, tilt_east_deg = 0, el_axis_tilt_deg = 0, time_offset_s = 0;
 };
 
 void ResolveCamera(const BeaconCli& c, rk::sim::BeaconSimOptions* o) {
@@ -82,6 +84,9 @@ int RunBeacon(BeaconCli c, const Context& ctx) {
   ResolveTrajectory(c, &o);
   o.occlusions = ParseIntervals(c.occlusions, "--occlusion");
   o.servo_holds = ParseIntervals(c.servo_holds, "--servo-hold");
+  o.station_pointing = {rk::geo::DegToRad(c.az_offset_deg), rk::geo::DegToRad(c.tilt_north_deg),
+                        rk::geo::DegToRad(c.tilt_east_deg), rk::geo::DegToRad(c.el_axis_tilt_deg)};
+  if (c.time_offset_s != 0.0) o.camera.time_offset_s = c.time_offset_s;
   std::string why;
   if (!o.Check(&why)) throw rk::UsageError(why);
   if (!c.w.Check(&why)) throw rk::UsageError(why);
@@ -156,6 +161,14 @@ Command AddBeaconCommand(CLI::App& parent) {
   // Hand-registered options go just before the table option they precede in --help.
   rk::cli::AddOptions(beacon, &c.o, rk::sim::BeaconSimOptions::Table(),
                       {{"--max-el-deg", geometry}, {"--seed", turn_rate}, {"--range-noise-mm", intervals}});
+  beacon->add_option("--az-offset-deg", c.az_offset_deg,
+                     "Station error: true azimuth = logged + this (deg, SPEC.md 3.1); writes truth/pointing.json");
+  beacon->add_option("--tilt-north-deg", c.tilt_north_deg, "Station error: azimuth axis leans north (deg), within 10");
+  beacon->add_option("--tilt-east-deg", c.tilt_east_deg, "Station error: azimuth axis leans east (deg), within 10");
+  beacon->add_option("--el-axis-tilt-deg", c.el_axis_tilt_deg,
+                     "Station error: elevation axis tilt, + lowers its right end (deg), within 10");
+  beacon->add_option("--time-offset-s", c.time_offset_s,
+                     "Camera latency (s): frames.csv stamps = mid-exposure - this; camera.json gets time_offset_s");
   return {beacon, [a, beacon](const Context& ctx) {
             BeaconCli c = *a;
             c.range_given = beacon->count("--range-m") > 0;

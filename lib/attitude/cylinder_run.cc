@@ -13,6 +13,7 @@
 #include "geo/line_of_sight.h"
 #include "io/error.h"
 #include "locate/boresight.h"
+#include "camera/station_view.h"
 
 namespace rk::attitude {
 
@@ -282,7 +283,14 @@ class CylinderRowSolver {
     ang_var_ = ang * ang;
   }
 
-  // A row with its three points in the image and a theodolite boresight.
+  // The camera's mount in the current row's view (pointing model, camera/station_view.h).
+  void SetView(const camera::StationView& view) {
+    cam_.mount_yaw_rad = view.mount_yaw_rad;
+    cam_.mount_pitch_rad = view.mount_pitch_rad;
+    cam_.mount_roll_rad = view.mount_roll_rad;
+  }
+
+  // A row with its three points in the image and a theodolite boresight (of the row's view).
   RowOutcome Solve(const CylinderFramePoints& f, const geo::AzEl& boresight, CylinderRow* row) {
     const RowStatus ok_status = f.status;  // ok, or predicted / reacquired from the points file
     CylinderInputs x;
@@ -293,7 +301,7 @@ class CylinderRowSolver {
     if (!(bc > 0.0) || (*f.px[1] - *f.px[2]).norm() < 1e-9) return {RowStatus::kInvalid, CylinderSolutionStatus::kDegenerate};
     const Eigen::Vector3d mid = (rays.tail1 + rays.tail2).normalized();
     if (AxisAngle(rays.nose, mid) <= 0.5 * bc) {
-      TailChase(f.t_s, mid, row);
+      TailChase(row->t_s, mid, row);
       return {ok_status, CylinderSolutionStatus::kTailChase};
     }
     row->asymmetry_px = std::abs(AxisAngle(rays.nose, rays.tail1) - AxisAngle(rays.nose, rays.tail2)) * cam_.fx();
@@ -306,7 +314,7 @@ class CylinderRowSolver {
     if (sols.empty()) return {RowStatus::kInvalid, CylinderSolutionStatus::kNoSolution};
     const std::vector<std::optional<CylinderImageFitResult>> fits = FitImage(f, boresight, &sols);
     std::size_t primary = 0;
-    CylinderSolutionStatus sol_status = Choose(sols, history_.Predict(f.t_s, options_.continuity_gap_s), row, &primary);
+    CylinderSolutionStatus sol_status = Choose(sols, history_.Predict(row->t_s, options_.continuity_gap_s), row, &primary);
     const CylinderSolution& p = sols[primary];
     if (!p.exact) sol_status = CylinderSolutionStatus::kNearMiss;
     row->yaw_rad = p.yaw_rad;
@@ -316,7 +324,7 @@ class CylinderRowSolver {
     row->axis_enu = p.axis_enu;
     SetSigmaAndFit(x, p, fits[primary], row);
     if (row->fit) ++result_->rows_by_fit[static_cast<std::size_t>(*row->fit)];
-    history_.Add(f.t_s, *row->axis_enu);
+    history_.Add(row->t_s, *row->axis_enu);
     return {ok_status, sol_status};
   }
 
@@ -469,7 +477,7 @@ class CylinderRowSolver {
     }
   }
 
-  const camera::CameraModel& cam_;
+  camera::CameraModel cam_;  // the run's camera, with the mount of the row's StationView
   const target::CylinderShape& target_;
   const CylinderRunOptions& options_;
   const CylinderFrameReader* frames_;
@@ -505,9 +513,9 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
   for (const CylinderFramePoints& f : points.frames) {
     CylinderRow row;
     row.frame = f.frame;
-    row.t_s = f.t_s;
+    row.t_s = f.t_s + cam.time_offset_s;  // mid-exposure time (SPEC.md §3), the theodolite log's clock
     const bool complete = f.px[0] && f.px[1] && f.px[2];
-    const std::optional<geo::AzEl> boresight = theo.At(f.t_s);
+    const std::optional<geo::AzEl> boresight = theo.At(row.t_s);
     const bool covered = boresight.has_value();
     if (covered) {
       row.boresight_az_rad = boresight->az_rad;
@@ -522,7 +530,9 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
         out = {RowStatus::kInvalid, CylinderSolutionStatus::kNoTheodolite};
       } else {
         ++covered_frames;
-        out = solver.Solve(f, *boresight, &row);
+        const camera::StationView view = camera::ApplyPointing(cam, *boresight, options.pointing);
+        solver.SetView(view);
+        out = solver.Solve(f, view.boresight, &row);
       }
     }
     row.status = out.status;
@@ -536,8 +546,8 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
     throw ProcessingError("no frame of " + points.source + " has all three points nose, tail1, tail2");
   }
   if (covered_frames == 0 && result.rows_by_solution[static_cast<std::size_t>(CylinderSolutionStatus::kNoTheodolite)] > 0) {
-    theo.ThrowNoFrameCovered("theodolite", points.source, points.frames.front().t_s, points.frames.back().t_s,
-                             "--theodolite-max-gap");
+    theo.ThrowNoFrameCovered("theodolite", points.source, points.frames.front().t_s + cam.time_offset_s,
+                             points.frames.back().t_s + cam.time_offset_s, "--theodolite-max-gap");
   }
   return result;
 }

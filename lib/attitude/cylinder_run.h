@@ -57,6 +57,7 @@
 #include "attitude/cylinder_image_fit.h"
 #include "attitude/cylinder_solve.h"
 #include "camera/camera_model.h"
+#include "geo/pointing.h"
 #include "io/csv.h"
 #include "io/json_util.h"
 #include "io/row_status.h"
@@ -122,6 +123,9 @@ struct CylinderRunOptions {
   // minima are a few degrees apart and a start from one solution can lie in the other's basin), as when history
   // cannot choose; otherwise only the one continuity chooses. > 0.
   double fit_both_within_deg = 10.0;
+  // Not in the table: the theodolite/turret pointing model of SPEC.md §3.1 (rk-attitude cylinder --pointing),
+  // applied exactly through camera::ApplyPointing (camera/station_view.h); all zero = a perfect instrument.
+  geo::PointingTerms pointing;
   // The command-line options of rk-attitude cylinder, solve's and image_fit's among them (io/options.h).
   static const io::OptionTable<CylinderRunOptions>& Table();
   bool Check(std::string* why) const;

@@ -150,6 +150,9 @@ void Recorder::CopyModels() {
     if (!cc.model_path.empty()) io::WriteFileAtomic((folder / trial::kCameraModelFile).string(), io::ReadFile(cc.model_path));
     if (!cc.target_path.empty()) io::WriteFileAtomic((folder / trial::kTargetModelFile).string(), io::ReadFile(cc.target_path));
   }
+  if (!cfg_.pointing_path.empty()) {
+    io::WriteFileAtomic((fs::path(dir_) / trial::kPointingFile).string(), io::ReadFile(cfg_.pointing_path));
+  }
 }
 
 void Recorder::StartThreads() {

@@ -5,7 +5,9 @@
 #include <set>
 
 #include "camera/camera_model.h"
+#include "camera/pointing_model.h"
 #include "io/error.h"
+#include "trial/layout.h"
 
 namespace rk::capture {
 namespace fs = std::filesystem;
@@ -192,6 +194,12 @@ StationConfig StationConfigFromJson(const io::Json& j, const std::string& path) 
     const double lat = io::RequireNumber(s, "lat_deg", where), lon = io::RequireNumber(s, "lon_deg", where);
     io::RequireNumber(s, "h_m", where);
     if (!(std::abs(lat) <= 90 && std::abs(lon) <= 180)) throw DataError(where, 0, 0, "latitude/longitude out of range");
+    if (s.contains("pointing") && !s.at("pointing").is_null()) {
+      c.pointing_path = Resolve(path, io::RequireString(s, "pointing", where));
+      CheckReadable(c.pointing_path, where);
+      camera::LoadPointingModel(c.pointing_path);  // validated now, not after an hour of recording
+      c.station["pointing"] = trial::kPointingFile;
+    }
   } else {
     c.warnings.push_back(path + ": no 'station' position; the manifest will say lat/lon/h = 0");
   }

@@ -37,6 +37,9 @@ struct StationConfig {
   io::Json json;                 // the file as given
   std::string name;              // trial name ("" = the output folder's name)
   io::Json station;              // {"lat_deg", "lon_deg", "h_m"} (zeros if not given)
+  // station.pointing (resolved): the turret pointing model (SPEC.md §3.1), copied to the trial's pointing.json
+  // and named in its manifest as station.pointing; "" = none.
+  std::string pointing_path;
   io::Json steps = io::Json::object();
   std::vector<CameraConfig> cameras;
   std::optional<DimetixOptions> rangefinder;

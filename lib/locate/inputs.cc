@@ -14,6 +14,8 @@ Track ReadTrack(const io::CsvTable& table) {
   const int c_y = table.RequireColumn("y_px");
   const int c_frame = table.Column("frame");
   const int c_status = table.Column("status");
+  const int c_sx = table.Column("sigma_x_px");
+  const int c_sy = table.Column("sigma_y_px");
   track.has_frame = c_frame >= 0;
   table.RequireNonDecreasing(c_t);
   track.rows.reserve(table.rows());
@@ -35,6 +37,13 @@ Track ReadTrack(const io::CsvTable& table) {
     const bool measured = row.status != TrackStatus::kLost && row.status != TrackStatus::kInvalid;
     if (x && y && measured) {
       row.px = Eigen::Vector2d(*x, *y);
+      if (c_sx >= 0 && c_sy >= 0) {
+        const auto sx = table.OptionalDouble(r, c_sx);
+        const auto sy = table.OptionalDouble(r, c_sy);
+        if (sx && !(*sx >= 0.0)) throw table.CellError(r, c_sx, "sigma_x_px must be >= 0");
+        if (sy && !(*sy >= 0.0)) throw table.CellError(r, c_sy, "sigma_y_px must be >= 0");
+        if (sx && sy) row.sigma_px = Eigen::Vector2d(*sx, *sy);
+      }
     } else if (!(x && y)) {
       // No pixel: there is no measurement on this row, whatever the status said.
       if (row.status != TrackStatus::kInvalid) row.status = TrackStatus::kLost;
@@ -90,7 +99,7 @@ RangeLog ReadRangeLog(const io::CsvTable& table) {
 io::CsvRowRule TrackRowRule() {
   io::CsvRowRule rule;
   rule.non_decreasing = "t_s";
-  rule.optional_numbers = {"x_px", "y_px"};
+  rule.optional_numbers = {"x_px", "y_px", "sigma_x_px", "sigma_y_px"};
   rule.optional_integers = {"frame"};
   return rule;
 }

@@ -1,6 +1,7 @@
 // Locate pipeline; method, equations and assumptions in locate.h.
 #include "locate/locate.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "geo/angles.h"
@@ -28,7 +29,15 @@ const io::OptionTable<LocateOptions>& LocateOptions::Table() {
                 "Longest interval (s) between usable range samples interpolated across; device-error rows "
                 "always break the interval")
           .Integer("--range-window", &LocateOptions::range_window, "samples per side", io::Bounds::Closed(2, 50),
-                   "local-quadratic/local-cubic: range samples used on each side of the frame interval, 2..50");
+                   "local-quadratic/local-cubic: range samples used on each side of the frame interval, 2..50")
+          .Real("--sigma-px", &LocateOptions::sigma_px, "px", io::Bounds::AtLeast(0.0).Finite(),
+                "1-sigma of x_px and y_px for tracks without sigma_x_px/sigma_y_px columns")
+          .Real("--encoder-step-deg", &LocateOptions::encoder_step_deg, "deg", io::Bounds::Closed(0.0, 1.0),
+                "Turret encoder step (deg): quantisation 1-sigma step/sqrt(12) per axis")
+          .Real("--turret-sigma-deg", &LocateOptions::turret_sigma_deg, "deg", io::Bounds::Closed(0.0, 1.0),
+                "Further turret angle 1-sigma per axis (deg): servo jitter, interpolation")
+          .Real("--range-sigma-mm", &LocateOptions::range_sigma_mm, "mm", io::Bounds::AtLeast(0.0).Finite(),
+                "1-sigma of the range interpolated to a frame (mm)");
   return table;
 }
 
@@ -76,87 +85,194 @@ static RangeStatus FromInterpStatus(track::InterpStatus s) {
   return RangeStatus::kOutside;
 }
 
+namespace {
+
+// Central difference of an interpolated log at t (one-sided at an end, 0 where it has no value).
+template <typename At>
+double Rate(double t_s, const At& at) {
+  constexpr double kHalfStep_s = 0.01;
+  const std::optional<double> lo = at(t_s - kHalfStep_s), mid = at(t_s), hi = at(t_s + kHalfStep_s);
+  if (lo && hi) return (*hi - *lo) / (2.0 * kHalfStep_s);
+  if (mid && hi) return (*hi - *mid) / kHalfStep_s;
+  if (lo && mid) return (*mid - *lo) / kHalfStep_s;
+  return 0.0;
+}
+
+// The stages of Locate (locate.h steps 0–6), one track row at a time.
+class LocateRun {
+ public:
+  LocateRun(const Track& track, const camera::CameraModel& camera, const TurretLog& turret, const RangeLog* range,
+            const LocateOptions& options)
+      : camera_(camera), options_(options),
+        boresight_(BoresightSource::FromLog(turret, options.turret_method, options.turret_max_gap_s)) {
+    result_.has_frame = track.has_frame;
+    result_.has_station = options.station.has_value();
+    result_.time_offset_s = camera.time_offset_s;
+    result_.turret_duplicate_times = boresight_.duplicate_times();
+    if (options.pointing) terms_ = options.pointing->terms;
+    if (options.station) enu_.emplace(*options.station);
+    Sigmas();
+    if (range != nullptr) Range(*range);
+    result_.rows.reserve(track.rows.size());
+  }
+
+  void Row(const TrackRow& in) {
+    LocatedRow out;
+    out.frame = in.frame;
+    out.t_s = in.t_s + camera_.time_offset_s;
+    out.status = in.status;
+    const std::optional<geo::AzEl> b = boresight_.At(out.t_s);
+    if (b) {
+      out.boresight_az_rad = b->az_rad;
+      out.boresight_el_rad = b->el_rad;
+    } else {
+      ++result_.rows_turret_not_covered;
+    }
+    if (in.px && !b) {
+      ++result_.measured_rows_turret_not_covered;
+      out.status = TrackStatus::kInvalid;
+    } else if (in.px) {
+      LineOfSight(in, *b, &out);
+    }
+    ++result_.rows_by_status[static_cast<std::size_t>(out.status)];
+    ++result_.rows_by_range_status[static_cast<std::size_t>(out.range_status)];
+    result_.rows.push_back(out);
+  }
+
+  LocateResult Finish(const Track& track) {
+    if (!track.rows.empty() && result_.rows_turret_not_covered == track.rows.size()) {
+      boresight_.ThrowNoFrameCovered("turret", track.source, track.rows.front().t_s + camera_.time_offset_s,
+                                     track.rows.back().t_s + camera_.time_offset_s, "--turret-max-gap");
+    }
+    return std::move(result_);
+  }
+
+ private:
+  void Sigmas() {
+    sources_.pixel_px = options_.sigma_px;
+    const double step = geo::DegToRad(options_.encoder_step_deg), extra = geo::DegToRad(options_.turret_sigma_deg);
+    sources_.turret_rad = std::sqrt(step * step / 12.0 + extra * extra);
+    sources_.range_m = options_.range_sigma_mm * 1e-3;
+    CameraSigma(camera_, options_.camera_source, &sources_);
+    if (options_.pointing) PointingSigma(*options_.pointing, &sources_);
+  }
+
+  void Range(const RangeLog& range) {
+    std::vector<double> t_r = range.t_s;
+    auto r = range.range_m;
+    result_.range_duplicate_times = track::MergeDuplicateTimes(&t_r, &r);
+    result_.range_device_errors = range.device_errors;
+    track::InterpOptions range_opt;
+    range_opt.method = options_.range_method;
+    range_opt.max_gap_s = options_.range_max_gap_s;
+    range_opt.window = options_.range_window;
+    range_interp_.emplace(t_r, r, range_opt);
+  }
+
+  std::optional<double> RangeAt(double t_s) const {
+    const track::InterpValue r = range_interp_->At(t_s);
+    return r.ok() ? std::optional<double>(r.value) : std::nullopt;
+  }
+
+  // Steps 2–6 for a row with a pixel and a boresight.
+  void LineOfSight(const TrackRow& in, const geo::AzEl& b, LocatedRow* out) {
+    const Eigen::Vector3d ray_enu = camera_.RayEnu(*in.px, b.az_rad, b.el_rad, terms_).normalized();
+    const geo::AzEl los = geo::AzElFromEnu(ray_enu);
+    out->az_rad = los.az_rad;
+    out->el_rad = los.el_rad;
+    ++result_.rows_with_los;
+    if (!range_interp_) {
+      out->range_status = RangeStatus::kNoLog;
+    } else {
+      const track::InterpValue r = range_interp_->At(out->t_s);
+      out->range_status = FromInterpStatus(r.status);
+      if (r.ok()) {
+        out->range_m = r.value;
+        out->p_enu_m = r.value * ray_enu;
+        ++result_.rows_with_range;
+        if (enu_) out->geodetic = enu_->ToGeodetic(*out->p_enu_m);
+      }
+    }
+    out->cov = Covariance(in, b, *out);
+  }
+
+  LocatedCovariance Covariance(const TrackRow& in, const geo::AzEl& b, const LocatedRow& out) const {
+    SigmaPoint p;
+    p.px = *in.px;
+    p.sigma_px = in.sigma_px.value_or(Eigen::Vector2d::Constant(sources_.pixel_px));
+    p.az_rad = b.az_rad;
+    p.el_rad = b.el_rad;
+    if (sources_.time_offset_s > 0.0) {
+      const double t = out.t_s;
+      // Azimuth rate on the unwrapped angle: differences wrapped to (−π, π].
+      p.az_rate = Rate(t, [&](double u) -> std::optional<double> {
+        const auto a = boresight_.At(u);
+        return a ? std::optional<double>(geo::WrapPi(a->az_rad - b.az_rad)) : std::nullopt;
+      });
+      p.el_rate = Rate(t, [&](double u) -> std::optional<double> {
+        const auto a = boresight_.At(u);
+        return a ? std::optional<double>(a->el_rad) : std::nullopt;
+      });
+      if (out.range_m) p.range_rate_mps = Rate(t, [&](double u) { return RangeAt(u); });
+    }
+    p.range_m = out.range_m.value_or(0.0);
+    return LocatedCovarianceAt(camera_, terms_, p, sources_);
+  }
+
+  const camera::CameraModel& camera_;
+  const LocateOptions& options_;
+  const BoresightSource boresight_;
+  std::optional<track::TimeSeriesInterpolator> range_interp_;
+  geo::PointingTerms terms_;
+  SigmaSources sources_;
+  std::optional<geo::LocalEnu> enu_;
+  LocateResult result_;
+};
+
+}  // namespace
+
 LocateResult Locate(const Track& track, const camera::CameraModel& camera, const TurretLog& turret,
                     const RangeLog* range, const LocateOptions& options) {
   std::string why;
   if (!options.Check(&why)) throw UsageError(why);
-  LocateResult result;
-  result.has_frame = track.has_frame;
-
-  // Turret: merge repeated time stamps, interpolate az on the unwrapped sequence (boresight.h).
-  const BoresightSource boresight = BoresightSource::FromLog(turret, options.turret_method, options.turret_max_gap_s);
-  result.turret_duplicate_times = boresight.duplicate_times();
-
-  std::optional<track::TimeSeriesInterpolator> range_interp;
-  if (range != nullptr) {
-    std::vector<double> t_r = range->t_s;
-    auto r = range->range_m;
-    result.range_duplicate_times = track::MergeDuplicateTimes(&t_r, &r);
-    result.range_device_errors = range->device_errors;
-    track::InterpOptions range_opt;
-    range_opt.method = options.range_method;
-    range_opt.max_gap_s = options.range_max_gap_s;
-    range_opt.window = options.range_window;
-    range_interp.emplace(t_r, r, range_opt);
-  }
-
-  result.rows.reserve(track.rows.size());
-  for (const TrackRow& in : track.rows) {
-    LocatedRow out;
-    out.frame = in.frame;
-    out.t_s = in.t_s;
-    out.status = in.status;
-    const std::optional<geo::AzEl> b = boresight.At(in.t_s);
-    const bool turret_ok = b.has_value();
-    if (turret_ok) {
-      out.boresight_az_rad = b->az_rad;
-      out.boresight_el_rad = b->el_rad;
-    } else {
-      ++result.rows_turret_not_covered;
-    }
-    if (in.px && !turret_ok) {
-      ++result.measured_rows_turret_not_covered;
-      out.status = TrackStatus::kInvalid;
-    } else if (in.px) {
-      const Eigen::Vector3d ray_enu = camera.RayEnu(*in.px, b->az_rad, b->el_rad).normalized();
-      const geo::AzEl los = geo::AzElFromEnu(ray_enu);
-      out.az_rad = los.az_rad;
-      out.el_rad = los.el_rad;
-      ++result.rows_with_los;
-      if (!range_interp) {
-        out.range_status = RangeStatus::kNoLog;
-      } else {
-        const track::InterpValue r = range_interp->At(in.t_s);
-        out.range_status = FromInterpStatus(r.status);
-        if (r.ok()) {
-          out.range_m = r.value;
-          out.p_enu_m = r.value * ray_enu;
-          ++result.rows_with_range;
-        }
-      }
-    }
-    ++result.rows_by_status[static_cast<std::size_t>(out.status)];
-    ++result.rows_by_range_status[static_cast<std::size_t>(out.range_status)];
-    result.rows.push_back(out);
-  }
-
-  if (!track.rows.empty() && result.rows_turret_not_covered == track.rows.size()) {
-    boresight.ThrowNoFrameCovered("turret", track.source, track.rows.front().t_s, track.rows.back().t_s,
-                                  "--turret-max-gap");
-  }
-  return result;
+  LocateRun run(track, camera, turret, range, options);
+  for (const TrackRow& in : track.rows) run.Row(in);
+  return run.Finish(track);
 }
+
+namespace {
+
+// sigma_az_deg … sigma_u_m of a row (empty without a line of sight; the range ones empty without a range).
+void AddSigmas(const LocatedRow& row, io::CsvWriter* w) {
+  constexpr int kSigmaDecimals = 9;
+  auto sd = [&](int i) { return std::sqrt(std::max((*row.cov)(i, i), 0.0)); };
+  for (int i = 0; i < kSigmaOutputs; ++i) {
+    const bool has = row.cov && (i < 2 || row.range_m);
+    if (!has) {
+      w->AddEmpty();
+    } else {
+      w->Add(i < 2 ? geo::RadToDeg(sd(i)) : sd(i), kSigmaDecimals);
+    }
+  }
+}
+
+}  // namespace
 
 io::CsvWriter LocatedCsv(const LocateResult& result) {
   std::vector<std::string> cols;
   if (result.has_frame) cols.push_back("frame");
   for (const char* c : {"t_s", "az_deg", "el_deg", "range_m", "e_m", "n_m", "u_m", "status", "range_status",
-                        "boresight_az_deg", "boresight_el_deg"}) {
+                        "boresight_az_deg", "boresight_el_deg", "sigma_az_deg", "sigma_el_deg", "sigma_range_m",
+                        "sigma_e_m", "sigma_n_m", "sigma_u_m"}) {
     cols.push_back(c);
+  }
+  if (result.has_station) {
+    for (const char* c : {"lat_deg", "lon_deg", "h_m"}) cols.push_back(c);
   }
   io::CsvWriter w(cols);
   constexpr int kAngleDecimals = 9;   // 1e-9° = 3.6e-6″
   constexpr int kLengthDecimals = 6;  // µm
+  constexpr int kGeodeticDecimals = 10;  // 1e-10° ≈ 11 µm
   auto deg = [](const std::optional<double>& rad) {
     return rad ? std::optional<double>(geo::RadToDeg(*rad)) : std::nullopt;
   };
@@ -179,6 +295,13 @@ io::CsvWriter LocatedCsv(const LocateResult& result) {
     w.Add(RangeStatusName(row.range_status));
     w.Add(deg(row.boresight_az_rad), kAngleDecimals);
     w.Add(deg(row.boresight_el_rad), kAngleDecimals);
+    AddSigmas(row, &w);
+    if (result.has_station) {
+      const auto& g = row.geodetic;
+      w.Add(g ? std::optional<double>(g->lat_deg) : std::nullopt, kGeodeticDecimals);
+      w.Add(g ? std::optional<double>(g->lon_deg) : std::nullopt, kGeodeticDecimals);
+      w.Add(g ? std::optional<double>(g->h_m) : std::nullopt, kLengthDecimals);
+    }
     w.EndRow();
   }
   return w;

@@ -3,6 +3,9 @@
 //
 // Method (seed 001, Guan et al. 2014, with SPEC.md §3's exact geometry in
 // place of the paper's small-angle eq. 12):
+//   0. Time: the frame's mid-exposure time t = t_s + camera.time_offset_s (SPEC.md §3: the turret and range
+//      logs' times are true). The turret and range logs are interpolated at t, and the output row's t_s
+//      is t (the time the angles and range refer to); with a zero offset it is the track's t_s.
 //   1. Boresight A(t), E(t) at the frame time t: the turret log interpolated
 //      (track::TimeSeriesInterpolator; azimuth on its unwrapped sequence so a
 //      pass through north is continuous). No extrapolation: a frame outside
@@ -10,7 +13,8 @@
 //   2. Line of sight: pixel → undistorted normalised ray m_cam (Newton-inverted
 //      OpenCV distortion) → ray_enu = R_enu_turret(A, E) · R_turret_cam · m_cam
 //      (camera::CameraModel::RayEnu), az = atan2(e, n) mod 2π,
-//      el = atan2(u, hypot(e, n)). Exact at any elevation (no small angles).
+//      el = atan2(u, hypot(e, n)). Exact at any elevation (no small angles). With a pointing model
+//      (--pointing, SPEC.md §3.1) R_enu_turret has its four terms (CameraModel::RayEnu with the terms).
 //   3. Range r(t): the 5 Hz rangefinder log interpolated to the frame time
 //      (method selectable); empty across gaps > range_max_gap_s and across
 //      device-error rows; no extrapolation.
@@ -18,6 +22,9 @@
 //      measures from the turret rotation centre along the line of sight to the
 //      beacon (no lever arm, beam and camera ray coincide at the target), and
 //      the camera centre is at the rotation centre (docs/conventions.md).
+//   5. 1σ of az, el, range, e, n, u (locate_sigma.h): first-order propagation of the pixel, turret,
+//      pointing-model, camera-calibration, time-offset and range σ by automatic differentiation.
+//   6. WGS-84 lat/lon/h of p_enu when the station's position is given (geo::LocalEnu, GeographicLib).
 // Rows are never dropped: every track row gives one output row.
 #pragma once
 
@@ -29,8 +36,11 @@
 #include <vector>
 
 #include "camera/camera_model.h"
+#include "camera/pointing_model.h"
+#include "geo/wgs84.h"
 #include "io/options.h"
 #include "locate/inputs.h"
+#include "locate/locate_sigma.h"
 #include "track/interp.h"
 
 namespace rk::locate {
@@ -43,6 +53,17 @@ struct LocateOptions {
   track::InterpMethod range_method = track::InterpMethod::kLocalCubic;
   double range_max_gap_s = 0.5;  // longest range-log interval interpolated across (s), > 0
   int range_window = 3;          // local-quadratic / local-cubic: range samples per side, [2, 50]
+  // 1σ inputs (locate_sigma.h). Pixel σ for tracks without sigma_x_px/sigma_y_px: rk-extract beacon's
+  // measured centroid accuracy (docs/rk-extract.md: max std 0.027 px, max |bias| 0.013 px).
+  double sigma_px = 0.03;
+  double encoder_step_deg = 0.003;  // turret encoder step (the FLIR PTU of seed 001); σ = step/√12
+  double turret_sigma_deg = 0.0;    // further turret angle noise per axis (servo jitter, interpolation)
+  double range_sigma_mm = 0.35;     // range σ at a frame (DLS-B15 static std of seed 001)
+
+  // Not options of the table (files and a position, set by the app):
+  std::optional<camera::PointingModel> pointing;  // --pointing: SPEC.md §3.1 terms and their σ
+  std::optional<geo::Geodetic> station;           // --station: WGS-84 position of the ENU origin
+  std::string camera_source = "camera";           // the camera file's name, for errors in its calibration
 
   // Flags, units, valid ranges and help of every member above (io/options.h): rk-locate's options,
   // Check() and the report's "options" block all come from it.
@@ -67,11 +88,17 @@ struct LocatedRow {
   std::optional<double> range_m;
   std::optional<Eigen::Vector3d> p_enu_m;
   RangeStatus range_status = RangeStatus::kNotApplicable;
+  // Covariance of (az, el, range, e, n, u) (rad, m) with the line of sight; the range rows and columns only
+  // mean something when range_m is set.
+  std::optional<LocatedCovariance> cov;
+  std::optional<geo::Geodetic> geodetic;  // WGS-84 of p_enu_m (with --station)
 };
 
 struct LocateResult {
   std::vector<LocatedRow> rows;
   bool has_frame = false;
+  bool has_station = false;  // lat_deg, lon_deg, h_m columns
+  double time_offset_s = 0.0;  // the camera's, added to every row's t_s
   // Counters (reports, warnings).
   std::array<std::size_t, 5> rows_by_status{};        // indexed by TrackStatus
   std::array<std::size_t, 6> rows_by_range_status{};  // indexed by RangeStatus
@@ -89,13 +116,15 @@ struct LocateResult {
 };
 
 // Throws rk::Error: DataError naming the turret log if it covers no frame
-// time at all; UsageError if options fail Check().
+// time at all, or the camera for a malformed calibration.sigma; UsageError if options fail Check().
 LocateResult Locate(const Track& track, const camera::CameraModel& camera, const TurretLog& turret,
                     const RangeLog* range, const LocateOptions& options);
 
 // Located-target CSV (SPEC.md §2.1) with extra columns:
 //   frame (if the track had it),t_s,az_deg,el_deg,range_m,e_m,n_m,u_m,status,
-//   range_status,boresight_az_deg,boresight_el_deg
+//   range_status,boresight_az_deg,boresight_el_deg,
+//   sigma_az_deg,sigma_el_deg,sigma_range_m,sigma_e_m,sigma_n_m,sigma_u_m[,lat_deg,lon_deg,h_m]
+// (lat/lon/h with a station position). boresight_* are the logged (interpolated) turret angles.
 io::CsvWriter LocatedCsv(const LocateResult& result);
 
 }  // namespace rk::locate

@@ -9,6 +9,7 @@
 #include "geo/angles.h"
 #include "io/error.h"
 #include "io/json_util.h"
+#include "camera/station_view.h"
 #include "pose/reproj_refine.h"
 
 namespace rk::pose {
@@ -134,7 +135,7 @@ class OiRun {
   OiRun(const ImagePoints& points, const target::FeatureModel& model, const camera::CameraModel& camera,
         const locate::BoresightSource& boresight, const AttitudeOiOptions& options)
       : points_(points), model_(model), camera_(camera), boresight_(boresight), options_(options),
-        solver_(SolverOptions(options)) {
+        solver_(SolverOptions(options)), cam_view_(camera) {
     res_.has_frame = points.has_frame;
     res_.turret_duplicate_times = boresight.duplicate_times();
     res_.rows.reserve(points.frames.size());
@@ -144,11 +145,19 @@ class OiRun {
   void Frame(const PointFrame& f) {
     PoseRow row;
     row.frame = f.frame;
-    row.t_s = f.t_s;
+    row.t_s = f.t_s + camera_.time_offset_s;  // mid-exposure time (SPEC.md §3), the turret log's clock
     row.points_used = static_cast<int>(f.points.size());
     track::InterpStatus bs = track::InterpStatus::kOk;
-    row.boresight = boresight_.At(f.t_s, &bs);
+    row.boresight = boresight_.At(row.t_s, &bs);
     if (!row.boresight) ++res_.turret_not_covered;
+    if (row.boresight) {
+      // The pointing model as the equivalent §3 boresight and mount (camera/station_view.h).
+      const camera::StationView view = camera::ApplyPointing(camera_, *row.boresight, options_.pointing);
+      b_view_ = view.boresight;
+      cam_view_.mount_yaw_rad = view.mount_yaw_rad;
+      cam_view_.mount_pitch_rad = view.mount_pitch_rad;
+      cam_view_.mount_roll_rad = view.mount_roll_rad;
+    }
     if (row.points_used < options_.min_points) {
       ++res_.few_points;
       return Finish(&row, RowStatus::kLost, PoseNote::kFewPoints);
@@ -161,8 +170,8 @@ class OiRun {
     PnpSolution primary = fit.r.best;
     Eigen::Vector3d p_enu;
     Eigen::Matrix3d R_enu_body;
-    ChoosePrimary(f, fit.r, &row, &primary, &p_enu, &R_enu_body);
-    if (!PropagateSigma(*row.boresight, primary, &row.sigma)) {
+    ChoosePrimary(fit.r, &row, &primary, &p_enu, &R_enu_body);
+    if (!PropagateSigma(b_view_, primary, &row.sigma)) {
       ++res_.degenerate;
       return Finish(&row, RowStatus::kInvalid, PoseNote::kDegenerate);
     }
@@ -306,17 +315,17 @@ class OiRun {
 
   // Steps 5–6: primary and alternative minima in the station frame; of two ambiguous minima the one
   // continuous with the previous pose is the primary, the other goes in alt_*.
-  void ChoosePrimary(const PointFrame& f, const PnpResult& r, PoseRow* row, PnpSolution* primary,
+  void ChoosePrimary(const PnpResult& r, PoseRow* row, PnpSolution* primary,
                      Eigen::Vector3d* p_enu, Eigen::Matrix3d* R_enu_body) {
-    const geo::AzEl& b = *row->boresight;
+    const geo::AzEl& b = b_view_;
     PnpSolution other = r.alt;
     Eigen::Vector3d p_alt;
     Eigen::Matrix3d R_alt;
-    StationPose(camera_, b, primary->R_cam_body, primary->t_cam, p_enu, R_enu_body);
+    StationPose(cam_view_, b, primary->R_cam_body, primary->t_cam, p_enu, R_enu_body);
     if (!r.ambiguous) return;
-    StationPose(camera_, b, other.R_cam_body, other.t_cam, &p_alt, &R_alt);
+    StationPose(cam_view_, b, other.R_cam_body, other.t_cam, &p_alt, &R_alt);
     const PoseRow* prev = prev_pose_ ? &res_.rows[*prev_pose_] : nullptr;
-    if (prev && f.t_s - prev->t_s <= options_.continuity_s &&
+    if (prev && row->t_s - prev->t_s <= options_.continuity_s &&
         RotationAngle(R_alt, prev->R_enu_body) < RotationAngle(*R_enu_body, prev->R_enu_body)) {
       std::swap(*primary, other);
       std::swap(*p_enu, p_alt);
@@ -346,8 +355,8 @@ class OiRun {
       const double h = 1e-6;
       Eigen::Matrix<double, 8, 1> d = Eigen::Matrix<double, 8, 1>::Zero();
       d(k) = h;
-      Eigen::Matrix<double, 6, 1> yp = Outputs(camera_, b, primary.R_cam_body, primary.t_cam, d);
-      Eigen::Matrix<double, 6, 1> ym = Outputs(camera_, b, primary.R_cam_body, primary.t_cam, -d);
+      Eigen::Matrix<double, 6, 1> yp = Outputs(cam_view_, b, primary.R_cam_body, primary.t_cam, d);
+      Eigen::Matrix<double, 6, 1> ym = Outputs(cam_view_, b, primary.R_cam_body, primary.t_cam, -d);
       Eigen::Matrix<double, 6, 1> dy = yp - ym;
       for (int a = 3; a < 6; ++a) dy(a) = geo::WrapPi(yp(a) - ym(a));
       J.col(k) = dy / (2 * h);
@@ -368,6 +377,9 @@ class OiRun {
   std::vector<Eigen::Vector2d> xn_, xn_sub_, px_;
   std::vector<Eigen::Vector3d> pb_, pb_sub_;
   std::vector<double> sg_, sg_sub_;
+  // The frame's boresight and camera under the pointing model (the logged ones without one).
+  camera::CameraModel cam_view_;
+  geo::AzEl b_view_;
 };
 
 }  // namespace

@@ -47,6 +47,7 @@
 #include "io/row_status.h"
 #include "locate/boresight.h"
 #include "pose/image_points.h"
+#include "geo/pointing.h"
 #include "pose/pnp.h"
 
 namespace rk::pose {
@@ -63,6 +64,9 @@ struct AttitudeOiOptions {
   bool no_reject = false;           // never leave one point out when the RMS is too large
   double continuity_s = 1.0;        // ambiguous frames follow the previous pose if within this time (s), ≥ 0
   bool pure_oi = false;             // orthogonal iteration only: pnp.polish is turned off
+  // Not in the table: the turret pointing model of SPEC.md §3.1 (rk-attitude oi --pointing), applied
+  // exactly through camera::ApplyPointing (camera/station_view.h); all zero = a perfect turret.
+  geo::PointingTerms pointing;
 
   // The command-line options of rk-attitude oi, the solver's among them (io/options.h).
   static const io::OptionTable<AttitudeOiOptions>& Table();

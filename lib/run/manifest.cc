@@ -18,13 +18,15 @@ const std::vector<StepKindInfo>& StepKinds() {
   static const std::vector<std::string> kVideo = {"video", "frames", "fps", "t0"};
   static const std::vector<StepKindInfo> kinds = {
       {"extract-beacon", "beacon", "rk-extract", "beacon", kVideo, {"decode-only"}},
-      {"locate", "beacon", "rk-locate", "", {"track", "camera", "turret", "range"}},
+      {"locate", "beacon", "rk-locate", "", {"track", "camera", "turret", "range", "pointing", "station"}},
       {"smooth", "beacon", "rk-smooth", "singer", {"i", "input"}},
       {"resample-range", "beacon", "rk-smooth", "resample", {"i", "input", "at"}, {"rate", "t0", "t1"}},
       {"extract-features", "features", "rk-extract", "features", {"video", "frames", "fps", "t0", "target"}},
-      {"attitude-oi", "features", "rk-attitude", "oi", {"points", "camera", "target", "turret", "boresight"}},
+      {"attitude-oi", "features", "rk-attitude", "oi",
+       {"points", "camera", "target", "turret", "boresight", "pointing"}},
       {"extract-silhouette", "silhouette", "rk-extract", "silhouette", kVideo},
-      {"attitude-cylinder", "silhouette", "rk-attitude", "cylinder", {"points", "theodolite", "camera", "target", "video"}},
+      {"attitude-cylinder", "silhouette", "rk-attitude", "cylinder",
+       {"points", "theodolite", "camera", "target", "video", "pointing"}},
       {"register", "radar", "rk-register", "bernoulli", {"plots", "nav"}},
       {"register-batch", "radar", "rk-register", "batch", {"plots", "nav"}},
       {"plot", "*", "rk-plot", "", {"i", "input"}},

@@ -168,6 +168,16 @@ class PlanBuilder {
     Finish(&s);
   }
 
+  // The station's pointing model (SPEC.md §3.1 "station": {..., "pointing"}) as --pointing, and with
+  // `position` its WGS-84 position as --station LAT,LON,H.
+  void Station(Step* s, bool position) {
+    if (!m_.pointing.empty()) In(s, "pointing", m_.pointing);
+    if (position && m_.station.is_object()) {
+      Bind(s, "station", NumberText(m_.station.at("lat_deg")) + "," + NumberText(m_.station.at("lon_deg")) + "," +
+                             NumberText(m_.station.at("h_m")));
+    }
+  }
+
   void Beacon(const CameraEntry& cam) {
     const std::string dir = cam.name + "/";
     Step ex = Make(cam.name, "extract-beacon");
@@ -186,6 +196,7 @@ class PlanBuilder {
       In(&lo, "turret", angles);
     }
     if (!m_.range.empty()) In(&lo, "range", m_.range);
+    Station(&lo, true);
     Out(&lo, "-o", dir + "located.csv");
     lo.table = dir + "located.csv";
     Finish(&lo);
@@ -249,6 +260,7 @@ class PlanBuilder {
     } else {
       NotApplicable(&at, "the manifest has no turret log and the camera no boresight_deg");
     }
+    Station(&at, false);
     Out(&at, "-o", dir + "pose.csv");
     at.table = dir + "pose.csv";
     Finish(&at);
@@ -273,6 +285,7 @@ class PlanBuilder {
     }
     In(&at, "camera", cam.model);
     In(&at, "target", cam.target);
+    Station(&at, false);
     // The image fit (the frames the points came from) unless "steps" switches it off.
     at.method = at.settings.RunFlag(kImageFitSetting, true) ? "image-fit" : "three-point";
     if (at.method == "image-fit") {

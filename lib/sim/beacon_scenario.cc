@@ -1,9 +1,12 @@
 #include "sim/beacon_scenario.h"
 
+#include <Eigen/LU>
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
+#include "camera/station_view.h"
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
 #include "io/error.h"
@@ -194,6 +197,14 @@ bool BeaconSimOptions::Check(std::string* why) const {
       return fail("servo holds need start >= 0, duration > 0 and must end within 1 s after the trial");
     }
   }
+  const geo::PointingTerms& p = station_pointing;
+  if (!(std::abs(p.az_offset_rad) <= geo::kTwoPi)) return fail("--az-offset-deg must be within ±360");
+  for (double tilt : {p.tilt_north_rad, p.tilt_east_rad, p.el_axis_tilt_rad}) {
+    if (!(std::abs(tilt) <= geo::DegToRad(10.0))) {
+      return fail("--tilt-north-deg, --tilt-east-deg and --el-axis-tilt-deg must be within ±10");
+    }
+  }
+  if (!(std::abs(camera.time_offset_s) <= 1.0)) return fail("--time-offset-s must be within ±1 s");
   return true;
 }
 
@@ -201,6 +212,7 @@ io::Json BeaconSimOptions::ToJson() const {
   const io::Json sim = BeaconSimOptionsToJson(*this);
   io::Json j = Table().ToJson(*this);
   for (const char* key : {"camera_preset", "camera", "trajectory", "occlusions", "servo_holds"}) j[key] = sim[key];
+  if (sim.contains("station_pointing")) j["station_pointing"] = sim["station_pointing"];
   return j;
 }
 
@@ -248,6 +260,13 @@ io::Json BeaconSimOptionsToJson(const BeaconSimOptions& o) {
   j["range_noise_mm"] = o.range_noise_m() * 1e3;
   j["range_error_rate"] = o.range_error_rate;
   j["seed"] = o.seed;
+  if (!o.station_pointing.IsZero()) {
+    const geo::PointingTerms& p = o.station_pointing;
+    j["station_pointing"] = {{"az_offset_deg", RadToDeg(p.az_offset_rad)},
+                             {"tilt_north_deg", RadToDeg(p.tilt_north_rad)},
+                             {"tilt_east_deg", RadToDeg(p.tilt_east_rad)},
+                             {"el_axis_tilt_deg", RadToDeg(p.el_axis_tilt_rad)}};
+  }
   return j;
 }
 
@@ -267,14 +286,19 @@ BeaconSimulator::BeaconSimulator(BeaconSimOptions opt)
   }
 
   const std::int64_t n = FrameCount(opt_);
-  const camera::CameraModel& cam = opt_.camera;
   const double edge = 3.0 * opt_.psf_sigma_px + 1.0;
   frames_.reserve(static_cast<std::size_t>(n));
   for (std::int64_t k = 0; k < n; ++k) {
     FrameTruth f;
     f.frame = k;
     f.t_s = opt_.t0_s + static_cast<double>(k) / opt_.fps;
-    const geo::AzEl bore = servo_.Boresight(f.t_s);
+    // The physical boresight follows the target; the camera's orientation there is that of the encoder
+    // angles under the station's pointing model (camera/station_view.h; the servo's boresight and the
+    // camera itself for a perfect station).
+    const camera::StationView view = camera::ApplyPointing(opt_.camera, EncoderAngles(servo_.Boresight(f.t_s)),
+                                                           opt_.station_pointing);
+    const camera::CameraModel cam = camera::CameraInView(opt_.camera, view);
+    const geo::AzEl bore = view.boresight;
     f.boresight_az_rad = bore.az_rad;
     f.boresight_el_rad = bore.el_rad;
     f.p_enu = trajectory_.PositionEnu(f.t_s);
@@ -307,6 +331,29 @@ BeaconSimulator::BeaconSimulator(BeaconSimOptions opt)
     frames_.push_back(std::move(f));
   }
   PlaceDistractors();
+}
+
+geo::AzEl BeaconSimulator::EncoderAngles(const geo::AzEl& boresight) const {
+  const geo::PointingTerms& p = opt_.station_pointing;
+  if (p.IsZero()) return boresight;
+  // Solve b(A, E) = target boresight for (A, E): Newton on the boresight's az/el, numerical Jacobian. The
+  // terms are small rotations, so it converges from (A − az_offset, E) in a few steps to rounding.
+  const auto bore = [&](double a, double e) { return geo::AzElFromEnu(geo::RotationEnuFromTurret(a, e, p).col(2)); };
+  const auto residual = [&](double a, double e) {
+    const geo::AzEl b = bore(a, e);
+    return Eigen::Vector2d(geo::WrapPi(b.az_rad - boresight.az_rad), b.el_rad - boresight.el_rad);
+  };
+  Eigen::Vector2d x(boresight.az_rad - p.az_offset_rad, boresight.el_rad);
+  constexpr double kStep = 1e-7;
+  for (int it = 0; it < 20; ++it) {
+    const Eigen::Vector2d r = residual(x(0), x(1));
+    if (r.norm() < 1e-15) break;
+    Eigen::Matrix2d J;
+    J.col(0) = (residual(x(0) + kStep, x(1)) - r) / kStep;
+    J.col(1) = (residual(x(0), x(1) + kStep) - r) / kStep;
+    x -= J.partialPivLu().solve(r);
+  }
+  return {geo::WrapTwoPi(x(0)), x(1)};
 }
 
 bool BeaconSimulator::Occluded(double t_s) const {
@@ -413,7 +460,7 @@ std::vector<TurretSample> BeaconSimulator::TurretLog() const {
   for (double t : SampleTimes(opt_, opt_.turret_rate_hz, opt_.turret_offset_s)) {
     TurretSample s;
     s.t_s = t;
-    const geo::AzEl b = servo_.Boresight(t);
+    const geo::AzEl b = EncoderAngles(servo_.Boresight(t));
     s.true_az_rad = b.az_rad;
     s.true_el_rad = b.el_rad;
     s.az_rad = geo::WrapTwoPi(record(b.az_rad));

@@ -42,6 +42,7 @@
 #include <opencv2/core.hpp>
 
 #include "camera/camera_model.h"
+#include "geo/pointing.h"
 #include "geo/angles.h"
 #include "io/json_util.h"
 #include "io/options.h"
@@ -102,6 +103,13 @@ struct BeaconSimOptions {
 
   std::uint64_t seed = 1;
 
+  // Station errors (docs/rk-sim.md "Station errors"; not in the table, and in the JSON only when set, so
+  // trials without them are written as before): the turret's true pointing model (SPEC.md §3.1). The turret
+  // still follows the target (the physical boresight is the servo's); its encoder reads the angles that
+  // give that boresight under these terms, and those are logged. The camera's latency is
+  // camera.time_offset_s: frames.csv stamps are the mid-exposure times minus it.
+  geo::PointingTerms station_pointing;
+
   double turret_resolution_rad() const { return geo::DegToRad(turret_resolution_deg); }
   double turret_noise_rad() const { return geo::DegToRad(turret_noise_deg); }
   double range_noise_m() const { return range_noise_mm * 1e-3; }
@@ -136,7 +144,7 @@ struct FrameTruth {
 
 struct TurretSample {
   double t_s = 0.0;
-  double true_az_rad = 0.0, true_el_rad = 0.0;  // true boresight
+  double true_az_rad = 0.0, true_el_rad = 0.0;  // true encoder angles (the true boresight when the station is perfect)
   double az_rad = 0.0, el_rad = 0.0;            // recorded (quantised, noisy); az in [0, 2π)
 };
 
@@ -167,6 +175,9 @@ class BeaconSimulator {
 
   // True boresight at any t in [t0 − 1, t_last + 1] s.
   geo::AzEl TrueBoresight(double t_s) const { return servo_.Boresight(t_s); }
+  // The encoder angles (A, E) whose §3.1 boresight under options().station_pointing is `boresight`
+  // (Newton; = `boresight` for a perfect station).
+  geo::AzEl EncoderAngles(const geo::AzEl& boresight) const;
   Eigen::Vector3d TargetEnu(double t_s) const { return trajectory_.PositionEnu(t_s); }
   bool Occluded(double t_s) const;
   // Time whose target direction the turret is commanded to at t_s: the start of

@@ -6,6 +6,7 @@
 #include <regex>
 
 #include "camera/camera_model.h"
+#include "camera/pointing_model.h"
 #include "geo/angles.h"
 #include "io/csv.h"
 #include "io/error.h"
@@ -75,9 +76,11 @@ void WriteFrameTruth(const BeaconSimulator& sim, const fs::path& root, TrialSumm
   sum.min_range_m = std::numeric_limits<double>::infinity();
   sum.max_range_m = 0;
   sum.max_elevation_deg = -90;
+  // A camera with a latency stamps its frames that much before their mid-exposure time (SPEC.md §3).
+  const double latency_s = sim.options().camera.time_offset_s;
   for (const FrameTruth& f : sim.frames()) {
-    frames_csv.Add(f.frame).Add(f.t_s, kTimeDecimals).EndRow();
-    beacon_csv.Add(f.frame).Add(f.t_s, kTimeDecimals);
+    frames_csv.Add(f.frame).Add(f.t_s - latency_s, kTimeDecimals).EndRow();
+    beacon_csv.Add(f.frame).Add(f.t_s - latency_s, kTimeDecimals);
     if (f.visible) {
       beacon_csv.Add(f.centre_px.x(), kPixelDecimals).Add(f.centre_px.y(), kPixelDecimals).Add(1);
     } else {
@@ -180,6 +183,7 @@ void WriteBeaconManifest(const BeaconSimulator& sim, const TrialWriteOptions& op
                    {"target", "truth/target.csv"},
                    {"turret", "truth/turret.csv"},
                    {"range", "truth/range.csv"}};
+  if (!so.station_pointing.IsZero()) simj["truth"]["pointing"] = "truth/pointing.json";
   simj["summary"] = sum.ToJson();
   m.extra["sim"] = simj;
   trial::WriteManifest((root / trial::kManifestFile).string(), m);
@@ -203,6 +207,14 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
                 camera::CameraModelToJson(sim.options().camera));
   WriteFrameTruth(sim, root, &sum);
   WriteLogs(sim, root, &sum);
+  if (!sim.options().station_pointing.IsZero()) {
+    // The station's true pointing model, as rk-calibrate pointing would write it (without σ).
+    camera::PointingModel truth;
+    truth.terms = sim.options().station_pointing;
+    io::Json j = camera::PointingModelToJson(truth);
+    j.erase("sigma");
+    io::WriteJson((root / "truth" / "pointing.json").string(), j);
+  }
   const std::string video_rel = WriteVideo(sim, opt, root);
   WriteBeaconManifest(sim, opt, root, stem, video_rel, sum);
   folder.Commit();

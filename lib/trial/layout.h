@@ -17,6 +17,7 @@ inline constexpr const char* kRadarNavFile = "nav.csv";
 inline constexpr const char* kFramesFile = "frames.csv";  // in each camera's folder
 inline constexpr const char* kCameraModelFile = "camera.json";
 inline constexpr const char* kTargetModelFile = "target.json";
+inline constexpr const char* kPointingFile = "pointing.json";  // the station's turret pointing model (SPEC.md §3.1)
 // Held (flock) by rk-capture while it records into the folder; the kernel releases it when the
 // process ends, even by kill -9. `recover` refuses a folder whose lock is held.
 inline constexpr const char* kCaptureLockFile = ".rk-capture.lock";

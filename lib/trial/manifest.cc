@@ -134,6 +134,7 @@ Manifest ParseManifest(const std::string& text, const std::string& manifest_path
     const double lat = m.station.at("lat_deg").get<double>(), lon = m.station.at("lon_deg").get<double>();
     if (!(lat >= -90 && lat <= 90)) c.Fail("/station/lat_deg", "latitude must be in [-90, 90] degrees");
     if (!(lon >= -180 && lon <= 360)) c.Fail("/station/lon_deg", "longitude must be in [-180, 360] degrees");
+    m.pointing = c.OptionalPath(m.station, "pointing", "/station");
   }
 
   if (!j.contains("cameras") || j.at("cameras").is_null()) {
@@ -219,7 +220,7 @@ std::vector<std::string> Manifest::AllPaths() const {
     out.push_back(cam.model);
     if (!cam.target.empty()) out.push_back(cam.target);
   }
-  for (const std::string* p : {&turret, &range, &theodolite}) {
+  for (const std::string* p : {&turret, &range, &theodolite, &pointing}) {
     if (!p->empty()) out.push_back(*p);
   }
   if (radar) {

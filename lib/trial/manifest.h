@@ -56,6 +56,7 @@ struct Manifest {
   std::string name;  // "name", else the folder's name
   std::string epoch_utc;
   io::Json station;                  // {"lat_deg","lon_deg","h_m"} or null (kept as JSON: written as given)
+  std::string pointing;              // station.pointing: the turret pointing model (SPEC.md §3.1), "" = none
   std::vector<CameraEntry> cameras;  // read: in name order
   std::string turret, range, theodolite;  // empty = none
   std::optional<RadarEntry> radar;

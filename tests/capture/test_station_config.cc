@@ -86,5 +86,36 @@ TEST(StationConfig, PathsAreRelativeToTheFileAndKeysAreChecked) {
   fs::remove_all(dir);
 }
 
+// SPEC.md §3.1: the station's pointing model, named as station.pointing relative to the file, is checked when
+// read and named in the trial's manifest as its own copy, pointing.json.
+TEST(StationConfig, PointingModelIsCheckedAndRenamedForTheTrial) {
+  const std::string dir = TempDir("cfg_pointing");
+  fs::create_directories(dir + "/cal");
+  io::WriteJson(dir + "/cal/pm.json", {{"az_offset_deg", 12.5}, {"tilt_north_deg", 0.01}});
+  io::Json j = {{"turret", {{"port", "/dev/ttyUSB1"}}},
+                {"station", {{"lat_deg", 39.9}, {"lon_deg", 116.3}, {"h_m", 50.0}, {"pointing", "cal/pm.json"}}}};
+  const StationConfig c = StationConfigFromJson(j, WriteConfig(dir, j));
+  EXPECT_EQ(c.pointing_path, dir + "/cal/pm.json");
+  EXPECT_EQ(c.station.at("pointing"), "pointing.json");
+  EXPECT_EQ(c.station.at("lat_deg"), 39.9);
+  io::WriteJson(dir + "/cal/bad.json", {{"tilt_east_deg", 45}});
+  j["station"]["pointing"] = "cal/bad.json";
+  try {
+    StationConfigFromJson(j, dir + "/station.json");
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kInvalidData);
+    EXPECT_NE(std::string(e.what()).find("tilt_east_deg"), std::string::npos) << e.what();
+  }
+  j["station"]["pointing"] = "cal/missing.json";
+  try {
+    StationConfigFromJson(j, dir + "/station.json");
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kIo);
+  }
+  fs::remove_all(dir);
+}
+
 }  // namespace
 }  // namespace rk::capture

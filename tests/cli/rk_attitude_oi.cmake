@@ -13,3 +13,8 @@ rk_cli_script(rk_attitude_oi/rk_attitude_oi_row_status REQUIRES sim_attitude_sma
 
 # Malformed input and usage (SPEC.md §4): one-line error, exit code, no output.
 rk_cli_script(rk_attitude_oi/rk_attitude_oi_bad REQUIRES sim_attitude_small)
+
+# Issue 17, SPEC.md §3.1: rk-attitude oi and cylinder apply --pointing. Logs whose azimuth reads 1.25° high plus
+# a pointing model with az_offset_deg -1.25 give the poses and axes of the true logs (within 1e-6); without the
+# model the yaw is off by 1.25°.
+rk_cli_script(rk_attitude_oi/rk_attitude_pointing REQUIRES sim_attitude_small features_small sim_theodolite_trial)

@@ -19,3 +19,17 @@ rk_cli_script(rk_locate/rk_locate_bad_input REQUIRES locate_data)
 # (limited by the 1e-4 px rounding of truth/beacon.csv); with the logged
 # turret (0.003° encoder steps) within 5″ RMS; range RMS ≤ 1 mm (issue target).
 rk_cli_script(rk_locate/rk_locate_sim_small REQUIRES sim_small)
+
+# Issue 17: --pointing (SPEC.md §3.1) and --station. A zero pointing model changes nothing (byte-identical
+# output); a real one moves the azimuth by about its offset; the 1σ columns are always written and the
+# WGS-84 ones with --station; the pointing model's σ reaches sigma_az_deg.
+rk_cli_script(rk_locate/rk_locate_pointing REQUIRES locate_data)
+
+# Bad pointing models, camera calibration σ and --station: SPEC.md §4 codes (4 unreadable, 3 malformed with
+# the file and the key, 2 usage), one-line message, no output; rk-attitude reads the file the same way.
+rk_cli_script(rk_locate/rk_locate_pointing_bad_input REQUIRES locate_data)
+
+# Station errors end to end (rk-sim beacon --az-offset-deg ... --time-offset-s): the truth beacon pixels as a
+# perfect track, the logged (quantised) turret. With truth/pointing.json rk-locate's az/el RMS is within 1.1×
+# (+0.2″) of the perfect station's (same seed); without it the error is degrees.
+rk_cli_script(rk_locate/rk_locate_station_errors)

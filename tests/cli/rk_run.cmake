@@ -64,3 +64,8 @@ rk_run_other_unit(rk_run_radar_register rk-register sim_radar_cmd.cpp)
 # SPEC.md §1.1 command lines it builds, the order, the plots of data-dependent columns, skipping and
 # re-running after an input change — not the tools (rk_run_features_oi etc. above do that once they exist).
 rk_cli_script(rk_run/rk_run_other_units_stand_ins)
+
+# Issue 17: the manifest's station.pointing and position reach rk-locate (--pointing, --station): on a trial
+# with station errors (rk-sim beacon --az-offset-deg ...) whose manifest names truth/pointing.json, the whole
+# chain (rk-extract, rk-locate) is within 5″ RMS of truth, and located.csv has lat_deg,lon_deg,h_m.
+rk_cli_script(rk_run/rk_run_station_pointing)

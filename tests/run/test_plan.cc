@@ -67,8 +67,8 @@ TEST(Plan, BeaconChainFollowsSpecCommandLines) {
                                       "--frames", "az/frames.csv", "-o", "out/az/track.csv"}));
   EXPECT_EQ(Argv(Find(plan, "az/locate")),
             (std::vector<std::string>{"rk-locate", "--track", "out/az/track.csv", "--camera", "az/camera.json",
-                                      "--turret", "turret.csv", "--range", "range.csv", "-o", "out/az/located.csv",
-                                      "--range-interp", "linear"}));
+                                      "--turret", "turret.csv", "--range", "range.csv", "--station", "10,20,5", "-o",
+                                      "out/az/located.csv", "--range-interp", "linear"}));
   EXPECT_EQ(Argv(Find(plan, "az/smooth")),
             (std::vector<std::string>{"rk-smooth", "singer", "-i", "out/az/located.csv", "--columns",
                                       "az_deg,el_deg,range_m,e_m,n_m,u_m", "-o", "out/az/smoothed.csv"}));
@@ -119,6 +119,43 @@ TEST(Plan, FeaturesSilhouetteRadar) {
             (std::vector<std::string>{"rk-register", "bernoulli", "--plots", "radar/plots.csv", "--nav",
                                       "radar/nav.csv", "-o", "out/radar/biases.csv"}));
   EXPECT_EQ(Argv(Find(plan, "radar/register-batch"))[1], "batch");
+}
+
+// SPEC.md §3.1: the manifest's station.pointing reaches rk-locate and both rk-attitude steps as --pointing (an
+// input: its digest decides re-runs), the station's position reaches rk-locate as --station; both are reserved.
+TEST(Plan, StationPointingAndPositionArePassedOn) {
+  const std::string text = R"({
+    "station": {"lat_deg": -33.5, "lon_deg": 18.25, "h_m": 12, "pointing": "cal/pointing.json"},
+    "cameras": {
+      "az": {"video": ["az/v.mkv"], "frames": "az/frames.csv", "model": "az/camera.json", "role": "beacon"},
+      "att": {"video": "att/%06d.png", "frames": "att/frames.csv", "model": "att/camera.json",
+              "role": "features", "target": "target.json"},
+      "sil": {"video": ["sil/v.mkv"], "frames": "sil/frames.csv", "model": "sil/camera.json",
+              "role": "silhouette", "target": "cyl.json"}},
+    "turret": "turret.csv"})";
+  const TrialManifest m = ParseManifest(text, "/t/trial.json");
+  EXPECT_EQ(m.pointing, "cal/pointing.json");
+  const std::vector<std::string> paths = m.AllPaths();
+  EXPECT_NE(std::find(paths.begin(), paths.end(), "cal/pointing.json"), paths.end());
+  const std::vector<Step> plan = BuildPlan(m, PlanOptions{false});
+  EXPECT_EQ(Argv(Find(plan, "az/locate")),
+            (std::vector<std::string>{"rk-locate", "--track", "out/az/track.csv", "--camera", "az/camera.json",
+                                      "--turret", "turret.csv", "--pointing", "cal/pointing.json", "--station",
+                                      "-33.5,18.25,12", "-o", "out/az/located.csv"}));
+  EXPECT_EQ(Argv(Find(plan, "att/attitude-oi")),
+            (std::vector<std::string>{"rk-attitude", "oi", "--points", "out/att/points.csv", "--camera",
+                                      "att/camera.json", "--target", "target.json", "--turret", "turret.csv",
+                                      "--pointing", "cal/pointing.json", "-o", "out/att/pose.csv"}));
+  EXPECT_EQ(Argv(Find(plan, "sil/attitude-cylinder")),
+            (std::vector<std::string>{"rk-attitude", "cylinder", "--points", "out/sil/points.csv", "--theodolite",
+                                      "turret.csv", "--camera", "sil/camera.json", "--target", "cyl.json",
+                                      "--pointing", "cal/pointing.json", "-o", "out/sil/axis.csv"}));
+  for (const char* kind : {"locate", "attitude-oi", "attitude-cylinder"}) {
+    EXPECT_TRUE(IsReservedOption(kind, "pointing"));
+  }
+  EXPECT_TRUE(IsReservedOption("locate", "station"));
+  const std::string bad = ManifestError(R"({"station": {"lat_deg": 0, "lon_deg": 0, "h_m": 0, "pointing": 3}})");
+  EXPECT_NE(bad.find("station.pointing"), std::string::npos) << bad;
 }
 
 // The reserved options come from the plan's bindings: every option the plan gives a step from the

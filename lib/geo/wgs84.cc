@@ -1,0 +1,68 @@
+// Station ENU ↔ WGS-84; see wgs84.h.
+#include "geo/wgs84.h"
+
+#include <GeographicLib/LocalCartesian.hpp>
+#include <cmath>
+#include <sstream>
+#include <vector>
+
+namespace rk::geo {
+
+bool ParseGeodetic(const std::string& text, Geodetic* out, std::string* why) {
+  std::vector<double> v;
+  std::stringstream ss(text);
+  std::string item;
+  while (std::getline(ss, item, ',')) {
+    std::size_t used = 0;
+    double x = 0.0;
+    try {
+      x = std::stod(item, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    while (used < item.size() && item[used] == ' ') ++used;
+    if (item.empty() || used != item.size() || !std::isfinite(x)) {
+      *why = "'" + text + "' is not LAT,LON,H (three numbers: degrees, degrees, metres)";
+      return false;
+    }
+    v.push_back(x);
+  }
+  if (v.size() != 3 || (!text.empty() && text.back() == ',')) {
+    *why = "'" + text + "' is not LAT,LON,H (three numbers: degrees, degrees, metres)";
+    return false;
+  }
+  if (v[0] < -90.0 || v[0] > 90.0) {
+    *why = "latitude of '" + text + "' is outside [-90, 90] degrees";
+    return false;
+  }
+  if (v[1] < -180.0 || v[1] > 360.0) {
+    *why = "longitude of '" + text + "' is outside [-180, 360] degrees";
+    return false;
+  }
+  *out = {v[0], v[1], v[2]};
+  return true;
+}
+
+struct LocalEnu::Impl {
+  GeographicLib::LocalCartesian lc;
+};
+
+LocalEnu::LocalEnu(const Geodetic& origin)
+    : origin_(origin), impl_(std::make_unique<Impl>(Impl{GeographicLib::LocalCartesian(
+                           origin.lat_deg, origin.lon_deg, origin.h_m, GeographicLib::Geocentric::WGS84())})) {}
+
+LocalEnu::~LocalEnu() = default;
+
+Geodetic LocalEnu::ToGeodetic(const Eigen::Vector3d& p) const {
+  Geodetic g;
+  impl_->lc.Reverse(p.x(), p.y(), p.z(), g.lat_deg, g.lon_deg, g.h_m);
+  return g;
+}
+
+Eigen::Vector3d LocalEnu::ToEnu(const Geodetic& g) const {
+  Eigen::Vector3d p;
+  impl_->lc.Forward(g.lat_deg, g.lon_deg, g.h_m, p.x(), p.y(), p.z());
+  return p;
+}
+
+}  // namespace rk::geo

@@ -1,0 +1,41 @@
+// Station ENU ↔ WGS-84 (SPEC.md §3: "Station frame: local ENU …; its geodetic position, where needed, is
+// WGS-84 lat/lon/h"). GeographicLib::LocalCartesian at the station's position: exact (no flat-earth
+// approximation), ellipsoidal heights.
+#pragma once
+
+#include <Eigen/Core>
+#include <memory>
+#include <string>
+
+namespace rk::geo {
+
+// A geodetic position: latitude and longitude in degrees, height above the WGS-84 ellipsoid in metres.
+struct Geodetic {
+  double lat_deg = 0.0;  // [-90, 90]
+  double lon_deg = 0.0;  // any (GeographicLib reduces it to [-180, 180))
+  double h_m = 0.0;
+};
+
+// Parses "LAT,LON,H" (degrees, degrees, metres); false with the reason in *why for a malformed text or a
+// latitude outside [-90, 90], a longitude outside [-180, 360] or a non-finite value.
+bool ParseGeodetic(const std::string& text, Geodetic* out, std::string* why);
+
+// The ENU frame of SPEC.md §3 at a station (x east, y north, z up, origin at the station).
+class LocalEnu {
+ public:
+  explicit LocalEnu(const Geodetic& origin);
+  ~LocalEnu();
+  LocalEnu(const LocalEnu&) = delete;
+  LocalEnu& operator=(const LocalEnu&) = delete;
+
+  Geodetic ToGeodetic(const Eigen::Vector3d& p_enu_m) const;
+  Eigen::Vector3d ToEnu(const Geodetic& p) const;
+  const Geodetic& origin() const { return origin_; }
+
+ private:
+  struct Impl;
+  Geodetic origin_;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rk::geo
