@@ -27,6 +27,7 @@ PACKAGES=(
   libopencv-dev libeigen3-dev libceres-dev libcli11-dev nlohmann-json3-dev libgeographiclib-dev libssl-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   python3 python3-matplotlib ffmpeg
+  libopencv-contrib-dev opencv-doc
 )
 # Slurm daemons only on request: nobody needs them to use rangekit on one machine (rk-nightly); the
 # test that starts a one-node cluster installs them through --slurm.
