@@ -41,7 +41,7 @@ inline constexpr double kRejectRatio = 3.0;
 inline constexpr double kRejectFloorPx = 0.1;
 // Warnings: a focal length or principal point whose 1σ exceeds this fraction of its value ...
 inline constexpr double kSigmaWarnRatio = 0.01;
-// ... or a distortion coefficient whose 1σ moves the image corner by more than this (px).
+// ... or a distortion coefficient within its 1σ of zero whose 1σ moves the image corner by more than this (px).
 inline constexpr double kDistortionSigmaWarnPx = 0.5;
 // ChArUco: a view needs this many interpolated corners (OpenCV needs ≥ 4 non-collinear for a homography).
 inline constexpr int kMinCharucoCorners = 6;

@@ -12,7 +12,8 @@
 namespace rk::calibrate {
 namespace {
 
-constexpr int kPlotMaxWidth = 1280;   // canvas width for large sensors (px)
+constexpr int kPlotMaxWidth = 1280;   // canvas width for large sensors (px) ...
+constexpr int kPlotMinWidth = 960;    // ... and for small ones (room for the legend)
 constexpr int kCoverageCells = 16;    // cells across the image (fewer down, square cells)
 constexpr double kArrowFraction = 0.04;  // the 95th-percentile residual is drawn this fraction of the width long
 constexpr int kTextBand = 48;         // legend band under the image (px)
@@ -94,7 +95,8 @@ std::string Num(double x, int digits) {
 
 std::string LensPlotPng(const LensResult& res) {
   RK_CHECK(res.width_px > 0 && res.height_px > 0, "no image size");
-  const double s = std::min(1.0, static_cast<double>(kPlotMaxWidth) / res.width_px);
+  const double s = std::min(static_cast<double>(kPlotMaxWidth) / res.width_px,
+                            std::max(1.0, static_cast<double>(kPlotMinWidth) / res.width_px));
   const int w = static_cast<int>(std::lround(res.width_px * s)), h = static_cast<int>(std::lround(res.height_px * s));
   cv::Mat canvas(h + kTextBand, w, CV_8UC3, cv::Scalar(30, 30, 30));
   cv::Mat image = canvas(cv::Rect(0, 0, w, h));

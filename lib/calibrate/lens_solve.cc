@@ -110,7 +110,12 @@ LensSigma SigmaFrom(const LensSolve& s, const LensOptions& opt) {
   const auto sd = [&](int i) { return s.std_intrinsics.at<double>(i); };
   LensSigma g;
   g.fx_px = sd(0);
-  g.fy_px = opt.fix_aspect ? sd(0) * s.K.at<double>(1, 1) / s.K.at<double>(0, 0) : sd(1);
+  g.fy_px = sd(1);
+  if (opt.fix_aspect) {  // OpenCV estimates fy and keeps fx = fy · aspect: one σ, scaled
+    const double one = std::max(sd(0), sd(1));
+    g.fy_px = sd(1) > 0 ? sd(1) : one * s.K.at<double>(1, 1) / s.K.at<double>(0, 0);
+    g.fx_px = sd(0) > 0 ? sd(0) : one * s.K.at<double>(0, 0) / s.K.at<double>(1, 1);
+  }
   g.cx_px = sd(2);
   g.cy_px = sd(3);
   for (int i = 0; i < 5; ++i) g.distortion[static_cast<std::size_t>(i)] = sd(4 + i);
@@ -130,16 +135,21 @@ std::vector<std::string> SigmaWarnings(const camera::CameraModel& cam, const Len
   rel("fy", cam.fy(), g.fy_px);
   rel("cx", cam.principal_point_px.x(), g.cx_px);
   rel("cy", cam.principal_point_px.y(), g.cy_px);
-  // Displacement at the image corner per unit coefficient: r² f, r⁴ f, 2 x y f, (r² + 2x²) f, r⁶ f.
+  // A distortion coefficient not distinguishable from 0 (1σ > |value|) whose 1σ still moves the image corner by
+  // more than kDistortionSigmaWarnPx. (Each coefficient's own σ: k1, k2, k3 are strongly correlated, so their
+  // σ taken alone overstate the uncertainty of the pixel map; a coefficient lost in its σ is the useful sign.)
+  // Displacement at the image corner per unit coefficient: r³ f, r⁵ f, ≈3 r² f, ≈3 r² f, r⁷ f.
   const double xn = 0.5 * cam.width_px / cam.fx(), yn = 0.5 * cam.height_px / cam.fy();
   const double r2 = xn * xn + yn * yn, r = std::sqrt(r2), f = cam.fx();
   const double effect[5] = {r2 * r * f, r2 * r2 * r * f, 3 * r2 * f, 3 * r2 * f, r2 * r2 * r2 * r * f};
   const char* names[5] = {"k1", "k2", "p1", "p2", "k3"};
-  for (int i = 0; i < 5; ++i) {
-    const double px = g.distortion[static_cast<std::size_t>(i)] * effect[i];
-    if (px > kDistortionSigmaWarnPx) {
-      w.push_back(std::string(names[i]) + " is poorly determined: its 1 sigma moves the image corner by " +
-                  Fixed(px, 2) + " px; show the board in the image corners (or fix the term)");
+  const char* fix[5] = {"", "", " (--zero-tangent)", " (--zero-tangent)", " (--fix-k3)"};
+  for (std::size_t i = 0; i < 5; ++i) {
+    const double value = cam.distortion[i], sigma = g.distortion[i], px = sigma * effect[i];
+    if (sigma > std::abs(value) && px > kDistortionSigmaWarnPx) {
+      w.push_back(std::string(names[i]) + " = " + Fixed(value, 5) + " +- " + Fixed(sigma, 5) +
+                  " (1 sigma) is not distinguishable from 0 and its 1 sigma moves the image corner by " + Fixed(px, 2) +
+                  " px: fix it" + fix[i] + " or add views with the board in the image corners");
     }
   }
   return w;

@@ -7,7 +7,7 @@ data=$1 expect=$2 src=$3
 D=/usr/share/doc/opencv-doc/examples/data
 W=$data/cal_lens; mkdir -p "$W"
 rm -f "$W/camera.json" "$W/plot.png" "$W/rep.json"
-rk-calibrate lens --images "$D/left%02d.jpg" --board chessboard --cols 9 --rows 6 --square-mm 25 \
+rk-calibrate lens --images "$D/left0%d.jpg" --images "$D/left1%d.jpg" --board chessboard --cols 9 --rows 6 --square-mm 25 \
   --pixel-size-mm 0.006 --fix-aspect -o "$W/camera.json" --plot "$W/plot.png" --report "$W/rep.json" --quiet
 python3 - "$W/camera.json" "$W/rep.json" <<'PY'
 import json, sys
@@ -16,7 +16,7 @@ for k in ("width_px", "height_px", "pixel_size_mm", "focal_length_mm", "principa
     assert k in cam, k
 assert (cam["width_px"], cam["height_px"]) == (640, 480)
 fx = cam["focal_length_mm"] / cam["pixel_size_mm"][0]
-assert abs(fx - 535.9) < 6, fx                       # OpenCV's left_intrinsics.yml: 535.92
+assert abs(fx - 535.9) < 6, fx  # OpenCV's left_intrinsics.yml: 535.92
 assert cam["pixel_size_mm"][0] == cam["pixel_size_mm"][1]  # --fix-aspect
 c = cam["calibration"]
 for k in ("method", "date", "rms_px", "views_used", "views_rejected", "sigma"):
