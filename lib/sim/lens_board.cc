@@ -2,6 +2,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -48,13 +49,37 @@ BoardTexture ImageTexture(const cv::Mat& gray8, double mm_per_px) {
   };
 }
 
+// OpenCV's distortion of a normalised point and its Jacobian (plain doubles: the renderer inverts it ~10⁵–10⁶ times).
+void LensBoardDistort(const std::array<double, 5>& k, double x, double y, double* xd, double* yd, double J[4]) {
+  const double k1 = k[0], k2 = k[1], p1 = k[2], p2 = k[3], k3 = k[4];
+  const double r2 = x * x + y * y, rad = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
+  const double drad = k1 + r2 * (2 * k2 + 3 * k3 * r2);  // d rad / d r²
+  *xd = x * rad + 2 * p1 * x * y + p2 * (r2 + 2 * x * x);
+  *yd = y * rad + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y;
+  J[0] = rad + 2 * x * x * drad + 2 * p1 * y + 6 * p2 * x;  // dxd/dx
+  J[1] = 2 * x * y * drad + 2 * p1 * x + 2 * p2 * y;        // dxd/dy
+  J[2] = 2 * x * y * drad + 2 * p1 * x + 2 * p2 * y;        // dyd/dx
+  J[3] = rad + 2 * y * y * drad + 6 * p1 * y + 2 * p2 * x;  // dyd/dy
+}
+
 BoardRenderer::BoardRenderer(const camera::CameraModel& cam) : cam_(cam) {
   const int W = cam.width_px + 1, H = cam.height_px + 1;
   corner_rays_.resize(static_cast<std::size_t>(W) * static_cast<std::size_t>(H));
+  double x = 0, y = 0;  // Newton from the neighbouring corner's solution: 2–3 steps each
   for (int r = 0; r < H; ++r) {
     for (int c = 0; c < W; ++c) {
-      const Eigen::Vector3d m = cam.NormalisedRay(Eigen::Vector2d(c - 0.5, r - 0.5));
-      corner_rays_[static_cast<std::size_t>(r) * static_cast<std::size_t>(W) + static_cast<std::size_t>(c)] = m.head<2>();
+      const double tx = (c - 0.5 - cam.principal_point_px.x()) / cam.fx();
+      const double ty = (r - 0.5 - cam.principal_point_px.y()) / cam.fy();
+      if (c == 0) x = tx, y = ty;
+      for (int it = 0; it < 50; ++it) {
+        double xd = 0, yd = 0, J[4];
+        LensBoardDistort(cam.distortion, x, y, &xd, &yd, J);
+        const double ex = xd - tx, ey = yd - ty, det = J[0] * J[3] - J[1] * J[2];
+        const double dx = (J[3] * ex - J[1] * ey) / det, dy = (J[0] * ey - J[2] * ex) / det;
+        x -= dx, y -= dy;
+        if (std::abs(dx) + std::abs(dy) < 1e-15) break;
+      }
+      corner_rays_[static_cast<std::size_t>(r) * static_cast<std::size_t>(W) + static_cast<std::size_t>(c)] = {x, y};
     }
   }
 }
@@ -87,6 +112,17 @@ cv::Mat BoardRenderer::Render(const Eigen::Matrix3d& R_cam_board, const Eigen::V
       const Eigen::Vector2d &p00 = at(r, c), &p01 = at(r, c + 1), &p10 = at(r + 1, c), &p11 = at(r + 1, c + 1);
       double refl = 0.5;
       if (std::isfinite(p00.x()) && std::isfinite(p01.x()) && std::isfinite(p10.x()) && std::isfinite(p11.x())) {
+        // A pixel whose corners and centre see one reflectance is taken as uniform (board features span many
+        // pixels); the others are supersampled.
+        const double t00 = texture(p00.x(), p00.y());
+        const Eigen::Vector2d mid = 0.25 * (p00 + p01 + p10 + p11);
+        if (texture(p01.x(), p01.y()) == t00 && texture(p10.x(), p10.y()) == t00 &&
+            texture(p11.x(), p11.y()) == t00 && texture(mid.x(), mid.y()) == t00) {
+          refl = t00;
+          const double dn = opt.dark_dn + (opt.bright_dn - opt.dark_dn) * refl + (opt.noise_dn > 0 ? noise(rng) : 0.0);
+          img.at<std::uint8_t>(r, c) = static_cast<std::uint8_t>(std::clamp(std::lround(dn), 0L, 255L));
+          continue;
+        }
         double sum = 0;
         for (int a = 0; a < S; ++a) {
           const double fy = (a + 0.5) / S;
@@ -119,9 +155,9 @@ std::vector<BoardPose> VariedBoardPoses(const camera::CameraModel& cam, double x
     const Eigen::Vector3d axis(std::cos(axis_angle), std::sin(axis_angle), 0.0);
     const Eigen::Matrix3d R = (Eigen::AngleAxisd(tilt, axis) * Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()))
                                   .toRotationMatrix();
-    const double fill = 0.40 + 0.35 * u01(rng);
+    const double fill = 0.30 + 0.30 * u01(rng);
     const double dist = cam.fx() * (x1 - x0) / (fill * cam.width_px);
-    const Eigen::Vector2d aim(cam.width_px * (0.2 + 0.6 * u01(rng)), cam.height_px * (0.2 + 0.6 * u01(rng)));
+    const Eigen::Vector2d aim(cam.width_px * (0.1 + 0.8 * u01(rng)), cam.height_px * (0.1 + 0.8 * u01(rng)));
     const Eigen::Vector3d ray = cam.NormalisedRay(aim);
     const Eigen::Vector3d t = ray.normalized() * dist - R * centre;
     bool inside = true;

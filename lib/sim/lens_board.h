@@ -2,7 +2,7 @@
 // rk-calibrate lens's tests and benchmark).
 //
 // Each pixel is rendered by inverse mapping: the undistorted rays of the pixel's four corners
-// (camera::CameraModel::NormalisedRay, exact Newton inversion of SPEC.md §3's distortion) are
+// (Newton inversion of SPEC.md §3's distortion to 1e-15) are
 // intersected with the board plane p_cam = R_cam_board p_board + t_cam_board (board z = 0), and the
 // board's reflectance is averaged over supersample² points of the pixel, bilinear between its corners
 // (the mapping is smooth over one pixel: the error is second order, far below 0.01 px). Pixels are
@@ -58,8 +58,8 @@ struct BoardPose {
 };
 
 // `n` varied views of a board spanning [x0, x1] × [y0, y1] mm (its outline, margin included): tilts of
-// 10–40° about random in-plane axes, in-plane turns of ±30°, the board filling 40–75 % of the image
-// width, centred anywhere that keeps the whole outline inside the image. Deterministic in `seed`.
+// 10–40° about random in-plane axes, in-plane turns of ±30°, the board filling 30–60 % of the image
+// width, aimed anywhere in the middle 80 % of the image that keeps the whole outline inside the image. Deterministic in `seed`.
 std::vector<BoardPose> VariedBoardPoses(const camera::CameraModel& cam, double x0, double y0, double x1, double y1,
                                         int n, std::uint64_t seed);
 
