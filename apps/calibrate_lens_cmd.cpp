@@ -67,10 +67,8 @@ Command AddLensCommand(CLI::App& parent) {
   c->add_option("-o,--output", a->out_path, "Output camera model JSON ('-' = stdout)")->required();
   c->add_option("--plot", a->plot_path, "Also write a PNG of the residuals over the image and the board coverage");
   cli::AddOptions(c, &a->opt, calibrate::LensOptions::Table());
-  // Required by SPEC.md §1.1: no default shown for them.
-  for (const char* flag : {"--board", "--cols", "--rows", "--square-mm", "--pixel-size-mm"}) {
-    c->get_option(flag)->required()->default_str("");
-  }
+  // Required by SPEC.md §1.1.
+  for (const char* flag : {"--board", "--cols", "--rows", "--square-mm", "--pixel-size-mm"}) c->get_option(flag)->required();
 
   return {c, [a](const Context& ctx) -> int {
             std::string why;
