@@ -5,7 +5,7 @@ set -eu
 # shellcheck disable=SC2034
 data=$1 expect=$2 src=$3
 D=/usr/share/doc/opencv-doc/examples/data
-W=$data/cal_lens_bad; mkdir -p "$W/blank" "$W/seq"
+W=$data/cal_lens_bad; rm -rf "$W"; mkdir -p "$W/blank" "$W/seq"
 o=$W/camera.json; p=$W/plot.png; r=$W/rep.json; rm -f "$o" "$p" "$r"
 board=(--board chessboard --cols 9 --rows 6 --square-mm 25 --pixel-size-mm 0.006)
 # Three grey images: no board anywhere -> 1.
