@@ -58,6 +58,7 @@ struct LensOptions {
   bool fix_aspect = false;           // fx = fy
   bool fix_principal_point = false;  // (cx, cy) = image centre ((w − 1) / 2, (h − 1) / 2)
   bool zero_tangent = false;         // p1 = p2 = 0
+  bool subpix = false;               // chessboard: refine findChessboardCornersSB's corners with cv::cornerSubPix
   double reject_ratio = kRejectRatio;
   int min_views = 3;
   int threads = 0;  // board detection threads (0 = one per core)

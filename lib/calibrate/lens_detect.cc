@@ -4,6 +4,9 @@
 #include <opencv2/aruco/charuco.hpp>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
 
 #include "calibrate/lens_calibration.h"
 
@@ -14,6 +17,18 @@ void DetectChessboard(const cv::Mat& gray, const LensOptions& opt, LensView* v) 
   const cv::Size pattern(opt.cols, opt.rows);
   std::vector<cv::Point2f> corners;
   if (!cv::findChessboardCornersSB(gray, pattern, corners, cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_ACCURACY)) return;
+  if (opt.subpix) {  // window: 0.3 × the smallest corner spacing, 2–7 px half-size
+    double spacing = 1e9;
+    for (int r = 0; r < opt.rows; ++r) {
+      for (int c = 0; c + 1 < opt.cols; ++c) {
+        const std::size_t k = static_cast<std::size_t>(r * opt.cols + c);
+        spacing = std::min(spacing, static_cast<double>(cv::norm(corners[k + 1] - corners[k])));
+      }
+    }
+    const int half = std::clamp(static_cast<int>(0.3 * spacing), 2, 7);
+    cv::cornerSubPix(gray, corners, cv::Size(half, half), cv::Size(-1, -1),
+                     cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-4));
+  }
   v->found = true;
   v->image_px = corners;
   for (int r = 0; r < opt.rows; ++r) {

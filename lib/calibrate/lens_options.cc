@@ -57,6 +57,8 @@ const io::OptionTable<LensOptions>& LensOptions::Table() {
           .Flag("--fix-principal-point", &O::fix_principal_point,
                 "Keep the principal point at the image centre ((w-1)/2, (h-1)/2)")
           .Flag("--zero-tangent", &O::zero_tangent, "Keep p1 = p2 = 0 (no tangential distortion)")
+          .Flag("--subpix", &O::subpix,
+                "Chessboard: refine the corners with cornerSubPix (sharp images; window 0.3 x the corner spacing)")
           .Real("--reject-ratio", &O::reject_ratio, "", B::AtLeast(1).Finite(),
                 "Reject a view whose RMS exceeds this times the median view RMS (and 0.1 px), then solve again")
           .Integer("--min-views", &O::min_views, "", B::Closed(1, 100000),
