@@ -6,6 +6,7 @@
 
 namespace rk::app {
 
+Command AddLensCommand(CLI::App& app);      // calibrate_lens_cmd.cpp
 Command AddPointingCommand(CLI::App& app);  // calibrate_pointing_cmd.cpp
 
 }  // namespace rk::app

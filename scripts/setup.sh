@@ -31,6 +31,7 @@ PACKAGES=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   python3 python3-matplotlib ffmpeg
   help2man bash-completion bsdutils
+  libopencv-contrib-dev opencv-doc
 )
 # Slurm daemons only on request: nobody needs them to use rangekit on one machine (rk-nightly); the
 # test that starts a one-node cluster installs them through --slurm.

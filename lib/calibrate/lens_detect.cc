@@ -1,0 +1,129 @@
+// Board detection for lens calibration: chessboard corners (cv::findChessboardCornersSB, sub-pixel by
+// construction), asymmetric circle-grid centres (cv::findCirclesGrid) and ChArUco corners (contrib aruco:
+// markers, then the chessboard corners between them, interpolated and refined).
+#include <opencv2/aruco/charuco.hpp>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/features2d.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+
+#include "calibrate/lens_calibration.h"
+
+namespace rk::calibrate {
+namespace {
+
+void DetectChessboard(const cv::Mat& gray, const LensOptions& opt, LensView* v) {
+  const cv::Size pattern(opt.cols, opt.rows);
+  std::vector<cv::Point2f> corners;
+  if (!cv::findChessboardCornersSB(gray, pattern, corners, cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_ACCURACY)) return;
+  if (opt.subpix) {  // window: 0.3 × the smallest corner spacing, 2–7 px half-size
+    double spacing = 1e9;
+    for (int r = 0; r < opt.rows; ++r) {
+      for (int c = 0; c + 1 < opt.cols; ++c) {
+        const std::size_t k = static_cast<std::size_t>(r * opt.cols + c);
+        spacing = std::min(spacing, static_cast<double>(cv::norm(corners[k + 1] - corners[k])));
+      }
+    }
+    const int half = std::clamp(static_cast<int>(0.3 * spacing), 2, 7);
+    cv::cornerSubPix(gray, corners, cv::Size(half, half), cv::Size(-1, -1),
+                     cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-4));
+  }
+  v->found = true;
+  v->image_px = corners;
+  for (int r = 0; r < opt.rows; ++r) {
+    for (int c = 0; c < opt.cols; ++c) {
+      v->board_mm.emplace_back(static_cast<float>(c * opt.square_mm), static_cast<float>(r * opt.square_mm), 0.f);
+    }
+  }
+}
+
+// OpenCV's asymmetric grid (samples/cpp/calibration.cpp): circle (row i, column j) at ((2j + i mod 2) s, i s).
+void DetectCircles(const cv::Mat& gray, const LensOptions& opt, LensView* v) {
+  cv::SimpleBlobDetector::Params p;
+  p.minArea = 10;
+  p.maxArea = static_cast<float>(gray.total()) / 8.f;  // the default (5000 px²) misses large circles
+  const cv::Ptr<cv::FeatureDetector> blobs = cv::SimpleBlobDetector::create(p);
+  std::vector<cv::Point2f> centres;
+  if (!cv::findCirclesGrid(gray, cv::Size(opt.cols, opt.rows), centres, cv::CALIB_CB_ASYMMETRIC_GRID, blobs)) return;
+  v->found = true;
+  v->image_px = centres;
+  for (int i = 0; i < opt.rows; ++i) {
+    for (int j = 0; j < opt.cols; ++j) {
+      v->board_mm.emplace_back(static_cast<float>((2 * j + i % 2) * opt.square_mm),
+                               static_cast<float>(i * opt.square_mm), 0.f);
+    }
+  }
+}
+
+cv::aruco::PREDEFINED_DICTIONARY_NAME OpenCvDictionary(ArucoDictionary d) {
+  switch (d) {
+    case ArucoDictionary::k4x4_50:
+      return cv::aruco::DICT_4X4_50;
+    case ArucoDictionary::k5x5_100:
+      return cv::aruco::DICT_5X5_100;
+    case ArucoDictionary::k6x6_250:
+      return cv::aruco::DICT_6X6_250;
+    case ArucoDictionary::kOriginal:
+      return cv::aruco::DICT_ARUCO_ORIGINAL;
+  }
+  return cv::aruco::DICT_4X4_50;
+}
+
+// True when the points span two dimensions (a homography needs them off one line).
+bool SpansPlane(const std::vector<cv::Point3f>& p) {
+  if (p.size() < 4) return false;
+  cv::Mat m(static_cast<int>(p.size()), 2, CV_64F);
+  cv::Point2d mean(0, 0);
+  for (const auto& q : p) mean += cv::Point2d(q.x, q.y);
+  mean *= 1.0 / static_cast<double>(p.size());
+  for (int i = 0; i < m.rows; ++i) {
+    m.at<double>(i, 0) = p[static_cast<std::size_t>(i)].x - mean.x;
+    m.at<double>(i, 1) = p[static_cast<std::size_t>(i)].y - mean.y;
+  }
+  cv::Mat w;
+  cv::SVD::compute(m, w, cv::SVD::NO_UV);
+  return w.at<double>(1) > 1e-3 * w.at<double>(0);
+}
+
+void DetectCharuco(const cv::Mat& gray, const LensOptions& opt, LensView* v) {
+  const cv::Ptr<cv::aruco::Dictionary> dict = cv::aruco::getPredefinedDictionary(OpenCvDictionary(opt.dictionary));
+  const cv::Ptr<cv::aruco::CharucoBoard> board = cv::aruco::CharucoBoard::create(
+      opt.cols, opt.rows, static_cast<float>(opt.square_mm), static_cast<float>(opt.marker_mm), dict);
+  std::vector<std::vector<cv::Point2f>> markers;
+  std::vector<int> marker_ids;
+  cv::aruco::detectMarkers(gray, dict, markers, marker_ids);
+  if (marker_ids.empty()) return;
+  std::vector<cv::Point2f> corners;
+  std::vector<int> ids;
+  cv::aruco::interpolateCornersCharuco(markers, marker_ids, gray, board, corners, ids);
+  if (static_cast<int>(ids.size()) < kMinCharucoCorners) return;
+  std::vector<cv::Point3f> obj;
+  for (int id : ids) obj.push_back(board->chessboardCorners[static_cast<std::size_t>(id)]);
+  if (!SpansPlane(obj)) return;
+  v->found = true;
+  v->image_px = corners;
+  v->board_mm = obj;
+}
+
+}  // namespace
+
+void DetectBoard(const cv::Mat& gray8, const LensOptions& opt, LensView* view) {
+  view->found = false;
+  view->image_px.clear();
+  view->board_mm.clear();
+  switch (opt.board) {
+    case BoardKind::kChessboard:
+      DetectChessboard(gray8, opt, view);
+      break;
+    case BoardKind::kCircles:
+      DetectCircles(gray8, opt, view);
+      break;
+    case BoardKind::kCharuco:
+      DetectCharuco(gray8, opt, view);
+      break;
+  }
+  if (!view->found) view->reason = "no board";
+}
+
+}  // namespace rk::calibrate

@@ -1,0 +1,409 @@
+// rk-calibrate lens (lib/calibrate/lens_calibration.h) against truth: boards rendered through a known camera
+// with distortion (sim/lens_board.h), and OpenCV's own calibration of its sample images (Debian opencv-doc).
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <opencv2/aruco/charuco.hpp>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/core/persistence.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include "calibrate/lens_calibration.h"
+#include "io/error.h"
+#include "sim/lens_board.h"
+
+namespace rk::calibrate {
+namespace {
+
+// A parameter estimate is consistent when it lies within this many of its 1σ of the truth (99.7 % each).
+constexpr double kSigmaBound = 3.0;
+// Issue 17's target: the calibrated pixel map agrees with the true one to 0.1 px RMS over the image. NOT MET: with
+// 16 views of 640 × 480 and 0.067 px corners, σ(cx) = 0.57 px and σ(fx) = 0.5 px, and the map error (0.43 px)
+// is that uncertainty (parameters all within 0.9σ). The test holds the measured figure against regressions.
+constexpr double kMapTargetPx = 0.1;
+constexpr double kMapTolerancePx = 0.6;
+// Circle grids (10 views of 44 centres, 0.01 px RMS): 0.11 px measured; a looser map tolerance.
+constexpr double kLooseMapTolerancePx = 0.2;
+// ChArUco: a test of the path (markers, interpolated corners, ids to board points), not of accuracy yet: 10 views
+// gave 0.16 px RMS and a 1.06 px map error (to be investigated: corner count per view, coverage).
+constexpr double kCharucoRmsPx = 0.3;
+constexpr double kCharucoMapPx = 1.5;
+
+// A 640 × 480 camera with strong barrel distortion, fx ≠ fy and an off-centre principal point.
+camera::CameraModel TruthCamera() {
+  camera::CameraModel c;
+  c.width_px = 640;
+  c.height_px = 480;
+  c.focal_length_mm = 3.0;
+  c.pixel_size_mm = {3.0 / 600.0, 3.0 / 606.0};  // fx = 600, fy = 606
+  c.principal_point_px = {322.3, 236.8};
+  c.distortion = {-0.25, 0.07, 0.0012, -0.0008, 0.0};
+  return c;
+}
+
+LensOptions ChessOptions() {
+  LensOptions o;
+  o.board = BoardKind::kChessboard;
+  o.cols = 9;
+  o.rows = 6;
+  o.square_mm = 20.0;
+  o.pixel_size_mm = 3.0 / 600.0;
+  return o;
+}
+
+// Renders `n` views of the board of `opt` with `texture` (outline x0..x1, y0..y1 mm) and detects them.
+std::vector<LensView> RenderAndDetect(const sim::BoardTexture& texture, const LensOptions& opt, double x0, double y0,
+                                      double x1, double y1, int n, std::uint64_t seed) {
+  const camera::CameraModel cam = TruthCamera();
+  const sim::BoardRenderer renderer(cam);
+  std::vector<LensView> views;
+  int i = 0;
+  for (const auto& pose : sim::VariedBoardPoses(cam, x0, y0, x1, y1, n, seed)) {
+    sim::BoardViewOptions vo;
+    vo.seed = seed + static_cast<std::uint64_t>(i);
+    const cv::Mat img = renderer.Render(pose.R_cam_board, pose.t_cam_board_mm, texture, vo);
+    LensView v;
+    v.name = "view" + std::to_string(i++);
+    DetectBoard(img, opt, &v);
+    views.push_back(v);
+  }
+  return views;
+}
+
+// The chessboard views: 16 for the accuracy test, 8 others for the robustness tests (each test runs in its own
+// process under ctest, so each renders only what it needs).
+std::vector<LensView> ChessViews(int n, std::uint64_t seed) {
+  const LensOptions o = ChessOptions();
+  return RenderAndDetect(sim::ChessboardTexture(o.cols, o.rows, o.square_mm), o, -20, -20, 180, 120, n, seed);
+}
+
+void ExpectWithinSigma(const char* name, double estimate, double truth, double sigma) {
+  const double z = (estimate - truth) / sigma;
+  std::printf("  %-3s estimate %12.6f truth %12.6f 1sigma %10.6f error %+6.2f sigma\n", name, estimate, truth, sigma, z);
+  EXPECT_LE(std::abs(z), kSigmaBound) << name;
+}
+
+void ExpectParametersWithinSigma(const LensResult& res, const camera::CameraModel& truth, bool k3_free) {
+  ExpectWithinSigma("fx", res.camera.fx(), truth.fx(), res.sigma.fx_px);
+  ExpectWithinSigma("fy", res.camera.fy(), truth.fy(), res.sigma.fy_px);
+  ExpectWithinSigma("cx", res.camera.principal_point_px.x(), truth.principal_point_px.x(), res.sigma.cx_px);
+  ExpectWithinSigma("cy", res.camera.principal_point_px.y(), truth.principal_point_px.y(), res.sigma.cy_px);
+  const char* names[5] = {"k1", "k2", "p1", "p2", "k3"};
+  for (std::size_t i = 0; i < (k3_free ? 5u : 4u); ++i) {
+    ExpectWithinSigma(names[i], res.camera.distortion[i], truth.distortion[i], res.sigma.distortion[i]);
+  }
+}
+
+// Every estimated parameter within 3σ of the truth, with k3 free and with k3 fixed at its true 0; the pixel map's
+// RMS error over the whole image printed and held under kMapTolerancePx (see kMapTargetPx). Also the camera JSON
+// and the plot.
+TEST(LensCalibration, ChessboardParametersWithinThreeSigmaAndMapWithinTolerance) {
+  LensOptions sub = ChessOptions();
+  sub.subpix = true;  // findChessboardCornersSB alone leaves ≈ 0.1 px RMS on these sharp images: map ≈ 0.3 px
+  const std::vector<LensView> views = RenderAndDetect(sim::ChessboardTexture(sub.cols, sub.rows, sub.square_mm), sub,
+                                                      -20, -20, 180, 120, 16, 17);
+  for (const auto& v : views) EXPECT_TRUE(v.found) << v.name;
+  LensOptions opt = sub;
+  const camera::CameraModel truth = TruthCamera();
+  const LensResult free_k3 = SolveLens(views, 640, 480, opt);
+  EXPECT_EQ(free_k3.ViewsUsed(), static_cast<int>(views.size()));
+  std::printf("  k3 free: rms %.4f px over %d views\n", free_k3.rms_px, free_k3.ViewsUsed());
+  ExpectParametersWithinSigma(free_k3, truth, true);
+  std::printf("  k3 free: map error %.4f px RMS over the image\n", MapDifferenceRmsPx(truth, free_k3.camera, 4));
+  opt.fix_k3 = true;
+  const LensResult res = SolveLens(views, 640, 480, opt);
+  std::printf("  k3 fixed: rms %.4f px\n", res.rms_px);
+  ExpectParametersWithinSigma(res, truth, false);
+  const double map_rms = MapDifferenceRmsPx(truth, res.camera, 4);
+  std::printf("  k3 fixed: map error %.4f px RMS over the image (issue target %.2f px)\n", map_rms, kMapTargetPx);
+  EXPECT_LE(map_rms, kMapTolerancePx);
+  // fx ≠ fy goes into pixel_size_mm[1]; focal_length_mm from fx and --pixel-size-mm.
+  EXPECT_DOUBLE_EQ(res.camera.pixel_size_mm[0], opt.pixel_size_mm);
+  EXPECT_NEAR(res.camera.focal_length_mm / res.camera.pixel_size_mm[1], res.camera.fy(), 1e-9);
+  for (const auto& w : res.warnings) ADD_FAILURE() << w;
+  // The camera JSON reads back as the model, with the calibration object.
+  const io::Json j = res.CameraJson(opt, "2026-11-26T12:00:00Z");
+  const camera::CameraModel back = camera::CameraModelFromJson(j, "camera.json");
+  EXPECT_NEAR(back.fx(), res.camera.fx(), 1e-9);
+  EXPECT_NEAR(back.fy(), res.camera.fy(), 1e-9);
+  EXPECT_EQ(back.distortion[4], 0.0);
+  const io::Json& cal = j.at("calibration");
+  EXPECT_EQ(cal.at("views_used").size(), views.size());
+  EXPECT_TRUE(cal.at("sigma").at("distortion")[4].is_null());  // k3 fixed: no sigma
+  EXPECT_GT(cal.at("sigma").at("fx_px").get<double>(), 0.0);
+  EXPECT_EQ(cal.at("date"), "2026-11-26T12:00:00Z");
+  EXPECT_DOUBLE_EQ(cal.at("rms_px").get<double>(), res.rms_px);
+  // The plot: a PNG at least 960 px wide (small images are drawn larger), with a legend band below.
+  const std::string png = LensPlotPng(res);
+  const cv::Mat img = cv::imdecode(std::vector<uchar>(png.begin(), png.end()), cv::IMREAD_COLOR);
+  ASSERT_FALSE(img.empty());
+  EXPECT_EQ(img.cols, 960);
+  EXPECT_GT(img.rows, 720);
+}
+
+TEST(LensCalibration, ViewsWithoutBoardSkippedAndOutlierViewRejected) {
+  std::vector<LensView> views = ChessViews(8, 23);
+  for (const auto& v : views) ASSERT_TRUE(v.found) << v.name;
+  std::vector<LensView> good = views;
+  good.erase(good.begin() + 3);
+  LensView blank;
+  blank.name = "blank";
+  DetectBoard(cv::Mat(480, 640, CV_8UC1, cv::Scalar(128)), ChessOptions(), &blank);
+  EXPECT_FALSE(blank.found);
+  views.push_back(blank);
+  views[3].name = "bumped";
+  for (std::size_t k = 0; k < views[3].image_px.size(); ++k) views[3].image_px[k].x += (k % 2 ? 2.0f : -2.0f);
+  const LensResult res = SolveLens(views, 640, 480, ChessOptions());
+  EXPECT_EQ(res.ViewsUsed(), 7);
+  EXPECT_EQ(res.ViewsWithoutBoard(), 1);
+  EXPECT_EQ(res.ViewsRejected(), 1);
+  EXPECT_FALSE(res.views[3].used);
+  EXPECT_NE(res.views[3].reason.find("median"), std::string::npos) << res.views[3].reason;
+  EXPECT_EQ(res.views[8].reason, "no board");
+  EXPECT_GE(res.solves, 2);
+  // Rejecting the bad view gives the model of the good views alone.
+  const LensResult ref = SolveLens(good, 640, 480, ChessOptions());
+  EXPECT_NEAR(res.camera.fx(), ref.camera.fx(), 1e-6);
+  EXPECT_NEAR(res.camera.distortion[0], ref.camera.distortion[0], 1e-9);
+  // Too few views: exit 1 with the reason.
+  try {
+    SolveLens({views[0], views[1], blank}, 640, 480, ChessOptions());
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kProcessing);
+    EXPECT_NE(std::string(e.what()).find("at least 3"), std::string::npos) << e.what();
+  }
+  try {
+    SolveLens({blank, blank}, 640, 480, ChessOptions());
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.code(), ExitCode::kProcessing);
+    EXPECT_NE(std::string(e.what()).find("found in any"), std::string::npos) << e.what();
+  }
+}
+
+TEST(LensCalibration, FrontoParallelBoardWarns) {
+  // Boards square to the optical axis (tilts < 3°) leave the focal length unobservable: a warning.
+  const camera::CameraModel cam = TruthCamera();
+  const LensOptions opt = ChessOptions();
+  std::vector<LensView> views;
+  const sim::BoardRenderer renderer(cam);
+  const double offsets[4][2] = {{-25, -20}, {20, -15}, {-15, 20}, {25, 15}};
+  for (int i = 0; i < 4; ++i) {
+    const Eigen::Matrix3d R =
+        Eigen::AngleAxisd(0.03 * (i % 2 ? 1 : -1), Eigen::Vector3d::UnitX()).toRotationMatrix();
+    const Eigen::Vector3d t(-80 + offsets[i][0], -50 + offsets[i][1], 420);
+    LensView v;
+    v.name = "flat" + std::to_string(i);
+    DetectBoard(renderer.Render(R, t, sim::ChessboardTexture(9, 6, 20), {}), opt, &v);
+    ASSERT_TRUE(v.found) << v.name;
+    views.push_back(v);
+  }
+  LensOptions o = opt;
+  o.fix_k3 = true;
+  const LensResult res = SolveLens(views, 640, 480, o);
+  ASSERT_FALSE(res.warnings.empty());
+  EXPECT_NE(res.warnings.front().find("poorly determined"), std::string::npos) << res.warnings.front();
+}
+
+TEST(LensCalibration, AsymmetricCircleGrid) {
+  LensOptions opt = ChessOptions();
+  opt.board = BoardKind::kCircles;
+  opt.cols = 4;
+  opt.rows = 11;
+  opt.square_mm = 10.0;
+  opt.fix_k3 = true;
+  const auto views = RenderAndDetect(sim::CircleGridTexture(4, 11, 10.0), opt, -20, -20, 90, 120, 10, 5);
+  int found = 0;
+  for (const auto& v : views) found += v.found;
+  EXPECT_GE(found, 8);
+  const LensResult res = SolveLens(views, 640, 480, opt);
+  const double map_rms = MapDifferenceRmsPx(TruthCamera(), res.camera, 8);
+  std::printf("  circles: %d views, rms %.4f px, map error %.4f px\n", res.ViewsUsed(), res.rms_px, map_rms);
+  EXPECT_LE(map_rms, kLooseMapTolerancePx);
+}
+
+TEST(LensCalibration, Charuco) {
+  LensOptions opt = ChessOptions();
+  opt.board = BoardKind::kCharuco;
+  opt.cols = 8;
+  opt.rows = 6;
+  opt.square_mm = 24.0;
+  opt.marker_mm = 18.0;
+  opt.fix_k3 = true;
+  const auto board = cv::aruco::CharucoBoard::create(8, 6, 24.f, 18.f,
+                                                     cv::aruco::getPredefinedDictionary(cv::aruco::DICT_4X4_50));
+  cv::Mat drawn;
+  board->draw(cv::Size(8 * 60, 6 * 60), drawn, 0, 1);  // 60 texture px per square: 0.4 mm per px
+  cv::Mat with_margin(drawn.rows + 120, drawn.cols + 120, CV_8UC1, cv::Scalar(255));
+  drawn.copyTo(with_margin(cv::Rect(60, 60, drawn.cols, drawn.rows)));
+  // The texture's origin is its top-left corner; the board's (0, 0) sits one margin (24 mm) inside.
+  const sim::BoardTexture inner = sim::ImageTexture(with_margin, 0.4);
+  const sim::BoardTexture texture = [inner](double x, double y) { return inner(x + 24.0, y + 24.0); };
+  const auto views = RenderAndDetect(texture, opt, -24, -24, 8 * 24 + 24, 6 * 24 + 24, 10, 9);
+  int found = 0;
+  for (const auto& v : views) found += v.found;
+  EXPECT_GE(found, 8);
+  const LensResult res = SolveLens(views, 640, 480, opt);
+  const double map_rms = MapDifferenceRmsPx(TruthCamera(), res.camera, 8);
+  std::printf("  charuco: %d views, rms %.4f px, map error %.4f px\n", res.ViewsUsed(), res.rms_px, map_rms);
+  EXPECT_LE(res.rms_px, kCharucoRmsPx);
+  EXPECT_LE(map_rms, kCharucoMapPx);
+}
+
+// OpenCV's sample images (9 × 6 inner corners, 25 mm, 640 × 480; left10.jpg is missing: 13 views) and its own
+// calibration of them, left_intrinsics.yml: flags 2 = CALIB_FIX_ASPECT_RATIO, all 13 views, corners from
+// samples/cpp/calibration.cpp (findChessboardCorners + cornerSubPix 11 × 11).
+const char* kOpenCvData = "/usr/share/doc/opencv-doc/examples/data";
+const int kOpenCvViews[13] = {1, 2, 3, 4, 5, 6, 7, 8, 9, 11, 12, 13, 14};
+// The same corners and flags through SolveLens: every parameter within this many of its 1σ of OpenCV's file
+// (the file was made by an older OpenCV, whose corner refinement and solver stop differ slightly).
+constexpr double kSameCornersSigma = 0.5;
+// Our default detector (findChessboardCornersSB) on the same images: its corners differ (left02.jpg: 0.27 px RMS
+// here, 1.18 px in OpenCV's file, whose cornerSubPix corners there are off), so the models differ by about their
+// σ. Stated tolerances: fx within 1 %, cx, cy within 3 px. (The distortion coefficients are strongly correlated
+// and differ by several σ each; the pixel maps are compared, for the record, at the corners seen.)
+constexpr double kOwnDetectorFocalTolerance = 0.01;
+constexpr double kOwnDetectorCentreTolerancePx = 3.0;
+
+struct OpenCvFile {
+  cv::Mat K, dist;
+  camera::CameraModel Model() const {
+    camera::CameraModel c;
+    c.width_px = 640;
+    c.height_px = 480;
+    c.pixel_size_mm = {1.0, K.at<double>(0, 0) / K.at<double>(1, 1)};
+    c.focal_length_mm = K.at<double>(0, 0);
+    c.principal_point_px = {K.at<double>(0, 2), K.at<double>(1, 2)};
+    for (int i = 0; i < 5; ++i) c.distortion[static_cast<std::size_t>(i)] = dist.at<double>(i);
+    return c;
+  }
+};
+
+OpenCvFile ReadOpenCvFile() {
+  cv::FileStorage fs(std::string(kOpenCvData) + "/left_intrinsics.yml", cv::FileStorage::READ);
+  OpenCvFile f;
+  fs["camera_matrix"] >> f.K;
+  fs["distortion_coefficients"] >> f.dist;
+  return f;
+}
+
+LensOptions OpenCvSampleOptions() {
+  LensOptions opt;
+  opt.board = BoardKind::kChessboard;
+  opt.cols = 9;
+  opt.rows = 6;
+  opt.square_mm = 25.0;
+  opt.fix_aspect = true;   // the file's flags
+  opt.reject_ratio = 1e9;  // and all 13 views
+  opt.threads = 2;
+  return opt;
+}
+
+void PrintModel(const char* what, const camera::CameraModel& c) {
+  std::printf("  %-6s fx %.3f fy %.3f cx %.3f cy %.3f k %.5f %.5f %.5f %.5f %.5f\n", what, c.fx(), c.fy(),
+              c.principal_point_px.x(), c.principal_point_px.y(), c.distortion[0], c.distortion[1], c.distortion[2],
+              c.distortion[3], c.distortion[4]);
+}
+
+TEST(LensCalibration, ReproducesOpenCvSampleCalibrationWithItsCorners) {
+  if (!std::filesystem::exists(std::string(kOpenCvData) + "/left_intrinsics.yml")) {
+    GTEST_SKIP() << "opencv-doc not installed (scripts/setup.sh installs it)";
+  }
+  const OpenCvFile file = ReadOpenCvFile();
+  const LensOptions opt = OpenCvSampleOptions();
+  std::vector<LensView> views;
+  for (int n : kOpenCvViews) {
+    char path[256];
+    std::snprintf(path, sizeof path, "%s/left%02d.jpg", kOpenCvData, n);
+    const cv::Mat gray = cv::imread(path, cv::IMREAD_GRAYSCALE);
+    LensView v;
+    v.name = path;
+    v.found = cv::findChessboardCorners(gray, cv::Size(9, 6), v.image_px,
+                                        cv::CALIB_CB_ADAPTIVE_THRESH | cv::CALIB_CB_FAST_CHECK | cv::CALIB_CB_NORMALIZE_IMAGE);
+    ASSERT_TRUE(v.found) << path;
+    cv::cornerSubPix(gray, v.image_px, cv::Size(11, 11), cv::Size(-1, -1),
+                     cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 30, 0.0001));
+    for (int r = 0; r < 6; ++r) {
+      for (int c = 0; c < 9; ++c) v.board_mm.emplace_back(25.f * c, 25.f * r, 0.f);
+    }
+    views.push_back(v);
+  }
+  const LensResult res = SolveLens(views, 640, 480, opt);
+  PrintModel("ours", res.camera);
+  PrintModel("file", file.Model());
+  EXPECT_EQ(res.ViewsUsed(), 13);
+  const auto within = [](const char* name, double ours, double file, double sigma) {
+    std::printf("  %-3s ours %11.5f file %11.5f 1sigma %9.5f difference %+5.2f sigma\n", name, ours, file, sigma,
+                (ours - file) / sigma);
+    EXPECT_LE(std::abs(ours - file), kSameCornersSigma * sigma) << name;
+  };
+  within("fx", res.camera.fx(), file.K.at<double>(0, 0), res.sigma.fx_px);
+  within("fy", res.camera.fy(), file.K.at<double>(1, 1), res.sigma.fy_px);
+  within("cx", res.camera.principal_point_px.x(), file.K.at<double>(0, 2), res.sigma.cx_px);
+  within("cy", res.camera.principal_point_px.y(), file.K.at<double>(1, 2), res.sigma.cy_px);
+  const char* names[5] = {"k1", "k2", "p1", "p2", "k3"};
+  for (int i = 0; i < 5; ++i) {
+    const std::size_t k = static_cast<std::size_t>(i);
+    within(names[k], res.camera.distortion[k], file.dist.at<double>(i), res.sigma.distortion[k]);
+  }
+}
+
+TEST(LensCalibration, OpenCvSampleWithOurDetector) {
+  if (!std::filesystem::exists(std::string(kOpenCvData) + "/left_intrinsics.yml")) {
+    GTEST_SKIP() << "opencv-doc not installed (scripts/setup.sh installs it)";
+  }
+  const OpenCvFile file = ReadOpenCvFile();
+  // left0%d.jpg reads left01..left09, left1%d.jpg left11..left14 (a pattern starts at 0 or 1 and stops at a gap).
+  const LensResult res = CalibrateLens(
+      {std::string(kOpenCvData) + "/left0%d.jpg", std::string(kOpenCvData) + "/left1%d.jpg"}, OpenCvSampleOptions());
+  EXPECT_EQ(res.ViewsUsed(), 13);
+  PrintModel("ours", res.camera);
+  PrintModel("file", file.Model());
+  double ss = 0;
+  std::size_t n = 0;
+  for (const auto& v : res.views) {
+    for (const auto& p : v.image_px) {
+      const auto q = res.camera.Project(file.Model().NormalisedRay(Eigen::Vector2d(p.x, p.y)));
+      ss += (*q - Eigen::Vector2d(p.x, p.y)).squaredNorm();
+      ++n;
+    }
+  }
+  const double map_px = std::sqrt(ss / static_cast<double>(n));
+  std::printf("  rms %.4f px; sigma fx %.3f cx %.3f cy %.3f; map difference at the corners seen %.3f px RMS\n", res.rms_px, res.sigma.fx_px,
+              res.sigma.cx_px, res.sigma.cy_px, map_px);
+  EXPECT_NEAR(res.camera.fx(), file.K.at<double>(0, 0), kOwnDetectorFocalTolerance * file.K.at<double>(0, 0));
+  EXPECT_NEAR(res.camera.principal_point_px.x(), file.K.at<double>(0, 2), kOwnDetectorCentreTolerancePx);
+  EXPECT_NEAR(res.camera.principal_point_px.y(), file.K.at<double>(1, 2), kOwnDetectorCentreTolerancePx);
+}
+
+// Not a test: writes the benchmark's 20 five-megapixel views (bench/bench_lens_calibration.cc) to
+// $RK_LENS_VIEWS_DIR as %02d.png, so the ASan build can time `rk-calibrate lens` on them (OpenCV's detector and
+// solver are not instrumented). Run with --gtest_also_run_disabled_tests --gtest_filter=*WriteFiveMegapixel*.
+TEST(LensCalibration, DISABLED_WriteFiveMegapixelViews) {
+  const char* dir = std::getenv("RK_LENS_VIEWS_DIR");
+  ASSERT_NE(dir, nullptr);
+  camera::CameraModel cam;  // 2448 × 2048, 3.45 µm, 12 mm, as the benchmark
+  cam.focal_length_mm = 12.0;
+  cam.principal_point_px = {1230.2, 1020.9};
+  cam.distortion = {-0.12, 0.05, 0.0004, -0.0002, 0.0};
+  const sim::BoardRenderer renderer(cam);
+  const auto poses = sim::VariedBoardPoses(cam, -30, -30, 270, 180, 20, 3);
+  sim::BoardViewOptions vo;
+  vo.supersample = 2;
+  for (std::size_t i = 0; i < poses.size(); ++i) {
+    vo.seed = i + 1;
+    char name[32];
+    std::snprintf(name, sizeof name, "/%02d.png", static_cast<int>(i));
+    cv::imwrite(dir + std::string(name),
+                renderer.Render(poses[i].R_cam_board, poses[i].t_cam_board_mm, sim::ChessboardTexture(9, 6, 30.0), vo));
+  }
+}
+
+}  // namespace
+}  // namespace rk::calibrate
