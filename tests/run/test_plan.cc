@@ -149,7 +149,8 @@ TEST(Plan, StationPointingAndPositionArePassedOn) {
   EXPECT_EQ(Argv(Find(plan, "sil/attitude-cylinder")),
             (std::vector<std::string>{"rk-attitude", "cylinder", "--points", "out/sil/points.csv", "--theodolite",
                                       "turret.csv", "--camera", "sil/camera.json", "--target", "cyl.json",
-                                      "--pointing", "cal/pointing.json", "-o", "out/sil/axis.csv"}));
+                                      "--pointing", "cal/pointing.json", "--video", "sil/v.mkv", "-o",
+                                      "out/sil/axis.csv"}));  // the image fit by default (issue 20)
   for (const char* kind : {"locate", "attitude-oi", "attitude-cylinder"}) {
     EXPECT_TRUE(IsReservedOption(kind, "pointing"));
   }
