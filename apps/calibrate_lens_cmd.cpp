@@ -11,6 +11,7 @@
 #include "calibrate_commands.h"
 #include "io/error.h"
 #include "io/file_util.h"
+#include "video/stdin_video.h"
 
 namespace rk::app {
 namespace {
@@ -77,17 +78,23 @@ Command AddLensCommand(CLI::App& parent) {
             if (!a->plot_path.empty()) io::CheckOutputNotInput(a->plot_path, a->images);
             if (!ctx.common.report_path.empty()) io::CheckOutputNotInput(ctx.common.report_path, a->images);
             if (!a->plot_path.empty() && a->plot_path == a->out_path) throw UsageError("--plot and -o name the same file");
+            video::RefuseStdinVideo(a->images, "--images");
             const bool progress = cli::ShowProgress(ctx.common);
-            const calibrate::LensResult res = calibrate::CalibrateLens(a->images, a->opt, [&](std::int64_t n) {
-              if (progress) std::cerr << "\r" << ctx.tool << ": " << n << " images" << std::flush;
-            });
-            if (progress) std::cerr << "\r";
+            cli::ProgressMeter meter(ctx.tool, "images", 0, progress);  // the count is known only once read
+            const calibrate::LensResult res =
+                calibrate::CalibrateLens(a->images, a->opt, [&](std::int64_t n) { meter.Update(n); });
+            meter.Finish();
             for (const std::string& w : res.warnings) cli::Warn(ctx.tool, ctx.common, w);
             const io::Json camera = res.CameraJson(a->opt, UtcNowIso());
             const std::string png = a->plot_path.empty() ? std::string() : calibrate::LensPlotPng(res);
             io::WriteJson(a->out_path, camera);
             if (!a->plot_path.empty()) io::WriteFileAtomic(a->plot_path, png);
             if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, LensReport(ctx, *a, res));
+            if (progress) {
+              std::cerr << ctx.tool << ": " << res.views.size() << " images: " << res.ViewsUsed() << " used, "
+                        << res.ViewsWithoutBoard() << " without a board, " << res.ViewsRejected() << " rejected; RMS "
+                        << res.rms_px << " px\n";
+            }
             return 0;
           }};
 }

@@ -19,7 +19,7 @@ BeaconRunResult RunBeacon(const std::vector<std::string>& videos, const FrameClo
   static_cast<VideoRunStats&>(res) = ForEachFrame(
       videos, clock,
       [&](const cv::Mat& frame, std::int64_t k, double t_s) { res.rows.push_back(tracker.Process(frame, k, t_s)); },
-      progress, 100);
+      progress, 1);  // every frame: io::ProgressMeter throttles the redraws
   res.summary = tracker.summary();
   if (res.summary.ok + res.summary.reacquired == 0) {
     throw ProcessingError("nothing detected: no beacon found in any of the " + std::to_string(res.frames) + " frames");

@@ -15,7 +15,7 @@ FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const Frame
   static_cast<VideoRunStats&>(res) = ForEachFrame(
       videos, clock,
       [&](const cv::Mat& frame, std::int64_t k, double t_s) { res.rows.push_back(tracker.Process(frame, k, t_s)); },
-      progress, 20);
+      progress, 1);  // every frame: io::ProgressMeter throttles the redraws
   res.summary = tracker.summary();
   if (res.summary.measured == 0) {
     std::string extra;

@@ -21,7 +21,7 @@ SilhouetteRunResult RunSilhouette(const std::vector<std::string>& videos, const 
         ++res.by_status[static_cast<std::size_t>(row.result.status)];
         res.rows.push_back(row);
       },
-      progress, 20);
+      progress, 1);  // every frame: io::ProgressMeter throttles the redraws
   if (res.by_status[static_cast<std::size_t>(SilhouetteStatus::kOk)] == 0) {
     throw ProcessingError("nothing detected: no frame of the " + std::to_string(res.frames) +
                           " gave the nose and tail points of a cylindrical target");

@@ -39,7 +39,9 @@ TEST(StepProgress, LineFromTheRunningStepsFilesAndFilesRemoved) {
   EXPECT_EQ(line.rfind("extract-az: 120/600 frames (20%)", 0), 0u) << line;
   EXPECT_EQ(line.find("extract-att"), std::string::npos);
   std::ofstream(d / "b.progress") << "7 0 frames\n";  // total unknown
-  EXPECT_NE(p.Line().find(" | extract-att: 7 frames"), std::string::npos) << p.Line();
+  // One entry per running step, in step-id order, separated by " | ".
+  EXPECT_EQ(p.Line().rfind("extract-att: 7 frames", 0), 0u) << p.Line();
+  EXPECT_NE(p.Line().find(" | extract-az: 120/600 frames"), std::string::npos) << p.Line();
   p.Remove("extract-az");
   EXPECT_FALSE(fs::exists(d / "a.progress"));
   EXPECT_EQ(p.Line().rfind("extract-att: 7 frames", 0), 0u);

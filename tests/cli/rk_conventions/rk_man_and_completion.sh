@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # CLI test rk_man_and_completion: registered, and described, in tests/cli/rk_conventions.cmake.
 set -eu
+# The compiled tools (the build also copies the Python tools rk-plot, rk-report, rk-nightly, rk-slurm next to
+# them: listed by rk help, documented in docs/, no man page or completion of their own yet).
+is_elf() { [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = '177ELF' ]; }
 # shellcheck disable=SC2034
 data=$1 expect=$2 src=$3
 bin=$(dirname "$(command -v rk-sim)")
@@ -9,7 +12,7 @@ comp=$build/completions
 man=$build/man
 tools=()
 for t in "$bin"/rk-*; do
-  [ -x "$t" ] && [ -f "$t" ] || continue
+  [ -x "$t" ] && [ -f "$t" ] && is_elf "$t" || continue
   case "$(basename "$t")" in *.*) continue ;; esac
   tools+=("$(basename "$t")")
 done
@@ -38,7 +41,7 @@ complete_words "$comp/rk-extract" rk-extract "" | grep -qx beacon
 complete_words "$comp/rk-extract" rk-extract beacon --vi | grep -qx -- --video
 complete_words "$comp/rk-extract" rk-extract beacon --rep | grep -qx -- --report   # common options after a subcommand
 complete_words "$comp/rk-locate" rk-locate --tu | grep -qx -- --turret
-complete_words "$comp/rk-locate" rk-locate --turret-method "" | grep -qx cubic  # choice values
+complete_words "$comp/rk-locate" rk-locate --turret-interp "" | grep -qx cubic  # choice values
 touch "$data/completion_probe.csv"
 (cd "$data" && complete_words "$comp/rk-locate" rk-locate --track completion_probe | grep -qx completion_probe.csv)
 # rk: tool names, then the tool's own completion.

@@ -13,7 +13,7 @@ rk-extract "${args[@]}" -o "$out/a.csv" 2> "$out/err.txt"
 # On a pseudo-terminal (script(1) gives the command one): the progress line and the summary.
 frames=$(($(grep -vc '^#' "$T/az/frames.csv") - 1))
 script -qec "rk-extract ${args[*]} -o $out/b.csv" /dev/null > "$out/tty.txt" < /dev/null
-tr '\r' '\n' < "$out/tty.txt" > "$out/tty_lines.txt"
+tr '\r' '\n' < "$out/tty.txt" | sed 's/\x1b\[K//g' > "$out/tty_lines.txt"
 grep -Eq "^rk-extract: [0-9]+/$frames frames \([0-9]+%\)" "$out/tty_lines.txt" \
   || { echo "FAIL: no progress line with done/total"; cat -v "$out/tty.txt"; exit 1; }
 grep -Eq "^rk-extract: $frames frames: [0-9]+ ok" "$out/tty_lines.txt" \
