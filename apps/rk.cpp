@@ -96,8 +96,19 @@ std::string OneLine(const std::string& path) {
   std::size_t n = 0;
   while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) text.append(buf, n);
   ::pclose(f);
-  const auto usage = text.find("Usage:");
-  std::string desc = text.substr(0, usage == std::string::npos ? text.size() : usage);
+  std::string desc;
+  if (text.rfind("usage:", 0) == 0) {
+    // argparse (the Python tools): "usage: ..." lines, a blank line, then the description.
+    const auto blank = text.find("\n\n");
+    if (blank != std::string::npos) desc = text.substr(blank + 2, text.find("\n\n", blank + 2) - (blank + 2));
+  } else {
+    // CLI11: the description, then "Usage:".
+    const auto usage = text.find("Usage:");
+    desc = text.substr(0, usage == std::string::npos ? text.size() : usage);
+  }
+  // "rk-sim: synthesize ..." → "synthesize ...": the name is in the first column already.
+  const std::string prefix = path.substr(path.rfind('/') + 1) + ": ";
+  if (desc.rfind(prefix, 0) == 0) desc = desc.substr(prefix.size());
   std::replace(desc.begin(), desc.end(), '\n', ' ');
   const auto dot = desc.find(". ");
   if (dot != std::string::npos) desc = desc.substr(0, dot);

@@ -73,6 +73,8 @@ def cmd_man(tool, out):
     text = help_text([tool])
     _, subs = parse(text)
     first = text.splitlines()[0] if text else name
+    if first.startswith(name + ": "):
+        first = first[len(name) + 2:]  # "rk-sim: synthesize ..." -> "synthesize ..."
     summary = re.split(r"(?<=[.:])\s", first)[0].rstrip(".:")
     include = "[NAME]\n%s \\- %s\n" % (name, summary)
     if subs:
