@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "intersect/intersect_common.h"
 #include "geo/angles.h"
 #include "io/error.h"
 
@@ -175,12 +176,6 @@ IntersectResult Intersect(const StationsFile& stations, const std::vector<Statio
 
 namespace {
 
-double MedianOf(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
-
 // Singer RTS smoother (lib/filter) on e, n, u of the gated rows; velocity and acceleration per ok row.
 void Smooth(const IntersectOptions& options, IntersectResult* r) {
   filter::Series series;
@@ -193,7 +188,7 @@ void Smooth(const IntersectOptions& options, IntersectResult* r) {
   for (const TrajectoryRow& tr : r->rows) {
     if (tr.status == RowStatus::kOk) sigma3d.push_back(std::sqrt(tr.result.solution.P.trace()));
   }
-  const double gate = options.smooth_gate * MedianOf(sigma3d);
+  const double gate = options.smooth_gate * internal::UpperMedianOrNaN(sigma3d);
   std::vector<double> sig[3];
   for (std::size_t i = 0; i < r->rows.size(); ++i) {
     const TrajectoryRow& tr = r->rows[i];
@@ -207,7 +202,10 @@ void Smooth(const IntersectOptions& options, IntersectResult* r) {
   }
   if (sig[0].size() < 3) return;
   filter::SingerSeriesOptions so = options.singer;
-  if (so.meas_sigma.empty()) so.meas_sigma = {MedianOf(sig[0]), MedianOf(sig[1]), MedianOf(sig[2])};
+  if (so.meas_sigma.empty()) {
+    so.meas_sigma = {internal::UpperMedianOrNaN(sig[0]), internal::UpperMedianOrNaN(sig[1]),
+                     internal::UpperMedianOrNaN(sig[2])};
+  }
   r->singer = filter::RunSingerSeries(series, so);
   r->smoothed = true;
   for (std::size_t i = 0; i < r->rows.size(); ++i) {

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "intersect/intersect_common.h"
 #include "intersect/intersect.h"
 
 namespace rk::intersect {
@@ -12,12 +13,6 @@ namespace {
 constexpr int kLengthDecimals = 4;  // 0.1 mm
 constexpr int kDegDecimals = 9;     // ~0.1 mm on the earth
 constexpr int kFigureDecimals = 4;
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 io::Json NumberOrNull(double x) { return std::isfinite(x) ? io::Json(x) : io::Json(nullptr); }
 
@@ -112,10 +107,10 @@ io::Json IntersectResult::SummaryJson() const {
           {"rows_lost", rows_lost},
           {"rows_invalid", rows_invalid},
           {"rows_with_rejection", rows_with_rejection},
-          {"median_sigma_3d_m", NumberOrNull(Median(sigma))},
-          {"median_gdop", NumberOrNull(Median(gdop))},
-          {"median_intersection_angle_deg", NumberOrNull(Median(angle))},
-          {"median_rms_residual_arcsec", NumberOrNull(Median(rms))}};
+          {"median_sigma_3d_m", NumberOrNull(internal::UpperMedianOrNaN(sigma))},
+          {"median_gdop", NumberOrNull(internal::UpperMedianOrNaN(gdop))},
+          {"median_intersection_angle_deg", NumberOrNull(internal::UpperMedianOrNaN(angle))},
+          {"median_rms_residual_arcsec", NumberOrNull(internal::UpperMedianOrNaN(rms))}};
 }
 
 io::Json IntersectResult::ToJson() const {
@@ -143,9 +138,9 @@ io::Json IntersectResult::ToJson() const {
     rho[1].push_back(P(0, 2) / std::sqrt(P(0, 0) * P(2, 2)));
     rho[2].push_back(P(1, 2) / std::sqrt(P(1, 1) * P(2, 2)));
   }
-  j["correlations"] = {{"median_rho_en", NumberOrNull(Median(rho[0]))},
-                       {"median_rho_eu", NumberOrNull(Median(rho[1]))},
-                       {"median_rho_nu", NumberOrNull(Median(rho[2]))}};
+  j["correlations"] = {{"median_rho_en", NumberOrNull(internal::UpperMedianOrNaN(rho[0]))},
+                       {"median_rho_eu", NumberOrNull(internal::UpperMedianOrNaN(rho[1]))},
+                       {"median_rho_nu", NumberOrNull(internal::UpperMedianOrNaN(rho[2]))}};
   if (smoothed) {
     filter::Series s;
     s.columns = {"e_m", "n_m", "u_m"};

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 
+#include "intersect/intersect_common.h"
 #include "geo/angles.h"
 #include "io/row_status.h"
 #include "track/interp.h"
@@ -32,12 +33,6 @@ bool Bracket(const std::vector<double>& t, double ts, std::size_t* k, double* f)
 double InterpSigma(const std::vector<double>& s, std::size_t k, double f) {
   if (k + 1 >= s.size()) return s[k];
   return std::sqrt((1.0 - f) * (1.0 - f) * s[k] * s[k] + f * f * s[k + 1] * s[k + 1]);
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
 }
 
 }  // namespace
@@ -100,7 +95,7 @@ StationTrack::StationTrack(const io::CsvTable& table, const TrackDefaults& defau
   has_range_ = !tr_.empty();  // a range column that is always empty is no rangefinder
   std::vector<double> dt;
   for (std::size_t i = 1; i < row_t_.size(); ++i) dt.push_back(row_t_[i] - row_t_[i - 1]);
-  frame_interval_s_ = dt.empty() ? 0.0 : Median(dt);
+  frame_interval_s_ = dt.empty() ? 0.0 : internal::UpperMedianOrNaN(dt);
   track::InterpOptions io;
   io.method = track::InterpMethod::kLinear;
   io.max_gap_s = frame_interval_s_ > 0.0 ? defaults.max_gap_frames * frame_interval_s_ : 1.0;

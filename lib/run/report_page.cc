@@ -40,7 +40,7 @@ std::string MakeReportPage(const std::string& trial_dir, const std::vector<std::
   fs::create_directories(out / "steps", ec);
   const std::string log = (out / "steps" / "report-page.log").string();
   fs::remove(log, ec);
-  ChildSpec spec{{tool, out.string(), "--quiet"}, trial_dir, log};
+  ChildSpec spec{{tool, out.string(), "--quiet"}, trial_dir, log, {}};
   pid_t pid = -1;
   try {
     pid = StartChild(spec);
