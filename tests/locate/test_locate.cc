@@ -16,6 +16,7 @@
 #include "locate/locate.h"
 #include "sim/trajectory.h"
 #include "sim/turret_servo.h"
+#include "test_cameras.h"
 
 namespace rk::locate {
 namespace {
@@ -29,14 +30,7 @@ constexpr double kAngleTolerance_rad = 1e-9;
 constexpr double kRangeRmsTolerance_m = 1.0e-3;
 constexpr double kRangeNoise_m = 0.35e-3;  // seed 001: static range std 0.354 mm
 
-camera::CameraModel DistortedMisalignedCamera() {
-  camera::CameraModel cam = camera::DefaultCamera();
-  cam.distortion = {-0.08, 0.02, 2e-4, -1e-4, 0.001};
-  cam.mount_yaw_rad = geo::DegToRad(0.4);
-  cam.mount_pitch_rad = geo::DegToRad(-0.25);
-  cam.mount_roll_rad = geo::DegToRad(0.6);
-  return cam;
-}
+using test_data::DistortedMisalignedCamera;
 
 class StationGeometry : public ::testing::TestWithParam<double> {};
 

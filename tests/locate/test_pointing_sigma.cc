@@ -21,30 +21,24 @@
 #include "locate/locate.h"
 #include "locate/locate_sigma.h"
 #include "camera/station_view.h"
+#include "test_cameras.h"
 
 namespace rk::locate {
 namespace {
+
+using test_data::DistortedMisalignedCamera;
 
 // Two rotation products that are equal in exact arithmetic agree to rounding.
 constexpr double kExactTolerance_rad = 1e-12;
 // Central differences with h = 1e-6 (angles, px, mm, m): truncation ~h², rounding ~1e-16/h.
 constexpr double kJacobianRelTolerance = 1e-5;
 
-camera::CameraModel TestCamera() {
-  camera::CameraModel cam = camera::DefaultCamera();
-  cam.distortion = {-0.08, 0.02, 2e-4, -1e-4, 0.001};
-  cam.mount_yaw_rad = geo::DegToRad(0.4);
-  cam.mount_pitch_rad = geo::DegToRad(-0.25);
-  cam.mount_roll_rad = geo::DegToRad(0.6);
-  return cam;
-}
-
 geo::PointingTerms SomeTerms() {
   return {geo::DegToRad(123.4), geo::DegToRad(0.3), geo::DegToRad(-0.2), geo::DegToRad(0.15)};
 }
 
 TEST(StationView, EquivalentBoresightAndMountAreExact) {
-  const camera::CameraModel cam = TestCamera();
+  const camera::CameraModel cam = DistortedMisalignedCamera();
   const geo::PointingTerms terms = SomeTerms();
   std::mt19937_64 rng(17);
   std::uniform_real_distribution<double> az(0.0, geo::kTwoPi), el(geo::DegToRad(-5), geo::DegToRad(85)),
@@ -64,7 +58,7 @@ TEST(StationView, EquivalentBoresightAndMountAreExact) {
 }
 
 TEST(StationView, ZeroTermsReturnTheLoggedAnglesAndTheCamera) {
-  const camera::CameraModel cam = TestCamera();
+  const camera::CameraModel cam = DistortedMisalignedCamera();
   const geo::AzEl logged{1.0, 0.5};
   const camera::StationView v = camera::ApplyPointing(cam, logged, geo::PointingTerms{});
   EXPECT_EQ(v.boresight.az_rad, logged.az_rad);
@@ -75,7 +69,7 @@ TEST(StationView, ZeroTermsReturnTheLoggedAnglesAndTheCamera) {
 }
 
 TEST(LocateSigma, AutodiffJacobianMatchesNumerical) {
-  const camera::CameraModel cam = TestCamera();
+  const camera::CameraModel cam = DistortedMisalignedCamera();
   const geo::PointingTerms terms = SomeTerms();
   SigmaPoint p;
   p.px = Eigen::Vector2d(1900.3, 300.7);  // far from the centre: distortion matters
@@ -177,7 +171,7 @@ struct McRun {
 McRun RunOnce(std::mt19937_64& rng, const McConfig& c, bool station_errors, bool use_pointing, bool calibrated) {
   std::normal_distribution<double> n01(0.0, 1.0);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
-  camera::CameraModel truth_cam = TestCamera();
+  camera::CameraModel truth_cam = DistortedMisalignedCamera();
   geo::PointingTerms truth_terms;
   if (station_errors) truth_terms = {geo::DegToRad(2.5), geo::DegToRad(0.3), geo::DegToRad(-0.2), geo::DegToRad(0.1)};
   // The files: the truth plus their own error of 1σ as stated (or the truth itself, σ = 0).

@@ -465,7 +465,8 @@ TEST(BeaconScenario, CheckNamesTheOptionFromTheTables) {
   EXPECT_EQ(why_of([](BeaconSimOptions& o) { o.servo.jitter_min_hz = 6; }),
             "--jitter-max-hz must be >= --jitter-min-hz");
   // Report keys: from the flags, with the unit where the flag does not carry it.
-  const io::Json j = BeaconSimOptions{}.ToJson();
+  const BeaconSimOptions defaults;
+  const io::Json j = defaults.ToJson();
   EXPECT_EQ(j.at("duration_s"), 10.0);
   EXPECT_EQ(j.at("max_el_deg"), 80.0);
   EXPECT_EQ(j.at("bit_depth"), "8");
