@@ -42,10 +42,17 @@ int RunBeaconCmd(const BeaconArgs& a, const Context& ctx) {
   const rk::extract::FrameClock clock = a.in.Clock();
   const bool progress = rk::cli::ShowProgress(common);
   rk::cli::ProgressMeter meter(ctx.tool, "frames", VideoInputArgs::ExpectedFrames(clock), progress);
-  const rk::extract::BeaconRunResult res =
-      rk::extract::RunBeacon(a.in.videos, clock, opt, [&](std::int64_t n) { meter.Update(n); });
+  // Each frame's row goes out as it is made when -o is stdout (docs/conventions.md "Streaming").
+  rk::io::CsvWriter csv = rk::extract::BeaconTrackCsv({}, 0);
+  csv.StreamTo(a.out_path);
+  const rk::extract::BeaconRunResult res = rk::extract::RunBeacon(
+      a.in.videos, clock, opt, [&](std::int64_t n) { meter.Update(n); },
+      [&](const rk::extract::BeaconFrameResult& r) {
+        rk::extract::AppendBeaconTrackRow(&csv, r);
+        csv.Flush();
+      });
   meter.Finish();
-  rk::extract::BeaconTrackCsv(res.rows, res.bit_depth).Write(a.out_path);
+  csv.Write(a.out_path);
 
   const auto& s = res.summary;
   if (!common.report_path.empty()) {
