@@ -444,27 +444,7 @@ void CsvWriter::EndRow() {
 
 void CsvWriter::Write(const std::string& path) const {
   RK_CHECK(fields_in_row_ == 0, "unfinished row");
-  if (stream_fd_ >= 0 && path == stream_path_) {
-    WriteToDescriptor(stream_fd_, std::string_view(text_).substr(streamed_), path);
-    return;
-  }
   WriteFileAtomic(path, text_);
-}
-
-void CsvWriter::StreamTo(const std::string& path) {
-  stream_fd_ = StreamDescriptor(path);
-  stream_path_ = path;
-  streamed_ = 0;
-}
-
-void CsvWriter::Flush() {
-  if (stream_fd_ < 0) return;
-  // Only whole rows: a row being built stays until it is ended.
-  std::size_t end = text_.size();
-  if (fields_in_row_ != 0) end = text_.rfind('\n') + 1;
-  if (end <= streamed_) return;
-  WriteToDescriptor(stream_fd_, std::string_view(text_).substr(streamed_, end - streamed_), stream_path_);
-  streamed_ = end;
 }
 
 std::vector<std::string> SplitList(std::string_view list, char sep) {

@@ -146,25 +146,11 @@ class CsvWriter {
   // Atomic write to `path`, or stdout for "-".
   void Write(const std::string& path) const;
 
-  // Streaming (docs/conventions.md "Streaming"): when `path` is a descriptor (io::StreamDescriptor:
-  // "-", /dev/stdout, /dev/fd/N), every Flush() from now on writes the rows ended since the last one
-  // (the header with the first), so that a pipeline sees them as they are produced, and Write(path)
-  // writes only what is left. Any other path (a file, a device, a FIFO) is not streamed: Flush() does
-  // nothing and Write stays atomic. What was streamed cannot be taken back: a run that fails later
-  // leaves it in the pipe (its error line and exit code still come).
-  void StreamTo(const std::string& path);
-  // Writes the rows ended since the last Flush when streaming; otherwise nothing. A row-wise tool
-  // calls it once per unit of work (a frame), not per row: one write(2) each.
-  void Flush();
-
  private:
   std::vector<std::string> columns_;
   std::string text_;
   std::size_t fields_in_row_ = 0;
   std::size_t rows_ = 0;
-  int stream_fd_ = -1;          // StreamTo's descriptor, -1 when not streaming
-  std::string stream_path_;     // the path it was given (for messages)
-  std::size_t streamed_ = 0;    // bytes of text_ already written to stream_fd_
 };
 
 // Splits "a,b,c" into names (used for --columns).

@@ -14,6 +14,7 @@
 #include <regex>
 #include <sstream>
 
+#include "io/csv_stream.h"
 #include "io/error.h"
 #include "io/run_record.h"
 

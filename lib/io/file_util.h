@@ -3,7 +3,6 @@
 #pragma once
 
 #include <string>
-#include <string_view>
 #include <vector>
 
 namespace rk::io {
@@ -41,14 +40,6 @@ std::string ResolveOutputFolder(const std::string& path);
 // half-written file and a failed run leaves nothing behind), in place for devices and FIFOs,
 // to the descriptor for "-" and /dev/stdout.
 void WriteFileAtomic(const std::string& path, const std::string& data);
-
-// The descriptor an output path streams to: ResolveOutput's kDescriptor ("-", /dev/stdout, /dev/fd/N),
-// else -1 (files, devices and FIFOs are written in one piece by WriteFileAtomic). Row-wise tools write
-// their rows there as they are produced (io::CsvWriter::StreamTo; docs/conventions.md "Streaming").
-int StreamDescriptor(const std::string& path);
-// Writes `data` in full to descriptor `fd` (std::cout flushed first, so that what it buffered comes
-// first); IoError naming `path` ("<stdout>" for descriptor 1) if the write fails.
-void WriteToDescriptor(int fd, std::string_view data, const std::string& path);
 
 // Throws UsageError if `output` names the same file as one of `inputs`
 // (nothing the user gave is overwritten), IoError if it cannot be an output file at all (a folder:

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "io/csv.h"
+#include "io/csv_stream.h"
 #include "io/error.h"
 #include "test_expect_error.h"
 
@@ -65,48 +66,50 @@ std::string Drain(int fd) {
   }
 }
 
-TEST(CsvWriter, StreamsEndedRowsToADescriptorAtEachFlush) {
+TEST(CsvStream, SendsEndedRowsToADescriptorAtEachFlush) {
   int fds[2];
   ASSERT_EQ(::pipe2(fds, O_NONBLOCK), 0);
   const std::string path = "/dev/fd/" + std::to_string(fds[1]);
   CsvWriter w({"frame", "x_px"});
-  w.StreamTo(path);
+  CsvStream out(w, path);
+  EXPECT_TRUE(out.streaming());
   EXPECT_EQ(Drain(fds[0]), "");  // nothing before the first flush
   w.Add(0).Add(1.5, 1);
   w.EndRow();
-  w.Flush();
+  out.Flush();
   EXPECT_EQ(Drain(fds[0]), "frame,x_px\n0,1.5\n");
   w.Add(1);  // a row being built is not sent
-  w.Flush();
+  out.Flush();
   EXPECT_EQ(Drain(fds[0]), "");
   w.Add(2.5, 1);
   w.EndRow();
   w.Add(2).AddEmpty();
   w.EndRow();
-  w.Flush();
+  out.Flush();
   EXPECT_EQ(Drain(fds[0]), "1,2.5\n2,\n");
-  w.Flush();  // nothing new: nothing written
+  out.Flush();  // nothing new: nothing written
   EXPECT_EQ(Drain(fds[0]), "");
   w.Add(3).Add(4.0, 1);
   w.EndRow();
-  w.Write(path);  // the rest, once
+  out.Finish();  // the rest
   EXPECT_EQ(Drain(fds[0]), "3,4.0\n");
   EXPECT_EQ(w.str(), "frame,x_px\n0,1.5\n1,2.5\n2,\n3,4.0\n");  // the whole table is still there
   ::close(fds[0]);
   ::close(fds[1]);
 }
 
-TEST(CsvWriter, FilesAreNotStreamedButWrittenAtomicallyAtTheEnd) {
+TEST(CsvStream, FilesAreNotStreamedButWrittenAtomicallyAtTheEnd) {
   const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("rk_csv_stream_" + std::to_string(::getpid()));
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "out.csv").string();
   CsvWriter w({"frame"});
-  w.StreamTo(path);
+  CsvStream out(w, path);
+  EXPECT_FALSE(out.streaming());
   w.Add(0);
   w.EndRow();
-  w.Flush();
-  EXPECT_FALSE(std::filesystem::exists(path));  // a file appears only at Write, whole
-  w.Write(path);
+  out.Flush();
+  EXPECT_FALSE(std::filesystem::exists(path));  // a file appears only at Finish, whole
+  out.Finish();
   std::FILE* f = std::fopen(path.c_str(), "r");
   ASSERT_NE(f, nullptr);
   char buf[64] = {};
