@@ -1,7 +1,9 @@
 // rk-calibrate pointing: image points of landmarks and stars + turret log + camera → pointing.json (SPEC.md
 // §1.1, §3.1) and the updated camera. Thin edge: CLI11 options → rk::calibrate (lib/calibrate); docs in
 // docs/rk-calibrate.md.
+#include <cstdint>
 #include <ctime>
+#include <iostream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -120,7 +122,12 @@ int RunPointing(const PointingCli& c, const Context& ctx) {
   const auto build = [&](double tau) {
     return calibrate::BuildObservations(points, targets, turret, c.o.encoder_step_rad(), c.o.pixel_sigma_px, tau);
   };
-  const calibrate::PointingSolution sol = calibrate::SolvePointing(build, cam, est, c.o);
+  // Solves (outlier passes, τ re-evaluations): how many is known only at the end (total 0).
+  const bool progress = cli::ShowProgress(ctx.common);
+  cli::ProgressMeter meter(ctx.tool, "solves", 0, progress);
+  const calibrate::PointingSolution sol =
+      calibrate::SolvePointing(build, cam, est, c.o, [&](std::int64_t n) { meter.Update(n); });
+  meter.Finish();
   for (const std::string& w : sol.warnings) cli::Warn(ctx.tool, ctx.common, w);
   if (sol.rejected > 0) {
     cli::Warn(ctx.tool, ctx.common, std::to_string(sol.rejected) + " of " + std::to_string(sol.residuals.size()) +
@@ -134,6 +141,11 @@ int RunPointing(const PointingCli& c, const Context& ctx) {
   if (!c.camera_out.empty()) io::WriteFileAtomic(c.camera_out, camera_text);
   if (!c.plot.empty()) io::WriteFileAtomic(c.plot, plot_png);
   if (!ctx.common.report_path.empty()) WriteReportFile(c, ctx, sol, cam);
+  if (progress) {
+    std::cerr << ctx.tool << ": " << sol.residuals.size() << " observations: " << sol.used << " used, " << sol.rejected
+              << " rejected; RMS " << sol.rms_px << " px; " << sol.iterations << " solver iterations, "
+              << sol.relinearisations << " time-offset re-evaluations\n";
+  }
   return 0;
 }
 

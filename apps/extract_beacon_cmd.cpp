@@ -9,6 +9,7 @@
 #include "extract/beacon_run.h"
 #include "extract_commands.h"
 #include "io/csv.h"
+#include "io/csv_stream.h"
 #include "io/error.h"
 #include "io/file_util.h"
 
@@ -42,10 +43,17 @@ int RunBeaconCmd(const BeaconArgs& a, const Context& ctx) {
   const rk::extract::FrameClock clock = a.in.Clock();
   const bool progress = rk::cli::ShowProgress(common);
   rk::cli::ProgressMeter meter(ctx.tool, "frames", VideoInputArgs::ExpectedFrames(clock), progress);
-  const rk::extract::BeaconRunResult res =
-      rk::extract::RunBeacon(a.in.videos, clock, opt, [&](std::int64_t n) { meter.Update(n); });
+  // Each frame's row goes out as it is made when -o is stdout (docs/conventions.md "Streaming").
+  rk::io::CsvWriter csv = rk::extract::BeaconTrackCsv({}, 0);
+  rk::io::CsvStream out(csv, a.out_path);
+  const rk::extract::BeaconRunResult res = rk::extract::RunBeacon(
+      a.in.videos, clock, opt, [&](std::int64_t n) { meter.Update(n); },
+      [&](const rk::extract::BeaconFrameResult& r) {
+        rk::extract::AppendBeaconTrackRow(&csv, r);
+        out.Flush();
+      });
   meter.Finish();
-  rk::extract::BeaconTrackCsv(res.rows, res.bit_depth).Write(a.out_path);
+  out.Finish();
 
   const auto& s = res.summary;
   if (!common.report_path.empty()) {

@@ -12,6 +12,7 @@
 #include "extract_commands.h"
 #include "io/cli.h"
 #include "io/csv.h"
+#include "io/csv_stream.h"
 #include "io/error.h"
 #include "io/file_util.h"
 #include "target/feature_model.h"
@@ -43,8 +44,15 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
   const extract::FrameClock clock = a.in.Clock();
   const bool progress = cli::ShowProgress(ctx.common);
   cli::ProgressMeter meter(ctx.tool, "frames", VideoInputArgs::ExpectedFrames(clock), progress);
-  const extract::FeatureRunResult res =
-      extract::RunFeatures(a.in.videos, clock, model, opt, [&](std::int64_t n) { meter.Update(n); });
+  // Each frame's rows go out as they are made when -o is stdout (docs/conventions.md "Streaming").
+  io::CsvWriter csv = extract::FeaturePointsCsv({}, model);
+  io::CsvStream out(csv, a.out_path);
+  const extract::FeatureRunResult res = extract::RunFeatures(
+      a.in.videos, clock, model, opt, [&](std::int64_t n) { meter.Update(n); },
+      [&](const extract::FeatureFrameResult& r) {
+        extract::AppendFeaturePointRows(&csv, r, model);
+        out.Flush();
+      });
   meter.Finish();
   const auto& s = res.summary;
   if (s.ambiguous > 0) {
@@ -53,7 +61,7 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
                   " frames had an ambiguous identification and got no points "
                   "(a symmetric marker layout cannot be identified without tracking)");
   }
-  extract::FeaturePointsCsv(res.rows, model).Write(a.out_path);
+  out.Finish();
 
   if (!ctx.common.report_path.empty()) {
     io::Json rep = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);

@@ -9,6 +9,7 @@
 #include "extract/silhouette_run.h"
 #include "extract_commands.h"
 #include "io/csv.h"
+#include "io/csv_stream.h"
 #include "io/error.h"
 #include "io/file_util.h"
 
@@ -44,10 +45,17 @@ Command AddSilhouetteCommand(CLI::App& parent) {
             const extract::FrameClock clock = a->in.Clock();
             const bool progress = cli::ShowProgress(ctx.common);
             cli::ProgressMeter meter(ctx.tool, "frames", VideoInputArgs::ExpectedFrames(clock), progress);
-            const extract::SilhouetteRunResult res =
-                extract::RunSilhouette(a->in.videos, clock, a->opt, [&](std::int64_t n) { meter.Update(n); });
+            // Each frame's rows go out as they are made when -o is stdout (docs/conventions.md "Streaming").
+            io::CsvWriter csv = extract::SilhouettePointsCsv({});
+            io::CsvStream out(csv, a->out_path);
+            const extract::SilhouetteRunResult res = extract::RunSilhouette(
+                a->in.videos, clock, a->opt, [&](std::int64_t n) { meter.Update(n); },
+                [&](const extract::SilhouetteFrameRow& r) {
+                  extract::AppendSilhouettePointRows(&csv, r);
+                  out.Flush();
+                });
             meter.Finish();
-            extract::SilhouettePointsCsv(res.rows).Write(a->out_path);
+            out.Finish();
             using S = extract::SilhouetteStatus;
             const auto n = [&](S s) { return res.by_status[static_cast<std::size_t>(s)]; };
             const std::int64_t bad = res.frames - n(S::kOk);

@@ -1,5 +1,7 @@
 // rk-register batch: offline maximum-likelihood bias registration over the whole trial (Ceres,
 // robust loss), starting from a Bernoulli pass. Thin CLI over lib/registration/batch.h.
+#include <cstdint>
+#include <iostream>
 #include <memory>
 
 #include "register_commands.h"
@@ -37,7 +39,26 @@ Command AddBatchCommand(CLI::App& app) {
     reg::CheckPaths(a.in, ctx);
     const registration::RegistrationInput in =
         reg::ReadInput(a.in, opt.association == registration::BatchAssociation::kTrack);
-    const registration::BatchResult res = registration::RunBatch(in, opt);
+    // Two stages, one meter each: the Bernoulli pass over the steps, then the association rounds' solves.
+    const bool progress = cli::ShowProgress(ctx.common);
+    cli::ProgressMeter pass_meter(ctx.tool, "Bernoulli-pass steps", static_cast<std::int64_t>(in.steps.size()),
+                                  progress);
+    const int rounds = opt.association == registration::BatchAssociation::kGate ? opt.max_rounds : 1;
+    cli::ProgressMeter solve_meter(ctx.tool, "association rounds", rounds, progress);
+    const registration::BatchResult res = registration::RunBatch(
+        in, opt, [&](std::int64_t k) { pass_meter.Update(k); },
+        [&](std::int64_t r) {
+          pass_meter.Finish();
+          solve_meter.Update(r);
+        });
+    pass_meter.Finish();
+    solve_meter.Finish();
+    if (progress) {
+      const auto& s = res.stats;
+      std::cerr << ctx.tool << ": " << in.steps.size() << " steps, " << s.pairs << " pairs; " << s.rounds
+                << " rounds, " << s.iterations << " solver iterations (" << s.termination << "); variance factor "
+                << s.variance_factor << "\n";
+    }
     io::Json extra;
     extra["initial_bernoulli"] = registration::EstimateJson(in, res.initial.result.x, res.initial.result.P);
     extra["initial_bernoulli"].erase("correlation");

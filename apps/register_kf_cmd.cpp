@@ -1,5 +1,7 @@
 // rk-register kf: known-association Kalman filter baseline (seed 002's comparison method; needs
 // track_id in the plots). Thin CLI over lib/registration/kalman.h.
+#include <cstdint>
+#include <iostream>
 #include <memory>
 
 #include "register_commands.h"
@@ -36,8 +38,15 @@ Command AddKfCommand(CLI::App& app) {
     if (!opt.Check(&why)) throw UsageError(why);
     reg::CheckPaths(a.in, ctx);
     const registration::RegistrationInput in = reg::ReadInput(a.in, true);
-    const registration::KfResult res = registration::RunKalman(in, opt);
+    const bool progress = cli::ShowProgress(ctx.common);
+    cli::ProgressMeter meter(ctx.tool, "steps", static_cast<std::int64_t>(in.steps.size()), progress);
+    const registration::KfResult res = registration::RunKalman(in, opt, [&](std::int64_t k) { meter.Update(k); });
+    meter.Finish();
     reg::WriteOutputs(a.in, ctx, "kf", in, res.result);
+    if (progress) {
+      std::cerr << ctx.tool << ": " << in.steps.size() << " steps: " << res.counters.steps_updated << " updated, "
+                << res.counters.steps_predicted << " predicted; " << res.counters.updates << " pair updates\n";
+    }
     if (res.counters.steps_updated == 0) {
       cli::Warn(ctx.tool, ctx.common, "no step had a pair with a common track_id: the biases are the prior");
     }

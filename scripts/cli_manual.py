@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Man pages and bash completion of the rk tools, made from their own --help (one owner: the tool).
 
-  cli_manual.py man TOOL OUT.1            man page of TOOL (an rk-* executable) by help2man, with one
-                                          section per subcommand (its --help)
+  cli_manual.py man TOOL OUT.1            man page of TOOL (an rk-* executable or Python tool) by help2man,
+                                          with one section per subcommand (its --help)
   cli_manual.py completion TOOL OUT       bash completion file of TOOL: options of the tool and of each
                                           subcommand, choice values, file names after path options
   cli_manual.py completion-rk OUT         bash completion of the `rk` dispatcher (tool names, then the
@@ -10,7 +10,10 @@
 
 CLI11's help is parsed: an "Options:" block (two-space indent, names separated by commas, then the
 value type: TEXT, FLOAT, INT, UINT, TEXT:{a,b}=default, ...), a "Subcommands:" block (name, then its
-description). Run by the build (apps/CMakeLists.txt) after each tool is linked; installed by
+description), a "Positionals:" block. So is argparse's (the Python tools rk-plot, rk-report, rk-nightly,
+rk-slurm): "usage: ..." first, an "options:" block ("-o OUT, --output OUT", "--kind {a,b}"; the description
+on the same line or indented below), "positional arguments:" (a "{a,b}" line then the subcommands indented
+by four). Run by the build (apps/CMakeLists.txt) after each tool is linked; installed by
 `cmake --install` to share/man/man1 and share/bash-completion/completions.
 """
 import os
@@ -32,8 +35,11 @@ def help_text(argv):
 
 
 def parse(text):
-    """(options, subcommands): options [(names, type or None, description)], subcommands [(name, desc)]."""
-    options, subs, block = [], [], None
+    """(options, subcommands, positionals): options [(names, type or None, description)], subcommands
+    [(name, desc)], positionals [name]."""
+    if text.startswith("usage:"):
+        return parse_argparse(text)
+    options, subs, pos, block = [], [], [], None
     for line in text.splitlines():
         if line.startswith("Options:"):
             block = "opt"
@@ -41,6 +47,11 @@ def parse(text):
         if line.startswith("Subcommands:"):
             block = "sub"
             continue
+        if line.startswith("Positionals:"):
+            block = "pos"
+            continue
+        if block == "pos" and re.match(r"^  [a-z]", line):
+            pos.append(line.split()[0])
         if block == "opt":
             m = OPTION.match(line)
             if m:
@@ -53,7 +64,62 @@ def parse(text):
             m = SUB.match(line)
             if m:
                 subs.append((m.group(1), line[m.end():].strip()))
-    return options, subs
+    return options, subs, pos
+
+
+ARGPARSE_OPTION = re.compile(r"^  (-\S+(?: [^\s,]+)?(?:, -\S+(?: [^\s,]+)?)*)(?:\s{2,}(.*))?$")
+
+
+def parse_argparse(text):
+    """parse() for argparse's --help: METAVARs become the value type ("TEXT", or "TEXT:{a,b}" for choices),
+    so that the rest of this file treats both alike."""
+    options, subs, pos, block = [], [], [], None
+    for line in text.splitlines():
+        if line in ("options:", "optional arguments:"):
+            block = "opt"
+            continue
+        if line == "positional arguments:":
+            block = "pos"
+            continue
+        if not line.strip() or not line.startswith(" "):
+            block = None  # a blank line ends argparse's blocks (the epilog follows)
+            continue
+        if block == "opt":
+            m = ARGPARSE_OPTION.match(line)
+            if m:
+                names, type_ = [], None
+                for part in m.group(1).split(", "):
+                    name, _, metavar = part.partition(" ")
+                    names.append(name)
+                    if metavar:
+                        type_ = "TEXT:" + metavar if metavar.startswith("{") else "TEXT"
+                options.append([names, type_, (m.group(2) or "").strip()])
+            elif options and line.startswith("      "):
+                options[-1][2] = (options[-1][2] + " " + line.strip()).strip()
+        elif block == "pos":
+            if re.match(r"^    [a-z]", line):
+                subs.append((line.split()[0], line.strip()[len(line.split()[0]):].strip()))
+            elif re.match(r"^  [a-z]", line):
+                pos.append(line.split()[0])
+    return options, subs, pos
+
+
+def description(text):
+    """The tool's one-line summary: CLI11 prints its description first; argparse prints the usage first,
+    then a blank line and the description. A leading "rk-<tool>: " is dropped."""
+    lines = text.splitlines()
+    if text.startswith("usage:"):
+        start = lines.index("") + 1 if "" in lines else 0
+        para = []
+        for line in lines[start:]:
+            if not line.strip():
+                break
+            para.append(line.strip())
+        first = " ".join(para)
+    else:
+        first = lines[0] if lines else ""
+    first = re.sub(r"^rk-[a-z]+: ", "", first)
+    return re.split(r"(?<=[.:])\s", first)[0].rstrip(".:")
 
 
 def choices(type_):
@@ -64,6 +130,8 @@ def choices(type_):
 def takes_path(names, type_, desc):
     if not type_ or not type_.startswith("TEXT") or choices(type_):
         return False
+    if re.search(r"default:? [0-9.]+\b", desc):
+        return False  # a number (argparse types every value TEXT here): "--time ... (default 60 minutes)"
     words = " ".join(names).lower() + " " + desc.lower()
     return any(w in words for w in PATH_WORDS) or names[-1] in ("-o", "--output", "-i", "--input")
 
@@ -71,11 +139,8 @@ def takes_path(names, type_, desc):
 def cmd_man(tool, out):
     name = os.path.basename(tool)
     text = help_text([tool])
-    _, subs = parse(text)
-    first = text.splitlines()[0] if text else name
-    if first.startswith(name + ": "):
-        first = first[len(name) + 2:]  # "rk-sim: synthesize ..." -> "synthesize ..."
-    summary = re.split(r"(?<=[.:])\s", first)[0].rstrip(".:")
+    _, subs, _ = parse(text)
+    summary = description(text) or name
     include = "[NAME]\n%s \\- %s\n" % (name, summary)
     if subs:
         include += "[SUBCOMMANDS]\n"
@@ -104,12 +169,12 @@ def completion_body(tool):
     """Bash case arms for the tool: per subcommand (and "" for the top level) its words, path options,
     choice options."""
     name = os.path.basename(tool)
-    top_opts, subs = parse(help_text([tool]))
+    top_opts, subs, pos = parse(help_text([tool]))
     levels = [("", top_opts, [s for s, _ in subs])]
     # Common options (--report, --quiet, ...) are accepted after a subcommand too (CLI11 fallthrough).
     common = [o for o in top_opts if o[0][-1] not in ("--help", "--version")]
     for sub, _ in subs:
-        opts, _ = parse(help_text([tool, sub]))
+        opts, _, _ = parse(help_text([tool, sub]))
         own = {n for o in opts for n in o[0]}
         levels.append((sub, opts + [o for o in common if not own.intersection(o[0])], []))
     words_arms, prev_arms = [], []
@@ -126,11 +191,11 @@ def completion_body(tool):
                 prev_arms.append((key, "COMPREPLY=($(compgen -f -- \"$cur\")); return"))
             elif type_:
                 prev_arms.append((key, "return"))  # a number or free text: nothing to offer
-    return name, [s for s, _ in subs], words_arms, prev_arms
+    return name, [s for s, _ in subs], words_arms, prev_arms, bool(pos)
 
 
 def cmd_completion(tool, out):
-    name, subs, words_arms, prev_arms = completion_body(tool)
+    name, subs, words_arms, prev_arms, has_pos = completion_body(tool)
     fn = function_name(name)
     lines = ["# bash completion for %s (generated from its --help by scripts/cli_manual.py)" % name,
              "%s() {" % fn,
@@ -144,8 +209,11 @@ def cmd_completion(tool, out):
     for key, action in prev_arms:
         level, pattern = key.split(":", 1)
         lines.append("    %s) %s ;;" % ("|".join(level + ":" + p for p in pattern.split("|")), action))
+    # A word that is not an option: a subcommand name while none is chosen; else a file name when the tool
+    # (or subcommand) takes one as a positional argument (rk-run TRIAL, rk-report OUT_DIR); else options.
+    words_when = '"$cur" == -* || -z "$sub"' if subs else ('"$cur" == -*' if has_pos else "1 == 1")
     lines += ["    *) ;;", "  esac", '  case "$sub" in'] + words_arms + ["  esac",
-              '  if [[ "$cur" == -* || -z "$sub" ]]; then',
+              "  if [[ %s ]]; then" % words_when,
               '    COMPREPLY=($(compgen -W "$words" -- "$cur"))',
               "  else",
               '    COMPREPLY=($(compgen -f -- "$cur"))',

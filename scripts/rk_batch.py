@@ -11,8 +11,6 @@ import sys
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
 import rk_output  # noqa: E402
 
-VERSION = "0.1.0"
-
 # Results of one trial, as rk-run's --report says them, and how a summary counts them.
 DONE, UP_TO_DATE, LOCKED, FAILED, PLANNED = "done", "up-to-date", "locked", "failed", "planned"
 COUNT_KEYS = {DONE: "done", UP_TO_DATE: "up_to_date", LOCKED: "skipped_locked", FAILED: "failed",

@@ -435,7 +435,8 @@ void RequireEnough(std::size_t n_obs, std::size_t n_params, const std::string& w
 }  // namespace
 
 PointingSolution SolvePointing(const ObservationBuilder& build, const camera::CameraModel& cam,
-                               const EstimateSet& est, const PointingCalibrationOptions& opt) {
+                               const EstimateSet& est, const PointingCalibrationOptions& opt,
+                               const std::function<void(std::int64_t)>& progress) {
   PointingSolution s;
   s.estimated = est;
   for (int k = 0; k < kNumPointingParams; ++k) {
@@ -449,10 +450,12 @@ PointingSolution SolvePointing(const ObservationBuilder& build, const camera::Ca
   p.x = {0, 0, 0, 0, cam.mount_yaw_rad, cam.mount_pitch_rad, cam.mount_roll_rad, 0.0, cam.time_offset_s};
   if (est[kParamAzOffset]) p.x[kParamAzOffset] = InitialAzOffset(obs, cam);
   std::size_t misfit = 0;
+  std::int64_t solves = 0;
   for (;;) {
     misfit = 0;
     for (int round = 0;; ++round) {
       s.iterations += RunCeres(est, opt.max_iterations, &p, &s.termination);
+      if (progress) progress(++solves);
       Residuals(p, &s);
       if (round >= kMaxOutlierRounds || RejectOutliers(s, &p, &misfit) == 0) break;
       RequireEnough(ActiveCount(p), s.estimated_params.size(), " left after rejecting outliers");

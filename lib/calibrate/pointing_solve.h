@@ -113,8 +113,11 @@ using ObservationBuilder = std::function<PointingObservations(double tau0_s)>;
 
 // Throws ProcessingError when there are fewer residuals than parameters, the solve fails, or the
 // observations leave a parameter undetermined.
+// `progress(n)` (optional) is called after each Ceres solve, n = solves done (outlier passes and τ
+// re-evaluations: at most (kMaxOutlierRounds + 1) · (kMaxRelinearisations + 1), usually 1 to 3).
 PointingSolution SolvePointing(const ObservationBuilder& build, const camera::CameraModel& camera,
-                               const EstimateSet& estimate, const PointingCalibrationOptions& options);
+                               const EstimateSet& estimate, const PointingCalibrationOptions& options,
+                               const std::function<void(std::int64_t)>& progress = {});
 
 // The circular median of target azimuth − ray azimuth (radians, (−π, π]): the azimuth zero's first guess.
 double InitialAzOffset(const PointingObservations& obs, const camera::CameraModel& camera);

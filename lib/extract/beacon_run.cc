@@ -11,14 +11,18 @@ namespace rk::extract {
 using Clock = std::chrono::steady_clock;
 
 BeaconRunResult RunBeacon(const std::vector<std::string>& videos, const FrameClock& clock,
-                          const BeaconTrackOptions& opt, const std::function<void(std::int64_t)>& progress) {
+                          const BeaconTrackOptions& opt, const std::function<void(std::int64_t)>& progress,
+                          const std::function<void(const BeaconFrameResult&)>& on_row) {
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
   BeaconRunResult res;
   BeaconTracker tracker(opt);
   static_cast<VideoRunStats&>(res) = ForEachFrame(
       videos, clock,
-      [&](const cv::Mat& frame, std::int64_t k, double t_s) { res.rows.push_back(tracker.Process(frame, k, t_s)); },
+      [&](const cv::Mat& frame, std::int64_t k, double t_s) {
+        res.rows.push_back(tracker.Process(frame, k, t_s));
+        if (on_row) on_row(res.rows.back());
+      },
       progress, 1);  // every frame: io::ProgressMeter throttles the redraws
   res.summary = tracker.summary();
   if (res.summary.ok + res.summary.reacquired == 0) {
@@ -40,32 +44,35 @@ DecodeResult DecodeOnly(const std::vector<std::string>& videos) {
 io::CsvWriter BeaconTrackCsv(const std::vector<BeaconFrameResult>& rows, int bit_depth) {
   (void)bit_depth;
   io::CsvWriter w({"frame", "t_s", "x_px", "y_px", "peak", "area_px", "status", "ncc", "sigma_x_px", "sigma_y_px"});
-  for (const auto& r : rows) {
-    w.Add(static_cast<std::int64_t>(r.frame)).Add(r.t_s, 9);
-    if (r.has_xy) {
-      w.Add(r.x_px, 4).Add(r.y_px, 4);
-    } else {
-      w.AddEmpty().AddEmpty();
-    }
-    if (r.has_spot) {
-      w.Add(static_cast<std::int64_t>(std::llround(r.peak_dn))).Add(r.area_px);
-    } else {
-      w.AddEmpty().AddEmpty();
-    }
-    w.Add(BeaconStatusName(r.status));
-    if (r.has_ncc) {
-      w.Add(r.ncc, 4);
-    } else {
-      w.AddEmpty();
-    }
-    if (r.has_xy) {
-      w.Add(r.sigma_x_px, 5).Add(r.sigma_y_px, 5);
-    } else {
-      w.AddEmpty().AddEmpty();
-    }
-    w.EndRow();
-  }
+  for (const auto& r : rows) AppendBeaconTrackRow(&w, r);
   return w;
+}
+
+void AppendBeaconTrackRow(io::CsvWriter* out, const BeaconFrameResult& r) {
+  io::CsvWriter& w = *out;
+  w.Add(static_cast<std::int64_t>(r.frame)).Add(r.t_s, 9);
+  if (r.has_xy) {
+    w.Add(r.x_px, 4).Add(r.y_px, 4);
+  } else {
+    w.AddEmpty().AddEmpty();
+  }
+  if (r.has_spot) {
+    w.Add(static_cast<std::int64_t>(std::llround(r.peak_dn))).Add(r.area_px);
+  } else {
+    w.AddEmpty().AddEmpty();
+  }
+  w.Add(BeaconStatusName(r.status));
+  if (r.has_ncc) {
+    w.Add(r.ncc, 4);
+  } else {
+    w.AddEmpty();
+  }
+  if (r.has_xy) {
+    w.Add(r.sigma_x_px, 5).Add(r.sigma_y_px, 5);
+  } else {
+    w.AddEmpty().AddEmpty();
+  }
+  w.EndRow();
 }
 
 nlohmann::json BeaconRunResult::SummaryJson() const {

@@ -29,10 +29,11 @@ struct BeaconRunResult : VideoRunStats {  // frames, size, bit depth, wall and e
 // Runs the tracker over all frames of `videos`. Throws DataError naming the
 // frames file if it has fewer times than the video has frames, and naming the
 // (last) video if it has fewer frames than the frames file lists (truncated);
-// ProcessingError if the beacon was never found. `progress(frames)` is called
-// every 100 frames when set.
+// ProcessingError if the beacon was never found (after the last frame). `progress(frames)` is called
+// every frame when set, `on_row(row)` with each frame's row as soon as it is made (streaming output).
 BeaconRunResult RunBeacon(const std::vector<std::string>& videos, const FrameClock& clock,
-                          const BeaconTrackOptions& opt, const std::function<void(std::int64_t)>& progress = {});
+                          const BeaconTrackOptions& opt, const std::function<void(std::int64_t)>& progress = {},
+                          const std::function<void(const BeaconFrameResult&)>& on_row = {});
 
 // Reads every frame and does nothing else (for timing the decoder).
 struct DecodeResult {
@@ -43,5 +44,7 @@ DecodeResult DecodeOnly(const std::vector<std::string>& videos);
 
 // The track as CSV (columns above).
 io::CsvWriter BeaconTrackCsv(const std::vector<BeaconFrameResult>& rows, int bit_depth);
+// One frame's row of that CSV.
+void AppendBeaconTrackRow(io::CsvWriter* w, const BeaconFrameResult& r);
 
 }  // namespace rk::extract

@@ -7,14 +7,18 @@
 namespace rk::extract {
 
 FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const FrameClock& clock, const target::FeatureModel& model,
-                             const FeatureTrackOptions& options, const std::function<void(std::int64_t)>& progress) {
+                             const FeatureTrackOptions& options, const std::function<void(std::int64_t)>& progress,
+                             const std::function<void(const FeatureFrameResult&)>& on_row) {
   std::string why;
   if (!options.Check(&why)) throw UsageError(why);
   FeatureRunResult res;
   FeatureTracker tracker(model, options);
   static_cast<VideoRunStats&>(res) = ForEachFrame(
       videos, clock,
-      [&](const cv::Mat& frame, std::int64_t k, double t_s) { res.rows.push_back(tracker.Process(frame, k, t_s)); },
+      [&](const cv::Mat& frame, std::int64_t k, double t_s) {
+        res.rows.push_back(tracker.Process(frame, k, t_s));
+        if (on_row) on_row(res.rows.back());
+      },
       progress, 1);  // every frame: io::ProgressMeter throttles the redraws
   res.summary = tracker.summary();
   if (res.summary.measured == 0) {
@@ -31,25 +35,28 @@ FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const Frame
 
 io::CsvWriter FeaturePointsCsv(const std::vector<FeatureFrameResult>& rows, const target::FeatureModel& model) {
   io::CsvWriter w({"frame", "t_s", "id", "x_px", "y_px", "status", "sigma_px", "ncc", "radius_px"});
-  for (const FeatureFrameResult& r : rows) {
-    for (std::size_t i = 0; i < model.size(); ++i) {
-      const FeaturePoint& p = r.points[i];
-      w.Add(r.frame).Add(r.t_s, 9).Add(model.ids[i]);
-      if (p.has_xy) {
-        w.Add(p.px.x(), 4).Add(p.px.y(), 4);
-      } else {
-        w.AddEmpty().AddEmpty();
-      }
-      w.Add(RowStatusName(p.status));
-      if (p.has_xy) {
-        w.Add(p.sigma_px, 5).Add(p.ncc, 4).Add(p.radius_px, 3);
-      } else {
-        w.AddEmpty().AddEmpty().AddEmpty();
-      }
-      w.EndRow();
-    }
-  }
+  for (const FeatureFrameResult& r : rows) AppendFeaturePointRows(&w, r, model);
   return w;
+}
+
+void AppendFeaturePointRows(io::CsvWriter* out, const FeatureFrameResult& r, const target::FeatureModel& model) {
+  io::CsvWriter& w = *out;
+  for (std::size_t i = 0; i < model.size(); ++i) {
+    const FeaturePoint& p = r.points[i];
+    w.Add(r.frame).Add(r.t_s, 9).Add(model.ids[i]);
+    if (p.has_xy) {
+      w.Add(p.px.x(), 4).Add(p.px.y(), 4);
+    } else {
+      w.AddEmpty().AddEmpty();
+    }
+    w.Add(RowStatusName(p.status));
+    if (p.has_xy) {
+      w.Add(p.sigma_px, 5).Add(p.ncc, 4).Add(p.radius_px, 3);
+    } else {
+      w.AddEmpty().AddEmpty().AddEmpty();
+    }
+    w.EndRow();
+  }
 }
 
 nlohmann::json FeatureRunResult::SummaryJson() const {

@@ -33,8 +33,12 @@ struct FeatureRunResult : VideoRunStats {  // frames, size, bit depth, wall and 
 // options. progress(frames) is called every 20 frames when set.
 FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const FrameClock& clock, const target::FeatureModel& model,
                              const FeatureTrackOptions& options,
-                             const std::function<void(std::int64_t)>& progress = {});
+                             const std::function<void(std::int64_t)>& progress = {},
+                             const std::function<void(const FeatureFrameResult&)>& on_row = {});
 
 io::CsvWriter FeaturePointsCsv(const std::vector<FeatureFrameResult>& rows, const target::FeatureModel& model);
+// One frame's rows of that CSV (one per marker). on_row of RunFeatures gets each frame's row as soon as
+// it is made (streaming output).
+void AppendFeaturePointRows(io::CsvWriter* w, const FeatureFrameResult& r, const target::FeatureModel& model);
 
 }  // namespace rk::extract

@@ -7,7 +7,8 @@
 namespace rk::extract {
 
 SilhouetteRunResult RunSilhouette(const std::vector<std::string>& videos, const FrameClock& clock,
-                                  const SilhouetteOptions& opt, const std::function<void(std::int64_t)>& progress) {
+                                  const SilhouetteOptions& opt, const std::function<void(std::int64_t)>& progress,
+                                  const std::function<void(const SilhouetteFrameRow&)>& on_row) {
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
   SilhouetteRunResult res;
@@ -20,6 +21,7 @@ SilhouetteRunResult RunSilhouette(const std::vector<std::string>& videos, const 
         row.result = ExtractSilhouette(frame, opt);
         ++res.by_status[static_cast<std::size_t>(row.result.status)];
         res.rows.push_back(row);
+        if (on_row) on_row(res.rows.back());
       },
       progress, 1);  // every frame: io::ProgressMeter throttles the redraws
   if (res.by_status[static_cast<std::size_t>(SilhouetteStatus::kOk)] == 0) {
@@ -31,27 +33,30 @@ SilhouetteRunResult RunSilhouette(const std::vector<std::string>& videos, const 
 
 io::CsvWriter SilhouettePointsCsv(const std::vector<SilhouetteFrameRow>& rows) {
   io::CsvWriter w({"frame", "t_s", "id", "x_px", "y_px", "status", "detail", "width_px", "length_px"});
-  const char* ids[3] = {"nose", "tail1", "tail2"};
-  for (const SilhouetteFrameRow& r : rows) {
-    const bool ok = r.result.status == SilhouetteStatus::kOk;
-    const char* status = ok ? "ok" : (r.result.status == SilhouetteStatus::kNotFound ? "lost" : "invalid");
-    for (int i = 0; i < 3; ++i) {
-      w.Add(r.frame).Add(r.t_s, 9).Add(ids[i]);
-      if (ok) {
-        w.Add(r.result.px[static_cast<std::size_t>(i)].x(), 4).Add(r.result.px[static_cast<std::size_t>(i)].y(), 4);
-      } else {
-        w.AddEmpty().AddEmpty();
-      }
-      w.Add(status).Add(SilhouetteStatusName(r.result.status));
-      if (ok) {
-        w.Add(r.result.width_px, 4).Add(r.result.length_px, 4);
-      } else {
-        w.AddEmpty().AddEmpty();
-      }
-      w.EndRow();
-    }
-  }
+  for (const SilhouetteFrameRow& r : rows) AppendSilhouettePointRows(&w, r);
   return w;
+}
+
+void AppendSilhouettePointRows(io::CsvWriter* out, const SilhouetteFrameRow& r) {
+  io::CsvWriter& w = *out;
+  const char* ids[3] = {"nose", "tail1", "tail2"};
+  const bool ok = r.result.status == SilhouetteStatus::kOk;
+  const char* status = ok ? "ok" : (r.result.status == SilhouetteStatus::kNotFound ? "lost" : "invalid");
+  for (int i = 0; i < 3; ++i) {
+    w.Add(r.frame).Add(r.t_s, 9).Add(ids[i]);
+    if (ok) {
+      w.Add(r.result.px[static_cast<std::size_t>(i)].x(), 4).Add(r.result.px[static_cast<std::size_t>(i)].y(), 4);
+    } else {
+      w.AddEmpty().AddEmpty();
+    }
+    w.Add(status).Add(SilhouetteStatusName(r.result.status));
+    if (ok) {
+      w.Add(r.result.width_px, 4).Add(r.result.length_px, 4);
+    } else {
+      w.AddEmpty().AddEmpty();
+    }
+    w.EndRow();
+  }
 }
 
 nlohmann::json SilhouetteRunResult::SummaryJson() const {

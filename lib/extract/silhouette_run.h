@@ -38,8 +38,12 @@ struct SilhouetteRunResult : VideoRunStats {  // frames, size, bit depth, wall a
 // fewer times than frames, ProcessingError if no frame gives the three points, UsageError for bad options.
 SilhouetteRunResult RunSilhouette(const std::vector<std::string>& videos, const FrameClock& clock,
                                   const SilhouetteOptions& options,
-                                  const std::function<void(std::int64_t)>& progress = {});
+                                  const std::function<void(std::int64_t)>& progress = {},
+                                  const std::function<void(const SilhouetteFrameRow&)>& on_row = {});
 
 io::CsvWriter SilhouettePointsCsv(const std::vector<SilhouetteFrameRow>& rows);
+// One frame's rows of that CSV (nose, tail1, tail2). on_row of RunSilhouette gets each frame's row as soon
+// as it is made (streaming output).
+void AppendSilhouettePointRows(io::CsvWriter* w, const SilhouetteFrameRow& r);
 
 }  // namespace rk::extract

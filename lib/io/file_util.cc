@@ -14,6 +14,7 @@
 #include <regex>
 #include <sstream>
 
+#include "io/csv_stream.h"
 #include "io/error.h"
 #include "io/run_record.h"
 
@@ -88,7 +89,7 @@ LinkEnd FollowLinks(const std::string& path) {
   throw IoError(path, "too many levels of symbolic links");
 }
 
-void WriteAll(int fd, const std::string& data, const std::string& name) {
+void WriteAll(int fd, std::string_view data, const std::string& name) {
   std::size_t done = 0;
   while (done < data.size()) {
     const ssize_t n = ::write(fd, data.data() + done, data.size() - done);
@@ -175,9 +176,7 @@ void WriteFileAtomic(const std::string& path, const std::string& data) {
   const OutputTarget target = ResolveOutput(path);
   switch (target.kind) {
     case OutputTarget::Kind::kDescriptor:
-      // Whatever std::cout buffered must come first.
-      std::cout.flush();
-      WriteAll(target.fd, data, target.fd == STDOUT_FILENO ? "<stdout>" : path);
+      WriteToDescriptor(target.fd, data, path);
       return;
     case OutputTarget::Kind::kWriteThrough:
       WriteThrough(target.path, data);
@@ -186,6 +185,17 @@ void WriteFileAtomic(const std::string& path, const std::string& data) {
       ReplaceAtomically(target.path, data);
       return;
   }
+}
+
+int StreamDescriptor(const std::string& path) {
+  const OutputTarget target = ResolveOutput(path);
+  return target.kind == OutputTarget::Kind::kDescriptor ? target.fd : -1;
+}
+
+void WriteToDescriptor(int fd, std::string_view data, const std::string& path) {
+  // Whatever std::cout buffered must come first.
+  std::cout.flush();
+  WriteAll(fd, data, fd == STDOUT_FILENO ? "<stdout>" : path);
 }
 
 void CheckOutputNotInput(const std::string& output, const std::vector<std::string>& inputs) {

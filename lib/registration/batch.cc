@@ -238,14 +238,16 @@ io::Json BatchStats::ToJson() const {
   return j;
 }
 
-BatchResult RunBatch(const RegistrationInput& in, const BatchOptions& opt) {
+BatchResult RunBatch(const RegistrationInput& in, const BatchOptions& opt,
+                     const std::function<void(std::int64_t)>& pass_progress,
+                     const std::function<void(std::int64_t)>& solve_progress) {
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
   if (opt.association == BatchAssociation::kTrack && !in.has_track_id) {
     throw DataError(in.plots_source, 1, 0, "missing column 'track_id': --associate track needs the known association");
   }
   BatchResult out;
-  out.initial = RunBernoulli(in, opt.initial);
+  out.initial = RunBernoulli(in, opt.initial, pass_progress);
   BiasVector x = out.initial.result.x;
   BiasMatrix P = out.initial.result.P;
   PairList pairs;
@@ -266,6 +268,7 @@ BatchResult RunBatch(const RegistrationInput& in, const BatchOptions& opt) {
     out.stats.iterations += static_cast<int>(sol.summary.iterations.size());
     x = sol.x;
     if (sol.covariance_ok) P = sol.P;
+    if (solve_progress) solve_progress(out.stats.rounds);
   }
   out.pairs = pairs;
   out.stats.pairs = CountPairs(pairs);

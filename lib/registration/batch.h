@@ -24,6 +24,7 @@
 //   track      pairs with the same track_id (known association; a reference, needs track_id).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -82,6 +83,10 @@ struct BatchResult {
 
 // Throws ProcessingError (exit 1) if no pair can be associated or the solve fails; DataError if
 // association "track" is asked of plots without track_id.
-BatchResult RunBatch(const RegistrationInput& input, const BatchOptions& options);
+// Progress (optional): `pass_progress(k)` after each step of the Bernoulli pass (k = steps done), then
+// `solve_progress(r)` after each association round's solve (r = rounds done, of at most max_rounds).
+BatchResult RunBatch(const RegistrationInput& input, const BatchOptions& options,
+                     const std::function<void(std::int64_t)>& pass_progress = {},
+                     const std::function<void(std::int64_t)>& solve_progress = {});
 
 }  // namespace rk::registration

@@ -22,7 +22,7 @@ io::Json KfOptions::ToJson() const {
   return j;
 }
 
-KfResult RunKalman(const RegistrationInput& in, const KfOptions& opt) {
+KfResult RunKalman(const RegistrationInput& in, const KfOptions& opt, const std::function<void(std::int64_t)>& progress) {
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
   if (!in.has_track_id) {
@@ -77,6 +77,7 @@ KfResult RunKalman(const RegistrationInput& in, const KfOptions& opt) {
       ++out.counters.steps_updated;
     }
     out.result.steps.push_back(est);
+    if (progress) progress(static_cast<std::int64_t>(k) + 1);
   }
   out.result.x = m;
   out.result.P = P;

@@ -8,6 +8,7 @@
 // track = <id>: that target only (the paper's Figs. 1–2 show one such filter per target).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -33,6 +34,8 @@ struct KfResult {
 };
 
 // Throws DataError if the plots have no track_id column, UsageError if `track` names no track.
-KfResult RunKalman(const RegistrationInput& input, const KfOptions& options);
+// `progress(k)` (optional) is called after each of the input's steps, k = steps done.
+KfResult RunKalman(const RegistrationInput& input, const KfOptions& options,
+                   const std::function<void(std::int64_t)>& progress = {});
 
 }  // namespace rk::registration

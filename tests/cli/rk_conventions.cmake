@@ -12,4 +12,5 @@ rk_cli_script(rk_conventions/rk_man_and_completion)
 
 # Progress: nothing on stderr when it is not a terminal; on a pseudo-terminal (script(1)) the progress
 # line with done/total, rate and ETA, then the closing summary line; nothing with --quiet.
-rk_cli_script(rk_conventions/rk_progress_only_on_a_terminal REQUIRES sim_small)
+# rk-extract, rk-register kf and batch (both stages), rk-calibrate pointing.
+rk_cli_script(rk_conventions/rk_progress_only_on_a_terminal REQUIRES sim_small sim_radar_data pointing_data)

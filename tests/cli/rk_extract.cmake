@@ -20,6 +20,10 @@ rk_cli_script(rk_extract/extract_cli_beacon_seq16_fps REQUIRES extract_inputs)
 rk_cli_script(rk_extract/extract_cli_beacon_segments REQUIRES extract_inputs)
 # -o - writes the CSV to stdout.
 rk_cli_script(rk_extract/extract_cli_beacon_stdout REQUIRES extract_inputs)
+# -o - streams: each frame's row is in the pipe before the next frame is read (frame 5 a FIFO nobody writes,
+# proof by ordering); a bad frame after that still gives the one-line error and exit 3; -o FILE stays atomic.
+rk_cli_script(rk_extract/extract_cli_beacon_streams REQUIRES extract_inputs)
+set_tests_properties(extract_cli_beacon_streams PROPERTIES TIMEOUT 300)
 rk_cli_script(rk_extract/extract_cli_decode_only REQUIRES extract_inputs)
 
 # Malformed input / usage (exit codes of SPEC.md §4, no partial output).

@@ -1,9 +1,14 @@
 // CSV tables (io/csv.h): reading with errors that name file, line and column, writing, lists.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <unistd.h>
 
+#include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "io/csv.h"
+#include "io/csv_stream.h"
 #include "io/error.h"
 #include "test_expect_error.h"
 
@@ -48,6 +53,70 @@ TEST(CsvTable, TimeGoingBackwardsIsReportedWhereItHappens) {
 TEST(CsvTable, QuotedFieldsAndCrLf) {
   auto t = CsvTable::Parse("id,note\r\nnose,\"a, b \"\"c\"\"\"\r\n", "q.csv");
   EXPECT_EQ(t.Cell(0, 1), "a, b \"c\"");
+}
+
+// What is waiting in a pipe's read end (non-blocking: "" when nothing was written).
+std::string Drain(int fd) {
+  std::string out;
+  char buf[256];
+  for (;;) {
+    const ssize_t n = ::read(fd, buf, sizeof buf);
+    if (n <= 0) return out;
+    out.append(buf, static_cast<std::size_t>(n));
+  }
+}
+
+TEST(CsvStream, SendsEndedRowsToADescriptorAtEachFlush) {
+  int fds[2];
+  ASSERT_EQ(::pipe2(fds, O_NONBLOCK), 0);
+  const std::string path = "/dev/fd/" + std::to_string(fds[1]);
+  CsvWriter w({"frame", "x_px"});
+  CsvStream out(w, path);
+  EXPECT_TRUE(out.streaming());
+  EXPECT_EQ(Drain(fds[0]), "");  // nothing before the first flush
+  w.Add(0).Add(1.5, 1);
+  w.EndRow();
+  out.Flush();
+  EXPECT_EQ(Drain(fds[0]), "frame,x_px\n0,1.5\n");
+  w.Add(1);  // a row being built is not sent
+  out.Flush();
+  EXPECT_EQ(Drain(fds[0]), "");
+  w.Add(2.5, 1);
+  w.EndRow();
+  w.Add(2).AddEmpty();
+  w.EndRow();
+  out.Flush();
+  EXPECT_EQ(Drain(fds[0]), "1,2.5\n2,\n");
+  out.Flush();  // nothing new: nothing written
+  EXPECT_EQ(Drain(fds[0]), "");
+  w.Add(3).Add(4.0, 1);
+  w.EndRow();
+  out.Finish();  // the rest
+  EXPECT_EQ(Drain(fds[0]), "3,4.0\n");
+  EXPECT_EQ(w.str(), "frame,x_px\n0,1.5\n1,2.5\n2,\n3,4.0\n");  // the whole table is still there
+  ::close(fds[0]);
+  ::close(fds[1]);
+}
+
+TEST(CsvStream, FilesAreNotStreamedButWrittenAtomicallyAtTheEnd) {
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("rk_csv_stream_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string path = (dir / "out.csv").string();
+  CsvWriter w({"frame"});
+  CsvStream out(w, path);
+  EXPECT_FALSE(out.streaming());
+  w.Add(0);
+  w.EndRow();
+  out.Flush();
+  EXPECT_FALSE(std::filesystem::exists(path));  // a file appears only at Finish, whole
+  out.Finish();
+  std::FILE* f = std::fopen(path.c_str(), "r");
+  ASSERT_NE(f, nullptr);
+  char buf[64] = {};
+  const std::size_t n = std::fread(buf, 1, sizeof buf - 1, f);
+  std::fclose(f);
+  EXPECT_EQ(std::string(buf, n), "frame\n0\n");
+  std::filesystem::remove_all(dir);
 }
 
 TEST(CsvWriter, RoundTripsThroughParser) {

@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
 # CLI test rk_dispatcher: registered, and described, in tests/cli/rk_conventions.cmake.
 set -eu
-# The compiled tools (the build also copies the Python tools rk-plot, rk-report, rk-nightly, rk-slurm next to
-# them: listed by rk help, documented in docs/, no man page or completion of their own yet).
-is_elf() { [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = '177ELF' ]; }
+# Every tool of the build: the compiled ones and the Python tools rk-plot, rk-report, rk-nightly, rk-slurm
+# that the build copies beside them (with rk_version.py: the same version and commit).
 # shellcheck disable=SC2034
 data=$1 expect=$2 src=$3
 bin=$(dirname "$(command -v rk-sim)")
@@ -41,9 +40,15 @@ if git -C "$src" rev-parse HEAD >/dev/null 2>&1; then
   head=$(git -C "$src" rev-parse --short=12 HEAD)
   [ "$commit" = "$head" ] || { echo "FAIL: rk --version names $commit, the checkout is at $head"; exit 1; }
 fi
+n_py=0
 for t in "$bin"/rk-*; do
-  [ -x "$t" ] && [ -f "$t" ] && is_elf "$t" || continue
+  [ -x "$t" ] && [ -f "$t" ] || continue
   case "$(basename "$t")" in *.*) continue ;; esac
-  "$t" --version | grep -q "(git $commit)" || { echo "FAIL: $t --version lacks the commit"; exit 1; }
+  "$t" --version | grep -Eqx "$(basename "$t") \(rangekit\) [0-9]+\.[0-9]+\.[0-9]+ \(git $commit\)" ||
+    { echo "FAIL: $t --version is not 'NAME (rangekit) VERSION (git $commit)'"; "$t" --version; exit 1; }
+  head -c 2 "$t" | grep -q '#!' && n_py=$((n_py + 1))
 done
+[ "$n_py" -ge 4 ] || { echo "FAIL: only $n_py Python tools checked"; exit 1; }
+# The Python tools' version is the compiled tools' (one owner: CMakeLists.txt's project()).
+[ "$(rk-report --version | sed -E 's/.*\) ([0-9.]+) \(.*/\1/')" = "$(rk --version | sed -E 's/.*\) ([0-9.]+) \(.*/\1/')" ]
 echo ok

@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
 # CLI test rk_man_and_completion: registered, and described, in tests/cli/rk_conventions.cmake.
 set -eu
-# The compiled tools (the build also copies the Python tools rk-plot, rk-report, rk-nightly, rk-slurm next to
-# them: listed by rk help, documented in docs/, no man page or completion of their own yet).
-is_elf() { [ "$(head -c 4 "$1" | od -An -c | tr -d ' ')" = '177ELF' ]; }
+# Every tool of the build: the compiled ones and the Python tools rk-plot, rk-report, rk-nightly, rk-slurm
+# that the build copies beside them (their argparse --help parsed by the same scripts/cli_manual.py).
 # shellcheck disable=SC2034
 data=$1 expect=$2 src=$3
 bin=$(dirname "$(command -v rk-sim)")
@@ -12,9 +11,12 @@ comp=$build/completions
 man=$build/man
 tools=()
 for t in "$bin"/rk-*; do
-  [ -x "$t" ] && [ -f "$t" ] && is_elf "$t" || continue
+  [ -x "$t" ] && [ -f "$t" ] || continue
   case "$(basename "$t")" in *.*) continue ;; esac
   tools+=("$(basename "$t")")
+done
+for t in rk-plot rk-report rk-nightly rk-slurm; do
+  case " ${tools[*]} " in *" $t "*) ;; *) echo "FAIL: $t is not in $bin"; exit 1 ;; esac
 done
 for t in "${tools[@]}" rk; do
   [ -s "$comp/$t" ] || { echo "FAIL: no completion file $comp/$t"; exit 1; }
@@ -27,6 +29,9 @@ if command -v help2man >/dev/null; then
   done
   grep -q '^\.SS rk-extract beacon' "$man/rk-extract.1"
   grep -q 'Usage: rk-extract beacon' "$man/rk-extract.1"
+  grep -q '^\.SS rk-slurm submit' "$man/rk-slurm.1"
+  grep -A1 '^\.SH NAME' "$man/rk-report.1" | grep -q '^rk-report \\- the trial report page'
+  grep -q 'max\\-points' "$man/rk-report.1"
 else
   echo "help2man not installed: man pages not checked"
 fi
@@ -44,6 +49,15 @@ complete_words "$comp/rk-locate" rk-locate --tu | grep -qx -- --turret
 complete_words "$comp/rk-locate" rk-locate --turret-interp "" | grep -qx cubic  # choice values
 touch "$data/completion_probe.csv"
 (cd "$data" && complete_words "$comp/rk-locate" rk-locate --track completion_probe | grep -qx completion_probe.csv)
+# The Python tools: options, subcommands, file names after path options and for a positional argument,
+# nothing after a number.
+complete_words "$comp/rk-report" rk-report --max | grep -qx -- --max-points
+(cd "$data" && complete_words "$comp/rk-report" rk-report completion_pro | grep -qx completion_probe.csv)
+(cd "$data" && complete_words "$comp/rk-nightly" rk-nightly --log completion_pro | grep -qx completion_probe.csv)
+[ -z "$(cd "$data" && complete_words "$comp/rk-nightly" rk-nightly --jobs completion_pro)" ]
+complete_words "$comp/rk-slurm" rk-slurm "" | grep -qx submit
+complete_words "$comp/rk-slurm" rk-slurm submit --max | grep -qx -- --max-parallel
+complete_words "$comp/rk-plot" rk-plot --col | grep -qx -- --columns
 # rk: tool names, then the tool's own completion.
 (PATH=$bin:$PATH; complete_words "$comp/rk" rk loc | grep -qx locate)
 (PATH=$bin:$PATH; complete_words "$comp/rk" rk extract "" | grep -qx silhouette)
