@@ -20,9 +20,10 @@ check_out --allow-missing --no-temporaries "$r/site/t3"
 cp "$data/small/range.csv" "$r/site/t3/range.csv"
 rk-nightly "$r" --no-plots -q     # quiet and successful: prints nothing
 test "$(json "$r/rk-nightly-summary.json" 'd["counts"]')" = "{'done': 1, 'up_to_date': 2, 'skipped_locked': 0, 'failed': 0}"
-flock -o "$r/.rk-nightly/lock" sleep 60 & holder=$!
+# The holder's output goes to a file: a sleep left on the test's stdout kept ctest waiting for its 60 s.
+flock -o "$r/.rk-nightly/lock" sleep 60 > "$data/run/nightly_holder.out" 2>&1 & holder=$!
 while flock -n "$r/.rk-nightly/lock" true; do sleep 0.05; done
 set +e; timeout 30 rk-nightly "$r" --no-plots 2> "$data/run/nightly2.err"; rc=$?; set -e
-kill "$holder"; wait "$holder" 2>/dev/null || true
+kill $(pgrep -P "$holder") "$holder"; wait "$holder" 2>/dev/null || true
 test "$rc" = 75; grep -q 'another rk-nightly' "$data/run/nightly2.err"   # at once, not after the holder
 echo ok
