@@ -121,7 +121,8 @@ void CheckRequestedProducts(const TrialManifest& m, const std::vector<Step>& pla
     const auto slash = key.rfind('/');
     const std::string unit = slash == std::string::npos ? "" : key.substr(0, slash);
     const std::string kind = slash == std::string::npos ? key : key.substr(slash + 1);
-    if (kind == "plot") continue;
+    // Plots are warnings; the intersection is checked last, after the cameras whose chains it needs.
+    if (kind == "plot" || kind == "intersect") continue;
     const std::string pointer = "/steps/" + trial::PointerToken(key);
     if (unit == "radar" && !m.radar) {
       fail(pointer, "asks for " + kind + " of the radar, but the manifest has no \"radar\" block ({\"plots\", \"nav\"})",

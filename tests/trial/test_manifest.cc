@@ -175,7 +175,7 @@ TEST(ManifestReader, SeveralStationsErrors) {
             std::string::npos);
   EXPECT_NE(error(R"({"stations": {"a": )" + st + R"(, "b": {"station": {"lat_deg": 1, "lon_deg": 2, "h_m": 3},
  "cameras": {"az": {"video": "v.mkv", "fps": 10, "model": "m.json", "role": "beakon"}}}}})")
-                .find("trial.json:2:70: stations.b.cameras.az.role: 'beakon' is not one of"),
+                .find("trial.json:2:77: stations.b.cameras.az.role: 'beakon' is not one of"),
             std::string::npos);
 }
 
