@@ -1,5 +1,6 @@
 // rk-sim multistation: two to four stations observing one target, each with its own frame times, noisy
-// angles (± range) with their 1σ columns; stations.json and truth for rk-intersect (issue 18). Thin edge:
+// angles (± range) with their 1σ columns; stations.json and truth for rk-intersect (issue 18); with --video
+// also a multi-station trial folder for rk-run (rendered frames per station). Thin edge:
 // CLI11 options → rk::sim::MultistationOptions → rk::sim::WriteMultistationTrial; docs/rk-sim.md.
 #include <memory>
 #include <string>
@@ -43,7 +44,8 @@ Command AddMultistationCommand(CLI::App& app) {
   CLI::App* s = app.add_subcommand(
       "multistation",
       "Two to four stations kilometres apart observing a ballistic arc or a crossing aircraft: each station's "
-      "located.csv (own frame times, noisy angles with 1 sigma, optional range), stations.json, truth.csv");
+      "located.csv (own frame times, noisy angles with 1 sigma, optional range), stations.json, truth.csv; with "
+      "--video also the rendered trial rk-run runs (trial.json, frames, turret logs)");
   s->add_option("--out,-o", p->out, "Folder to create (refused if it exists and is not empty)")->required();
   s->add_flag("--force", p->force, "Replace an existing output folder");
   rk::cli::AddOptions(s, &p->o, rk::sim::MultistationOptions::Table());

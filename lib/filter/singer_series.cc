@@ -37,6 +37,7 @@ struct ForwardInput {
   const std::vector<double>* z;  // NaN = no measurement
   bool angle;
   double a, R, vel_sigma;
+  const std::vector<track::SingerStep>* steps;  // [r]: the step from row r − 1 to r (shared by all passes)
 };
 
 // Kalman forward pass of one column; fills `tr` (x/P pred/filt) and `st` (counts, NIS) when
@@ -44,7 +45,6 @@ struct ForwardInput {
 // Σ (ln S + ν²/S) / 2.
 double ForwardPass(const ForwardInput& in, double accel_sigma, SingerTrack* tr, SingerColumnStats* st) {
   const std::vector<double>& z = *in.z;
-  const std::vector<double>& t_s = *in.t_s;
   const std::size_t n = z.size();
   const double q = 2.0 * in.a * accel_sigma * accel_sigma;
   if (tr) {
@@ -71,10 +71,10 @@ double ForwardPass(const ForwardInput& in, double accel_sigma, SingerTrack* tr, 
       P(2, 2) = accel_sigma * accel_sigma;
       ++updates;
     } else {
-      const double T = t_s[r] - t_s[r - 1];
-      const Eigen::Matrix3d Phi = track::SingerTransition(T, in.a);
+      const track::SingerStep& step = (*in.steps)[r];
+      const Eigen::Matrix3d& Phi = step.transition();
       x = Phi * x;
-      P = Phi * P * Phi.transpose() + track::SingerProcessNoise(T, in.a, q);
+      P = Phi * P * Phi.transpose() + step.ProcessNoise(q);
       P = 0.5 * (P + P.transpose()).eval();
     }
     if (tr) {
@@ -241,6 +241,9 @@ SingerSeriesResult RunSingerSeries(const Series& series, const SingerSeriesOptio
   res.tracks.resize(nc);
   res.stats.resize(nc);
   const double a = 1.0 / options.maneuver_time_s;
+  // Ψ and Q's factors of every step, once for all columns and all candidate σ_m.
+  std::vector<track::SingerStep> steps(n);
+  for (std::size_t r = 1; r < n; ++r) steps[r] = track::SingerStep(series.t_s[r] - series.t_s[r - 1], a);
 
   for (std::size_t c = 0; c < nc; ++c) {
     const auto col = static_cast<Eigen::Index>(c);
@@ -283,7 +286,7 @@ SingerSeriesResult RunSingerSeries(const Series& series, const SingerSeriesOptio
     const double vel_sigma = std::max(2.0 * max_rate, 10.0 * st.meas_sigma);
 
     // σ_m: given, or chosen by maximum likelihood over a grid around the unit default.
-    const ForwardInput in{&series.t_s, &z, angle, a, R, vel_sigma};
+    const ForwardInput in{&series.t_s, &z, angle, a, R, vel_sigma, &steps};
     if (options.accel_sigma.empty() && options.auto_accel_sigma) {
       double best = std::numeric_limits<double>::infinity();
       const double center = accel_sigma;
@@ -307,8 +310,7 @@ SingerSeriesResult RunSingerSeries(const Series& series, const SingerSeriesOptio
       tr.x_smooth = tr.x_filt;
       tr.P_smooth = tr.P_filt;
       for (std::size_t r = n - 1; r-- > st.first_row;) {
-        const double T = series.t_s[r + 1] - series.t_s[r];
-        const Eigen::Matrix3d Phi = track::SingerTransition(T, a);
+        const Eigen::Matrix3d& Phi = steps[r + 1].transition();
         // C = P_f Φᵀ P_p⁻¹  ⇔  Cᵀ = P_p⁻¹ Φ P_f (P symmetric).
         const Eigen::Matrix3d Ct = tr.P_pred[r + 1].ldlt().solve(Phi * tr.P_filt[r]);
         const Eigen::Matrix3d C = Ct.transpose();

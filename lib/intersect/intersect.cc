@@ -119,18 +119,52 @@ void Classify(const OriginFrame& origin, TrajectoryRow* tr, IntersectResult* r) 
   }
 }
 
-[[noreturn]] void ThrowNoOverlap(const StationsFile& stations, const std::vector<StationTrack>& tracks) {
+// The error when no output time has two lines of sight, saying which of three things is true: the stations'
+// rows never overlap; they do, but every output time (--at, --rate) lies outside the overlaps (or outside every
+// station's rows); or output times lie in an overlap but gaps or unusable rows leave fewer than two lines there.
+[[noreturn]] void ThrowNoOverlap(const StationsFile& stations, const std::vector<StationTrack>& tracks,
+                                 const std::vector<double>& times) {
   std::string spans;
+  const auto span_text = [](double a, double b) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "[%.3f, %.3f] s", a, b);
+    return std::string(buf);
+  };
+  std::vector<std::pair<double, double>> span;
   for (std::size_t s = 0; s < tracks.size(); ++s) {
     const auto& t = tracks[s].row_times();
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "%s%s [%.3f, %.3f] s", s ? ", " : "", stations.stations[s].name.c_str(),
-                  t.empty() ? NAN : t.front(), t.empty() ? NAN : t.back());
-    spans += buf;
+    span.emplace_back(t.empty() ? NAN : t.front(), t.empty() ? NAN : t.back());
+    spans += (s ? ", " : "") + stations.stations[s].name + " " + span_text(span.back().first, span.back().second);
   }
-  throw DataError(stations.path, 0, 0,
-                  "no output time has lines of sight from two stations (their usable times never overlap: " +
-                      spans + ")");
+  std::size_t in_any = 0, in_overlap = 0;
+  bool overlap = false;
+  for (std::size_t a = 0; a < span.size(); ++a) {
+    for (std::size_t b = a + 1; b < span.size(); ++b) {
+      overlap = overlap || std::max(span[a].first, span[b].first) <= std::min(span[a].second, span[b].second);
+    }
+  }
+  for (double t : times) {
+    int n = 0;
+    for (const auto& [lo, hi] : span) n += (t >= lo && t <= hi) ? 1 : 0;
+    in_any += n > 0 ? 1 : 0;
+    in_overlap += n > 1 ? 1 : 0;
+  }
+  std::string why;
+  if (!overlap) {
+    why = "the stations' usable times never overlap: " + spans;
+  } else if (times.empty()) {
+    why = "there are no output times (stations " + spans + ")";
+  } else if (in_any == 0) {
+    why = "all " + std::to_string(times.size()) + " output times, " + span_text(times.front(), times.back()) +
+          ", lie outside every station's rows: " + spans;
+  } else if (in_overlap == 0) {
+    why = "none of the " + std::to_string(times.size()) + " output times, " + span_text(times.front(), times.back()) +
+          ", lies where two stations' rows overlap: " + spans;
+  } else {
+    why = std::to_string(in_overlap) + " output times lie where two stations' rows overlap, but there fewer than "
+          "two stations have usable rows within --max-gap-frames of them (gaps, empty angles or bad status): " + spans;
+  }
+  throw DataError(stations.path, 0, 0, "no output time has lines of sight from two stations (" + why + ")");
 }
 
 void Smooth(const IntersectOptions& options, IntersectResult* r);
@@ -169,7 +203,7 @@ IntersectResult Intersect(const StationsFile& stations, const std::vector<Statio
     Record(frames, obs.data(), n, row, &r);
     Classify(origin, &tr, &r);
   }
-  if (r.rows_ok + r.rows_invalid == 0) ThrowNoOverlap(stations, tracks);
+  if (r.rows_ok + r.rows_invalid == 0) ThrowNoOverlap(stations, tracks, times);
   if (options.smooth) Smooth(options, &r);
   return r;
 }

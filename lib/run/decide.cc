@@ -24,10 +24,18 @@ Json KeyParts(const Step& st, const StepFacts& facts, const std::map<std::string
   for (const auto& d : st.depends_on) upstream[d] = by_id.at(d)->key;
   std::vector<std::string> args;
   for (const auto& a : st.args) args.push_back(a.out_path ? std::string(kOutDir) + "/" + a.text : a.text);
-  return {{"tool", {{"name", st.tool}, {"version", facts.tool->version}, {"id", facts.tool->id}}},
-          {"args", args},
-          {"inputs", inputs},
-          {"upstream", upstream}};
+  Json parts = {{"tool", {{"name", st.tool}, {"version", facts.tool->version}, {"id", facts.tool->id}}},
+                {"args", args},
+                {"inputs", inputs},
+                {"upstream", upstream}};
+  // Files the plan writes for the step (the intersection's stations.json) by their content's digest; only
+  // when there are some, so that the fingerprints of the other steps stay what they were.
+  if (!st.generated.empty()) {
+    Json generated = Json::object();
+    for (const auto& [path, text] : st.generated) generated[path] = Sha256Hex(text);
+    parts["generated"] = generated;
+  }
+  return parts;
 }
 
 // Why a step whose fingerprint differs from the recorded one `p` runs: the first part that differs.
@@ -61,6 +69,7 @@ std::string WhyChanged(const Step& st, const ToolIdentity& tool, const Json& key
     return dropped.empty() ? "inputs changed" : "input no longer read: " + dropped;
   }
   if (pk.value("args", Json()) != key_parts["args"]) return "command line or options changed";
+  if (pk.value("generated", Json()) != key_parts.value("generated", Json())) return "station positions or origin changed";
   std::string which;
   for (const auto& d : st.depends_on) {
     if (!pk.contains("upstream") || pk["upstream"].value(d, "") != key_parts["upstream"][d]) {

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "io/csv.h"
+#include "io/file_util.h"
 #include "run/trial_run.h"
 
 namespace rk::run::internal {
@@ -128,10 +129,11 @@ void TrialRun::StartStep(std::size_t i, std::map<pid_t, std::size_t>* running) {
     }
   }
   for (const auto& o : r.step.outputs) fs::create_directories((fs::path(work_) / o).parent_path());
+  for (const auto& [path, text] : r.step.generated) io::WriteFileAtomic((fs::path(work_) / path).string(), text);
   spec.cwd = s_.trial_dir;
   spec.log_path = (fs::path(work_) / r.step.LogFile()).string();
   const std::string progress_env =
-      progress_files_.Add(r.step.id, (fs::path(work_) / "steps" / (r.step.id + ".progress")).string());
+      progress_files_.Add(r.step.id, (fs::path(work_) / "steps" / (r.step.FileStem() + ".progress")).string());
   if (!progress_env.empty()) spec.env.push_back(progress_env);
   {
     std::ofstream head(spec.log_path);

@@ -29,6 +29,7 @@ const std::vector<StepKindInfo>& StepKinds() {
        {"points", "theodolite", "camera", "target", "video", "pointing"}},
       {"register", "radar", "rk-register", "bernoulli", {"plots", "nav"}},
       {"register-batch", "radar", "rk-register", "batch", {"plots", "nav"}},
+      {"intersect", "trajectory", "rk-intersect", "", {"stations"}},
       {"plot", "*", "rk-plot", "", {"i", "input"}},
   };
   return kinds;
@@ -121,6 +122,16 @@ void CheckStepValue(const Checker& c, const Json& v, const std::string& pointer,
 
 namespace {
 
+// The role of camera unit `unit` ("az", or "s1/az" in a multi-station manifest); "" when there is none.
+std::string CameraUnitRole(const trial::Manifest& m, const std::string& unit) {
+  for (const trial::StationEntry& st : m.Stations()) {
+    for (const CameraEntry& cam : st.cameras) {
+      if (st.Unit(cam) == unit) return CameraRoleName(cam.role);
+    }
+  }
+  return "";
+}
+
 // rk-run's checks of a manifest lib/trial has read: every key of "steps" a step kind (or "<unit>/<kind>"
 // of a unit it applies to) with valid options, or the trial-wide "bad-rows".
 TrialManifest CheckSteps(trial::Manifest read, const std::string& manifest_path) {
@@ -136,7 +147,7 @@ TrialManifest CheckSteps(trial::Manifest read, const std::string& manifest_path)
       continue;
     }
     std::string unit, kind = key;
-    const auto slash = key.find('/');
+    const auto slash = key.rfind('/');  // a unit may hold one: "s1/az" (station/camera)
     if (slash != std::string::npos) {
       unit = key.substr(0, slash);
       kind = key.substr(slash + 1);
@@ -147,14 +158,21 @@ TrialManifest CheckSteps(trial::Manifest read, const std::string& manifest_path)
       for (const auto& k : StepKinds()) known += std::string(known.empty() ? "" : ", ") + k.kind;
       c.Fail(p, "unknown step '" + kind + "' (steps: " + known + ")", true);
     }
+    if (std::string(info->unit) == trial::kTrajectoryUnit && !m.multi_station()) {
+      c.Fail(p, "step '" + kind + "' needs several stations (a manifest with 'stations')", true);
+    }
     if (!unit.empty()) {
       std::string unit_role;
       if (unit == "radar") {
         unit_role = "radar";
+      } else if (unit == trial::kTrajectoryUnit && m.multi_station()) {
+        unit_role = trial::kTrajectoryUnit;
       } else {
-        auto it = std::find_if(m.cameras.begin(), m.cameras.end(), [&](const auto& cam) { return cam.name == unit; });
-        if (it == m.cameras.end()) c.Fail(p, "no camera named '" + unit + "' in 'cameras'", true);
-        unit_role = CameraRoleName(it->role);
+        unit_role = CameraUnitRole(m, unit);
+        if (unit_role.empty()) {
+          c.Fail(p, m.multi_station() ? "no camera 'STATION/CAMERA' named '" + unit + "' in 'stations'"
+                                      : "no camera named '" + unit + "' in 'cameras'", true);
+        }
       }
       if (std::string(info->unit) != "*" && unit_role != info->unit) {
         c.Fail(p, "step '" + kind + "' does not apply to '" + unit + "' (a " + unit_role + " unit)", true);

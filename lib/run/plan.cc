@@ -6,6 +6,8 @@
 #include <map>
 #include <stdexcept>
 
+#include "trial/layout.h"
+
 namespace rk::run {
 using io::Json;
 
@@ -50,14 +52,19 @@ class PlanBuilder {
   PlanBuilder(const TrialManifest& m, const PlanOptions& o) : m_(m), o_(o) {}
 
   std::vector<Step> Build() {
-    for (const auto& cam : m_.cameras) {
-      switch (cam.role) {
-        case CameraRole::kBeacon: Beacon(cam); break;
-        case CameraRole::kFeatures: Features(cam); break;
-        case CameraRole::kSilhouette: Silhouette(cam); break;
+    for (const trial::StationEntry& st : m_.Stations()) {
+      st_ = &st;
+      for (const auto& cam : st.cameras) {
+        switch (cam.role) {
+          case CameraRole::kBeacon: Beacon(cam); break;
+          case CameraRole::kFeatures: Features(cam); break;
+          case CameraRole::kSilhouette: Silhouette(cam); break;
+        }
       }
     }
+    st_ = nullptr;
     if (m_.radar) Radar(*m_.radar);
+    if (m_.multi_station()) Intersect();
     return steps_;
   }
 
@@ -164,30 +171,32 @@ class PlanBuilder {
       s.args.push_back({"--title"});
       s.args.push_back({m_.name + " " + of.unit + ": " + title});
     }
-    Out(&s, "-o", "plots/" + of.unit + "_" + series + ".png");
+    std::string stem = of.unit;
+    std::replace(stem.begin(), stem.end(), '/', '_');
+    Out(&s, "-o", "plots/" + stem + "_" + series + ".png");
     Finish(&s);
   }
 
   // The station's pointing model (SPEC.md §3.1 "station": {..., "pointing"}) as --pointing, and with
   // `position` its WGS-84 position as --station LAT,LON,H.
   void Station(Step* s, bool position) {
-    if (!m_.pointing.empty()) In(s, "pointing", m_.pointing);
-    if (position && m_.station.is_object()) {
-      Bind(s, "station", NumberText(m_.station.at("lat_deg")) + "," + NumberText(m_.station.at("lon_deg")) + "," +
-                             NumberText(m_.station.at("h_m")));
-    }
+    if (!st_->pointing.empty()) In(s, "pointing", st_->pointing);
+    if (position && st_->station.is_object()) Bind(s, "station", Geodetic(st_->station));
+  }
+  static std::string Geodetic(const Json& p) {
+    return NumberText(p.at("lat_deg")) + "," + NumberText(p.at("lon_deg")) + "," + NumberText(p.at("h_m"));
   }
 
   void Beacon(const CameraEntry& cam) {
-    const std::string dir = cam.name + "/";
-    Step ex = Make(cam.name, "extract-beacon");
+    const std::string unit = st_->Unit(cam), dir = unit + "/";
+    Step ex = Make(unit, "extract-beacon");
     Video(&ex, cam);
     Out(&ex, "-o", dir + "track.csv");
     ex.table = dir + "track.csv";
     Finish(&ex);
 
-    const std::string angles = !m_.turret.empty() ? m_.turret : m_.theodolite;
-    Step lo = Make(cam.name, "locate");
+    const std::string angles = !st_->turret.empty() ? st_->turret : st_->theodolite;
+    Step lo = Make(unit, "locate");
     Upstream(&lo, "--track", ex, dir + "track.csv");
     In(&lo, "camera", cam.model);
     if (angles.empty()) {
@@ -195,37 +204,38 @@ class PlanBuilder {
     } else {
       In(&lo, "turret", angles);
     }
-    if (!m_.range.empty()) In(&lo, "range", m_.range);
+    if (!st_->range.empty()) In(&lo, "range", st_->range);
     Station(&lo, true);
     Out(&lo, "-o", dir + "located.csv");
     lo.table = dir + "located.csv";
     Finish(&lo);
-    Plot(lo, "located", dir + "located.csv", m_.range.empty() ? "az_deg,el_deg" : "az_deg,el_deg,range_m",
+    Plot(lo, "located", dir + "located.csv", st_->range.empty() ? "az_deg,el_deg" : "az_deg,el_deg,range_m",
          "located target");
+    if (lo.state == PlanState::kActive) located_.push_back({unit, dir + "located.csv", lo.id});
 
-    Step sm = Make(cam.name, "smooth");
+    Step sm = Make(unit, "smooth");
     Upstream(&sm, "-i", lo, dir + "located.csv");
     const bool user_columns = std::any_of(sm.settings.options.begin(), sm.settings.options.end(),
                                           [](const auto& o) { return o.first == "columns"; });
     if (!user_columns) {
       sm.args.push_back({"--columns"});
-      sm.args.push_back({m_.range.empty() ? "az_deg,el_deg" : "az_deg,el_deg,range_m,e_m,n_m,u_m"});
+      sm.args.push_back({st_->range.empty() ? "az_deg,el_deg" : "az_deg,el_deg,range_m,e_m,n_m,u_m"});
     }
     Out(&sm, "-o", dir + "smoothed.csv");
     sm.table = dir + "smoothed.csv";
     Finish(&sm);
     Plot(sm, "rates", dir + "smoothed.csv",
-         m_.range.empty() ? "az_rate_deg_s,el_rate_deg_s" : "e_rate_m_s,n_rate_m_s,u_rate_m_s",
+         st_->range.empty() ? "az_rate_deg_s,el_rate_deg_s" : "e_rate_m_s,n_rate_m_s,u_rate_m_s",
          "smoothed rates");
 
-    Step rs = Make(cam.name, "resample-range");
-    if (m_.range.empty()) {
+    Step rs = Make(unit, "resample-range");
+    if (st_->range.empty()) {
       NotApplicable(&rs, "the manifest has no range log");
     } else if (cam.frames.empty()) {
       NotApplicable(&rs, "the camera has no frame-times CSV");
     } else {
-      Bind(&rs, "-i", m_.range);
-      rs.inputs.push_back({"input", m_.range});
+      Bind(&rs, "-i", st_->range);
+      rs.inputs.push_back({"input", st_->range});
       const bool user_columns_rs = std::any_of(rs.settings.options.begin(), rs.settings.options.end(),
                                                [](const auto& o) { return o.first == "columns"; });
       if (!user_columns_rs) {
@@ -240,20 +250,20 @@ class PlanBuilder {
   }
 
   void Features(const CameraEntry& cam) {
-    const std::string dir = cam.name + "/";
-    Step ex = Make(cam.name, "extract-features");
+    const std::string unit = st_->Unit(cam), dir = unit + "/";
+    Step ex = Make(unit, "extract-features");
     Video(&ex, cam);
     In(&ex, "target", cam.target);
     Out(&ex, "-o", dir + "points.csv");
     ex.table = dir + "points.csv";
     Finish(&ex);
 
-    Step at = Make(cam.name, "attitude-oi");
+    Step at = Make(unit, "attitude-oi");
     Upstream(&at, "--points", ex, dir + "points.csv");
     In(&at, "camera", cam.model);
     In(&at, "target", cam.target);
-    if (!m_.turret.empty()) {
-      In(&at, "turret", m_.turret);
+    if (!st_->turret.empty()) {
+      In(&at, "turret", st_->turret);
     } else if (cam.boresight_deg) {
       Bind(&at, "boresight",
            NumberText(Json(cam.boresight_deg->first)) + "," + NumberText(Json(cam.boresight_deg->second)));
@@ -268,15 +278,15 @@ class PlanBuilder {
   }
 
   void Silhouette(const CameraEntry& cam) {
-    const std::string dir = cam.name + "/";
-    Step ex = Make(cam.name, "extract-silhouette");
+    const std::string unit = st_->Unit(cam), dir = unit + "/";
+    Step ex = Make(unit, "extract-silhouette");
     Video(&ex, cam);
     Out(&ex, "-o", dir + "points.csv");
     ex.table = dir + "points.csv";
     Finish(&ex);
 
-    const std::string angles = !m_.theodolite.empty() ? m_.theodolite : m_.turret;
-    Step at = Make(cam.name, "attitude-cylinder");
+    const std::string angles = !st_->theodolite.empty() ? st_->theodolite : st_->turret;
+    Step at = Make(unit, "attitude-cylinder");
     Upstream(&at, "--points", ex, dir + "points.csv");
     if (angles.empty()) {
       NotApplicable(&at, "the manifest has no theodolite or turret log");
@@ -310,8 +320,47 @@ class PlanBuilder {
     }
   }
 
+  // The intersection of a multi-station trial (docs/rk-run.md "Several stations"): rk-intersect on every
+  // beacon camera's located target, through the stations.json the plan writes (Step::generated) with each
+  // station's position, into trajectory/trajectory.csv.
+  void Intersect() {
+    const std::string dir = std::string(trial::kTrajectoryUnit) + "/";
+    Step s = Make(trial::kTrajectoryUnit, "intersect");
+    Json stations = Json::array();
+    for (const Located& l : located_) {
+      const std::string station = l.unit.substr(0, l.unit.find('/'));
+      const auto st = std::find_if(m_.stations.begin(), m_.stations.end(),
+                                   [&](const trial::StationEntry& e) { return e.name == station; });
+      stations.push_back({{"name", l.unit},
+                          {"lat_deg", st->station.at("lat_deg")},
+                          {"lon_deg", st->station.at("lon_deg")},
+                          {"h_m", st->station.at("h_m")},
+                          {"located", "../" + l.located}});
+      const auto from = std::find_if(steps_.begin(), steps_.end(), [&](const Step& x) { return x.id == l.step; });
+      Depend(&s, *from);
+    }
+    Json j = {{"stations", stations}};
+    if (!m_.origin.is_null()) j["origin"] = m_.origin;
+    if (located_.size() < 2) {
+      NotApplicable(&s, "needs the located targets of two beacon cameras, the plan has " +
+                            std::to_string(located_.size()));
+    }
+    s.generated.emplace_back(dir + trial::kStationsFile, j.dump(2) + "\n");
+    s.outputs.push_back(dir + trial::kStationsFile);
+    Bind(&s, "stations", dir + trial::kStationsFile, true);
+    Out(&s, "-o", dir + trial::kTrajectoryFile);
+    s.table = dir + trial::kTrajectoryFile;
+    Finish(&s);
+    Plot(s, "trajectory", s.table, "e_m,n_m,u_m", "trajectory (origin ENU)");
+  }
+
+  struct Located {
+    std::string unit, located, step;  // camera unit, its located.csv (relative to out/), the locate step
+  };
   const TrialManifest& m_;
   const PlanOptions& o_;
+  const trial::StationEntry* st_ = nullptr;  // the station being planned (Build)
+  std::vector<Located> located_;             // the active locate steps, in plan order
   std::vector<Step> steps_;
 };
 

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "run/manifest.h"
@@ -47,6 +48,10 @@ struct Step {
   bool tool_report = true;  // the tool takes --report
   PlanState state = PlanState::kActive;
   std::string note;         // why it is off / not applicable
+  // Files the runner writes into out/ just before the step starts: path relative to out/, content. Made by the
+  // plan from the manifest (the intersection's stations.json), part of the step's fingerprint, kept with its
+  // products.
+  std::vector<std::pair<std::string, std::string>> generated;
   std::string method;       // how the product is made, where a kind has several ways ("image-fit" or
                             // "three-point" for attitude-cylinder); "" otherwise
 

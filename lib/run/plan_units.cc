@@ -5,6 +5,7 @@
 
 #include "io/error.h"
 #include "run/plan.h"
+#include "trial/layout.h"
 #include "trial/manifest.h"
 
 namespace rk::run {
@@ -42,28 +43,28 @@ UnitPlan UnitOf(const std::string& unit, const std::string& what, const std::vec
 }
 
 // The manifest's logs that no step reads (planned or not): each is a unit whose note says why.
-void UnusedLogs(const TrialManifest& m, const std::vector<Step>& plan, std::vector<UnitPlan>* units) {
+void UnusedLogs(const trial::StationEntry& st, const std::vector<Step>& plan, std::vector<UnitPlan>* units) {
   std::set<std::string> read;
   for (const Step& s : plan) {
     for (const StepInput& in : s.inputs) read.insert(in.path);
   }
   const std::pair<const char*, const std::string*> logs[] = {
-      {"turret", &m.turret}, {"range", &m.range}, {"theodolite", &m.theodolite}};
+      {"turret", &st.turret}, {"range", &st.range}, {"theodolite", &st.theodolite}};
   for (const auto& [key, path] : logs) {
     if (path->empty() || read.count(*path)) continue;
     UnitPlan u;
-    u.unit = key;
+    u.unit = st.name.empty() ? key : st.name + "/" + key;
     u.what = "log " + *path;
     const std::string key_s = key;
     if (key_s == "range") {
       u.note = "not used: no beacon camera in \"cameras\" (only rk-locate and resample-range read a range log)";
-    } else if (key_s == "theodolite" && m.cameras.empty()) {
+    } else if (key_s == "theodolite" && st.cameras.empty()) {
       u.note = "not used: \"cameras\" lists no camera, so there are no frames to take silhouette points from "
                "(a theodolite camera needs \"video\": its frames)";
     } else if (key_s == "theodolite") {
       u.note = "not used: no silhouette camera, and the beacon cameras use the turret log";
     } else {
-      u.note = m.cameras.empty() ? "not used: \"cameras\" lists no camera" : "not used: no camera needs it";
+      u.note = st.cameras.empty() ? "not used: \"cameras\" lists no camera" : "not used: no camera needs it";
     }
     units->push_back(u);
   }
@@ -92,11 +93,15 @@ Json UnitPlan::ToJson() const {
 
 std::vector<UnitPlan> PlanByUnit(const TrialManifest& m, const std::vector<Step>& plan) {
   std::vector<UnitPlan> units;
-  for (const CameraEntry& cam : m.cameras) {
-    units.push_back(UnitOf(cam.name, std::string(CameraRoleName(cam.role)) + " camera", plan));
+  const std::vector<trial::StationEntry> stations = m.Stations();
+  for (const trial::StationEntry& st : stations) {
+    for (const CameraEntry& cam : st.cameras) {
+      units.push_back(UnitOf(st.Unit(cam), std::string(CameraRoleName(cam.role)) + " camera", plan));
+    }
   }
   if (m.radar) units.push_back(UnitOf("radar", "radar", plan));
-  UnusedLogs(m, plan, &units);
+  if (m.multi_station()) units.push_back(UnitOf(trial::kTrajectoryUnit, "intersection of the stations", plan));
+  for (const trial::StationEntry& st : stations) UnusedLogs(st, plan, &units);
   if (plan.empty()) {
     UnitPlan u;
     u.unit = "trial";
@@ -113,10 +118,11 @@ void CheckRequestedProducts(const TrialManifest& m, const std::vector<Step>& pla
   };
   for (const auto& [key, value] : m.steps.items()) {
     if (key == kBadRowsSetting || (value.is_boolean() && !value.get<bool>())) continue;
-    const auto slash = key.find('/');
+    const auto slash = key.rfind('/');
     const std::string unit = slash == std::string::npos ? "" : key.substr(0, slash);
     const std::string kind = slash == std::string::npos ? key : key.substr(slash + 1);
-    if (kind == "plot") continue;
+    // Plots are warnings; the intersection is checked last, after the cameras whose chains it needs.
+    if (kind == "plot" || kind == "intersect") continue;
     const std::string pointer = "/steps/" + trial::PointerToken(key);
     if (unit == "radar" && !m.radar) {
       fail(pointer, "asks for " + kind + " of the radar, but the manifest has no \"radar\" block ({\"plots\", \"nav\"})",
@@ -128,15 +134,26 @@ void CheckRequestedProducts(const TrialManifest& m, const std::vector<Step>& pla
       fail(pointer, "asks for " + s.id + ", which cannot run: " + s.note, true);
     }
   }
-  for (const CameraEntry& cam : m.cameras) {
-    const auto it = std::find_if(plan.begin(), plan.end(),
-                                 [&](const Step& s) { return s.unit == cam.name && s.kind == MainKind(cam.role); });
-    if (it == plan.end() || it->state != PlanState::kNotApplicable) continue;
-    if (it->note.find(", which is off") != std::string::npos) continue;  // "steps" switched its chain off
-    fail("/cameras/" + trial::PointerToken(cam.name) + "/role",
-         "a " + std::string(CameraRoleName(cam.role)) + " camera asks for " + it->id + ", which cannot run: " +
-             it->note + " (switch it off in \"steps\" to run the rest)",
-         false);
+  for (const trial::StationEntry& st : m.Stations()) {
+    for (const CameraEntry& cam : st.cameras) {
+      const std::string unit = st.Unit(cam);
+      const auto it = std::find_if(plan.begin(), plan.end(),
+                                   [&](const Step& s) { return s.unit == unit && s.kind == MainKind(cam.role); });
+      if (it == plan.end() || it->state != PlanState::kNotApplicable) continue;
+      if (it->note.find(", which is off") != std::string::npos) continue;  // "steps" switched its chain off
+      const std::string station = st.name.empty() ? "" : "/stations/" + trial::PointerToken(st.name);
+      fail(station + "/cameras/" + trial::PointerToken(cam.name) + "/role",
+           "a " + std::string(CameraRoleName(cam.role)) + " camera asks for " + it->id + ", which cannot run: " +
+               it->note + " (switch it off in \"steps\" to run the rest)",
+           false);
+    }
+  }
+  // Several stations ask for their intersection.
+  const auto it = std::find_if(plan.begin(), plan.end(), [](const Step& s) { return s.kind == "intersect"; });
+  if (it != plan.end() && it->state == PlanState::kNotApplicable &&
+      it->note.find(", which is off") == std::string::npos) {
+    fail("/stations", "several stations ask for " + it->id + ", which cannot run: " + it->note +
+                          " (switch it off in \"steps\" to run the rest)", true);
   }
 }
 

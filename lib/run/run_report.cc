@@ -145,6 +145,12 @@ Json TrialRun::BuildReport() const {
                   {"manifest_sha256", Sha256Hex(m_->text)},
                   {"epoch_utc", m_->epoch_utc.empty() ? Json(nullptr) : Json(m_->epoch_utc)},
                   {"station", m_->station}};
+  if (m_->multi_station()) {  // several stations: each one's position and the trajectory's origin
+    Json positions = Json::object();
+    for (const trial::StationEntry& st : m_->stations) positions[st.name] = st.station;
+    rep["trial"]["stations"] = positions;
+    rep["trial"]["origin"] = m_->origin;
+  }
   rep["tools"] = tools_->ToJson();
   rep["result"] = "done";
   rep["status"] = "ok";  // out/report.json is only written by a run that succeeded (same keys as every report)

@@ -273,7 +273,7 @@ io::Json BeaconSimOptionsToJson(const BeaconSimOptions& o) {
 BeaconSimulator::BeaconSimulator(BeaconSimOptions opt)
     : opt_(Prepared(std::move(opt))),
       trajectory_(opt_.trajectory),
-      servo_(opt_.servo, [this](double t) { return trajectory_.PositionEnu(CommandTime(t)); }, opt_.t0_s - kServoMarginS,
+      servo_(opt_.servo, [this](double t) { return TargetEnu(CommandTime(t)); }, opt_.t0_s - kServoMarginS,
              LastFrameTime(opt_) + kServoMarginS, opt_.seed) {
   // Lamp layout (a_i, b_i) and relative intensities w_i.
   lamp_unit_.push_back({0.0, 0.0});
@@ -301,7 +301,7 @@ BeaconSimulator::BeaconSimulator(BeaconSimOptions opt)
     const geo::AzEl bore = view.boresight;
     f.boresight_az_rad = bore.az_rad;
     f.boresight_el_rad = bore.el_rad;
-    f.p_enu = trajectory_.PositionEnu(f.t_s);
+    f.p_enu = TargetEnu(f.t_s);
     f.range_m = f.p_enu.norm();
     const Eigen::Vector3d los = f.p_enu / f.range_m;
     const Eigen::Vector3d right = los.cross(Eigen::Vector3d::UnitZ()).normalized();
@@ -478,7 +478,7 @@ std::vector<RangeSample> BeaconSimulator::RangeLog() const {
   for (double t : SampleTimes(opt_, opt_.range_rate_hz, opt_.range_offset_s)) {
     RangeSample s;
     s.t_s = t;
-    s.true_range_m = trajectory_.PositionEnu(t).norm();
+    s.true_range_m = TargetEnu(t).norm();
     const double noise = opt_.range_noise_m() * normal(rng);  // drawn every row: error rows do not shift the stream
     if (uniform(rng) < opt_.range_error_rate) {
       s.range_m = std::nan("");

@@ -33,6 +33,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <random>
 #include <string>
 #include <vector>
@@ -109,6 +110,9 @@ struct BeaconSimOptions {
   // give that boresight under these terms, and those are logged. The camera's latency is
   // camera.time_offset_s: frames.csv stamps are the mid-exposure times minus it.
   geo::PointingTerms station_pointing;
+  // The target's body reference point in the station ENU frame (m) at t (s), replacing `trajectory` when set
+  // (not in the table or the JSON): rk-sim multistation gives each station the one target seen from it.
+  std::function<Eigen::Vector3d(double)> target_enu;
 
   double turret_resolution_rad() const { return geo::DegToRad(turret_resolution_deg); }
   double turret_noise_rad() const { return geo::DegToRad(turret_noise_deg); }
@@ -178,7 +182,9 @@ class BeaconSimulator {
   // The encoder angles (A, E) whose §3.1 boresight under options().station_pointing is `boresight`
   // (Newton; = `boresight` for a perfect station).
   geo::AzEl EncoderAngles(const geo::AzEl& boresight) const;
-  Eigen::Vector3d TargetEnu(double t_s) const { return trajectory_.PositionEnu(t_s); }
+  Eigen::Vector3d TargetEnu(double t_s) const {
+    return opt_.target_enu ? opt_.target_enu(t_s) : trajectory_.PositionEnu(t_s);
+  }
   bool Occluded(double t_s) const;
   // Time whose target direction the turret is commanded to at t_s: the start of
   // the servo hold containing t_s, else t_s.

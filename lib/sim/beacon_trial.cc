@@ -117,8 +117,9 @@ void WriteFrameTruth(const BeaconSimulator& sim, const fs::path& root, TrialSumm
   target_csv.Write((root / "truth" / "target.csv").string());
 }
 
-// Turret and range logs, recorded (trial root) and true (truth/); their row counts in `sum`.
-void WriteLogs(const BeaconSimulator& sim, const fs::path& root, TrialSummary* out) {
+// Turret and range logs (the range log only with `range`), recorded (trial root) and true (truth/); their row
+// counts in `sum`.
+void WriteLogs(const BeaconSimulator& sim, const fs::path& root, bool range, TrialSummary* out) {
   TrialSummary& sum = *out;
   io::CsvWriter turret_csv({"t_s", "az_deg", "el_deg"}), turret_truth({"t_s", "az_deg", "el_deg"});
   for (const TurretSample& s : sim.TurretLog()) {
@@ -131,6 +132,7 @@ void WriteLogs(const BeaconSimulator& sim, const fs::path& root, TrialSummary* o
   }
   turret_csv.Write((root / trial::kTurretFile).string());
   turret_truth.Write((root / "truth" / "turret.csv").string());
+  if (!range) return;
   io::CsvWriter range_csv({"t_s", "range_m", "status"}), range_truth({"t_s", "range_m"});
   for (const RangeSample& s : sim.RangeLog()) {
     range_csv.Add(s.t_s, kTimeDecimals);
@@ -165,15 +167,15 @@ std::string WriteVideo(const BeaconSimulator& sim, const TrialWriteOptions& opt,
 }
 
 void WriteBeaconManifest(const BeaconSimulator& sim, const TrialWriteOptions& opt, const fs::path& root,
-                         const std::string& stem, const std::string& video_rel, const TrialSummary& sum) {
+                         const std::string& stem, trial::StationEntry station, const TrialSummary& sum) {
   const BeaconSimOptions& so = sim.options();
   trial::Manifest m;
   m.name = opt.name.empty() ? stem : opt.name;
   m.epoch_utc = opt.epoch_utc;
-  m.station = {{"lat_deg", opt.station_lat_deg}, {"lon_deg", opt.station_lon_deg}, {"h_m", opt.station_h_m}};
-  m.cameras = {trial::CameraInItsFolder(kBeaconCamera, trial::CameraRole::kBeacon, {video_rel})};
-  m.turret = trial::kTurretFile;
-  m.range = trial::kRangeFile;
+  m.station = station.station;
+  m.cameras = std::move(station.cameras);
+  m.turret = station.turret;
+  m.range = station.range;
   io::Json simj;
   simj["generator"] = "rk-sim beacon";
   simj["seed"] = so.seed;
@@ -191,22 +193,18 @@ void WriteBeaconManifest(const BeaconSimulator& sim, const TrialWriteOptions& op
 
 }  // namespace
 
-TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOptions& opt) {
-  std::string why;
-  if (!opt.Check(&why)) throw UsageError(why);
-
-  TrialFolder folder(opt.out_dir, opt.force);
-  const std::string stem = fs::path(folder.out()).filename().string();
-  const fs::path root(folder.Path(""));
+trial::StationEntry WriteBeaconStation(const BeaconSimulator& sim, const TrialWriteOptions& opt,
+                                       const std::string& trial_root, const std::string& station, bool range,
+                                       TrialSummary* sum) {
+  const std::string prefix = station.empty() ? "" : station + "/";
+  const fs::path root = fs::path(trial_root) / prefix;
   io::MakeDirectories((root / kBeaconCamera).string());
   io::MakeDirectories((root / "truth").string());
-
-  TrialSummary sum;
   // Camera model and frame times.
   io::WriteJson((root / trial::CameraFile(kBeaconCamera, trial::kCameraModelFile)).string(),
                 camera::CameraModelToJson(sim.options().camera));
-  WriteFrameTruth(sim, root, &sum);
-  WriteLogs(sim, root, &sum);
+  WriteFrameTruth(sim, root, sum);
+  WriteLogs(sim, root, range, sum);
   if (!sim.options().station_pointing.IsZero()) {
     // The station's true pointing model, as rk-calibrate pointing would write it (without σ).
     camera::PointingModel truth;
@@ -216,7 +214,29 @@ TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOption
     io::WriteJson((root / "truth" / "pointing.json").string(), j);
   }
   const std::string video_rel = WriteVideo(sim, opt, root);
-  WriteBeaconManifest(sim, opt, root, stem, video_rel, sum);
+
+  trial::StationEntry e;
+  e.name = station;
+  e.station = {{"lat_deg", opt.station_lat_deg}, {"lon_deg", opt.station_lon_deg}, {"h_m", opt.station_h_m}};
+  trial::CameraEntry cam = trial::CameraInItsFolder(kBeaconCamera, trial::CameraRole::kBeacon, {prefix + video_rel});
+  cam.frames = prefix + cam.frames;
+  cam.model = prefix + cam.model;
+  e.cameras = {cam};
+  e.turret = prefix + trial::kTurretFile;
+  if (range) e.range = prefix + trial::kRangeFile;
+  return e;
+}
+
+TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOptions& opt) {
+  std::string why;
+  if (!opt.Check(&why)) throw UsageError(why);
+
+  TrialFolder folder(opt.out_dir, opt.force);
+  const std::string stem = fs::path(folder.out()).filename().string();
+  const fs::path root(folder.Path(""));
+  TrialSummary sum;
+  trial::StationEntry station = WriteBeaconStation(sim, opt, root.string(), "", true, &sum);
+  WriteBeaconManifest(sim, opt, root, stem, std::move(station), sum);
   folder.Commit();
   return sum;
 }

@@ -15,6 +15,7 @@
 #include "io/json_util.h"
 #include "io/options.h"
 #include "sim/beacon_scenario.h"
+#include "trial/manifest.h"
 
 namespace rk::sim {
 
@@ -46,5 +47,15 @@ struct TrialSummary {
 
 // Throws UsageError (bad options / refusing to replace), IoError (cannot write).
 TrialSummary WriteBeaconTrial(const BeaconSimulator& sim, const TrialWriteOptions& opt);
+
+// One station's files of a trial, written under `trial_root`/`station`/ (the trial root itself when `station`
+// is empty): <camera>/camera.json, frames.csv and the video (opt.format), turret.csv, range.csv (only with
+// `range`), truth/ (beacon.csv, target.csv: the target seen from this station, turret.csv, range.csv, and
+// pointing.json when the station has pointing errors). Counts in `sum`. Returns the station's manifest entry
+// (name `station`, position from opt.station_*, paths relative to the trial root). Used by WriteBeaconTrial
+// and by rk-sim multistation (one per station). Throws IoError.
+trial::StationEntry WriteBeaconStation(const BeaconSimulator& sim, const TrialWriteOptions& opt,
+                                       const std::string& trial_root, const std::string& station, bool range,
+                                       TrialSummary* sum);
 
 }  // namespace rk::sim

@@ -9,7 +9,10 @@
 #include "geo/angles.h"
 #include "io/file_util.h"
 #include "sim/sim_common.h"
+#include "sim/beacon_trial.h"
 #include "sim/trial_folder.h"
+#include "trial/layout.h"
+#include "trial/manifest.h"
 
 namespace rk::sim {
 namespace {
@@ -19,6 +22,11 @@ constexpr double kGravityMps2 = 9.80665;
 constexpr double kLayout[4][3] = {{0.0, 0.0, 0.0}, {1.0, 0.0, 350.0}, {0.45, 0.75, 900.0}, {-0.3, 0.6, 150.0}};
 constexpr double kRateFactor[4] = {1.0, 1.25, 0.8, 1.5};
 constexpr std::uint64_t kStreamNoise = 1, kStreamPhase = 2;
+// Rendered stations (--video): lamp peak (8-bit DN; five lamps merged in one spot stay below 255), the seed of
+// station s = seed · stride + s + 1, the trial epoch.
+constexpr double kRenderedPeakDn = 45.0;
+constexpr std::uint64_t kStationSeedStride = 16;
+constexpr const char* kRenderedEpochUtc = "2026-01-01T00:00:00Z";
 
 }  // namespace
 
@@ -42,6 +50,9 @@ const io::OptionTable<MultistationOptions>& MultistationOptions::Table() {
           .Real("--sigma-range", &O::sigma_range_m, "m", io::Bounds::Positive().Finite(), "1 sigma of a range (m)")
           .Choice("--path", &O::path, {MultistationPath::kBallistic, MultistationPath::kCrossing},
                   MultistationPathName, "Target path: ballistic (arc to --apex) or crossing (aircraft)")
+          .Choice("--video", &O::video, {{"none", "none"}, {"mkv", "mkv"}, {"png", "png"}},
+                  "Also write a trial folder for rk-run: each station rendered (mkv or png frames), with its frame "
+                  "times, camera model, turret log and trial.json; none: only the located files")
           .Real("--apex", &O::apex_m, "m", io::Bounds::Positive().Finite(), "Ballistic apex height (m)")
           .Real("--speed", &O::speed_mps, "m/s", io::Bounds::Positive().Finite(), "Crossing speed (m/s)")
           .Real("--height", &O::height_m, "m", io::Bounds::Positive().Finite(), "Crossing height (m)")
@@ -114,9 +125,7 @@ Eigen::Vector3d MultistationScenario::Geodetic(const Eigen::Vector3d& p) const {
 }
 
 Eigen::Vector3d MultistationScenario::AzElRange(std::size_t s, const Eigen::Vector3d& p) const {
-  const Eigen::Vector3d g = Geodetic(p);
-  Eigen::Vector3d d;
-  impl_->station[s].Forward(g(0), g(1), g(2), d(0), d(1), d(2));
+  const Eigen::Vector3d d = StationEnu(s, p);
   return {geo::WrapTwoPi(std::atan2(d(0), d(1))), std::atan2(d(2), std::hypot(d(0), d(1))), d.norm()};
 }
 
@@ -200,6 +209,55 @@ io::CsvWriter MultistationScenario::TruthCsv() const {
   return w;
 }
 
+Eigen::Vector3d MultistationScenario::StationEnu(std::size_t s, const Eigen::Vector3d& p_enu) const {
+  const Eigen::Vector3d g = Geodetic(p_enu);
+  Eigen::Vector3d d;
+  impl_->station[s].Forward(g(0), g(1), g(2), d(0), d(1), d(2));
+  return d;
+}
+
+namespace {
+
+// The beacon simulation of station s (its own frame rate and phase, the target as seen from it).
+BeaconSimOptions RenderedStation(const MultistationScenario& sim, std::size_t s) {
+  const MultistationOptions& o = sim.options();
+  const SimStation& st = sim.stations()[s];
+  BeaconSimOptions b;
+  CameraPreset("small", &b.camera);
+  b.camera_preset = "small";
+  b.fps = o.rate_hz * kRateFactor[s];
+  b.t0_s = st.t_s.front();  // the station's phase, as its located rows
+  b.duration_s = o.duration_s - b.t0_s;
+  // The lamps merge into one spot at kilometres: a peak that stays below saturation when they add up.
+  b.peak_dn = kRenderedPeakDn;
+  b.range_noise_mm = 1000.0 * o.sigma_range_m;
+  b.seed = o.seed * kStationSeedStride + s + 1;
+  b.target_enu = [&sim, s](double t) { return sim.StationEnu(s, sim.Position(t)); };
+  return b;
+}
+
+// trial.json of the rendered stations.
+void WriteRenderedManifest(const MultistationScenario& sim, const TrialFolder& folder,
+                           std::vector<trial::StationEntry> stations, const io::Json& summaries) {
+  const MultistationOptions& o = sim.options();
+  trial::Manifest m;
+  m.name = folder.stem();
+  m.epoch_utc = kRenderedEpochUtc;
+  m.stations = std::move(stations);
+  m.origin = {{"lat_deg", o.origin_lat_deg}, {"lon_deg", o.origin_lon_deg}, {"h_m", o.origin_h_m}};
+  m.steps = {{"intersect", {{"smooth", true}}}};
+  io::Json simj;
+  simj["generator"] = "rk-sim multistation";
+  simj["seed"] = o.seed;
+  simj["options"] = o.ToJson();
+  simj["truth"] = {{"trajectory", "truth.csv"}, {"stations", "<station>/truth/"}};
+  simj["summary"] = summaries;
+  m.extra["sim"] = simj;
+  trial::WriteManifest(folder.Path(trial::kManifestFile), m);
+}
+
+}  // namespace
+
 void WriteMultistationTrial(const MultistationScenario& sim, const std::string& out_dir, bool force) {
   TrialFolder folder(out_dir, force);
   for (std::size_t s = 0; s < sim.stations().size(); ++s) {
@@ -208,6 +266,23 @@ void WriteMultistationTrial(const MultistationScenario& sim, const std::string& 
   }
   io::WriteFileAtomic(folder.Path("stations.json"), sim.StationsJson().dump(2) + "\n");
   io::WriteFileAtomic(folder.Path("truth.csv"), sim.TruthCsv().str());
+  if (sim.options().video != "none") {
+    std::vector<trial::StationEntry> entries;
+    io::Json summaries = io::Json::object();
+    for (std::size_t s = 0; s < sim.stations().size(); ++s) {
+      const SimStation& st = sim.stations()[s];
+      const BeaconSimulator beacon(RenderedStation(sim, s));
+      TrialWriteOptions w;
+      w.format = sim.options().video;
+      w.station_lat_deg = st.lat_deg;
+      w.station_lon_deg = st.lon_deg;
+      w.station_h_m = st.h_m;
+      TrialSummary sum;
+      entries.push_back(WriteBeaconStation(beacon, w, folder.Path(""), st.name, st.has_range, &sum));
+      summaries[st.name] = sum.ToJson();
+    }
+    WriteRenderedManifest(sim, folder, std::move(entries), summaries);
+  }
   folder.Commit();
 }
 

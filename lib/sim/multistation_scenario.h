@@ -38,6 +38,9 @@ struct MultistationOptions {
   double speed_mps = 250.0;         // crossing speed (m/s), > 0
   double height_m = 3000.0;         // crossing height above the origin (m), > 0
   MultistationPath path = MultistationPath::kBallistic;
+  // "none", or the video format of a trial folder rk-run runs (docs/rk-sim.md "Rendered stations"): each
+  // station rendered as by rk-sim beacon (small camera on a turret, one beacon camera "az") into "mkv" or "png".
+  std::string video = "none";
   double origin_lat_deg = 47.0, origin_lon_deg = 8.0, origin_h_m = 400.0;
   std::uint64_t seed = 1;
 
@@ -65,6 +68,8 @@ class MultistationScenario {
   Eigen::Vector3d Velocity(double t_s) const;
   // Origin ENU → WGS-84 (lat_deg, lon_deg, h_m).
   Eigen::Vector3d Geodetic(const Eigen::Vector3d& p_enu) const;
+  // p_enu (origin ENU) in station s's own ENU frame (m), through WGS-84.
+  Eigen::Vector3d StationEnu(std::size_t s, const Eigen::Vector3d& p_enu) const;
   // Azimuth, elevation (rad) and range (m) of p_enu from station s, through WGS-84 (header).
   Eigen::Vector3d AzElRange(std::size_t s, const Eigen::Vector3d& p_enu) const;
 
@@ -86,7 +91,9 @@ class MultistationScenario {
   std::vector<SimStation> stations_;
 };
 
-// Writes <out>/stations.json, <out>/<name>/located.csv, <out>/truth.csv atomically (TrialFolder).
+// Writes <out>/stations.json, <out>/<name>/located.csv, <out>/truth.csv atomically (TrialFolder); with a video
+// format (options().video) also the trial rk-run runs: <out>/trial.json (docs/rk-run.md "Several stations") and
+// per station what rk-sim beacon writes for its one station (sim::WriteBeaconStation) under <out>/<name>/.
 void WriteMultistationTrial(const MultistationScenario& sim, const std::string& out_dir, bool force);
 
 }  // namespace rk::sim

@@ -120,4 +120,30 @@ Eigen::Matrix3d SingerProcessNoise(double T, double a, double q) {
   return SingerProcessNoiseClosed(T, a, q);
 }
 
+SingerStep::SingerStep(double T, double a)
+    : T_s_(T), a_per_s_(a), series_(a * T < kSingerSeriesLimit), phi_(SingerTransition(T, a)) {
+  if (!series_) return;
+  RK_CHECK(T >= 0.0 && a > 0.0, "Singer Q needs T >= 0 and a > 0");
+  static const SeriesTable table;
+  const double x = a * T;
+  const int p[3] = {2, 1, 0};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i; j < 3; ++j) {
+      double sum = 0.0;
+      for (int n = kSeriesTerms - 1; n >= 0; --n) sum = sum * (-x) + table.c[i][j][n];
+      pow_(i, j) = std::pow(T, p[i] + p[j] + 1);
+      sum_(i, j) = sum;
+    }
+  }
+}
+
+Eigen::Matrix3d SingerStep::ProcessNoise(double q) const {
+  if (!series_) return SingerProcessNoiseClosed(T_s_, a_per_s_, q);
+  Eigen::Matrix3d Q;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i; j < 3; ++j) Q(i, j) = Q(j, i) = q * pow_(i, j) * sum_(i, j);  // as SingerProcessNoiseSeries
+  }
+  return Q;
+}
+
 }  // namespace rk::track

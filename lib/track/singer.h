@@ -41,6 +41,23 @@ Eigen::Matrix3d SingerProcessNoise(double T_s, double a_per_s, double q);
 Eigen::Matrix3d SingerProcessNoiseClosed(double T_s, double a_per_s, double q);
 Eigen::Matrix3d SingerProcessNoiseSeries(double T_s, double a_per_s, double q);
 
+// Ψ(T) and the T-dependent factors of Q(T) for one step, so that a filter run many times over the same times
+// with different q (rk-smooth singer's maximum-likelihood choice of σ_m, every column of a series) computes
+// them once: Q(q) equals SingerProcessNoise(T, a, q) bit for bit (the same products in the same order).
+class SingerStep {
+ public:
+  SingerStep() = default;
+  SingerStep(double T_s, double a_per_s);
+  const Eigen::Matrix3d& transition() const { return phi_; }
+  Eigen::Matrix3d ProcessNoise(double q) const;
+
+ private:
+  double T_s_ = 0.0, a_per_s_ = 1.0;
+  bool series_ = true;
+  Eigen::Matrix3d phi_ = Eigen::Matrix3d::Identity();
+  Eigen::Matrix3d pow_ = Eigen::Matrix3d::Zero(), sum_ = Eigen::Matrix3d::Zero();  // series form: T^k, Horner sum
+};
+
 struct SingerAxisOptions {
   double maneuver_time_s = 2.0;  // τ_m = 1/a (s), > 0
   double accel_sigma = 50.0;     // σ_m, RMS acceleration (units/s²), ≥ 0

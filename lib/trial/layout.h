@@ -18,6 +18,11 @@ inline constexpr const char* kFramesFile = "frames.csv";  // in each camera's fo
 inline constexpr const char* kCameraModelFile = "camera.json";
 inline constexpr const char* kTargetModelFile = "target.json";
 inline constexpr const char* kPointingFile = "pointing.json";  // the station's turret pointing model (SPEC.md §3.1)
+// A multi-station trial's intersection (docs/rk-run.md "Several stations"): rk-run's unit and folder in out/
+// (so no station may have this name), the stations.json it writes there for rk-intersect, and the trajectory.
+inline constexpr const char* kTrajectoryUnit = "trajectory";
+inline constexpr const char* kStationsFile = "stations.json";
+inline constexpr const char* kTrajectoryFile = "trajectory.csv";
 // Held (flock) by rk-capture while it records into the folder; the kernel releases it when the
 // process ends, even by kill -9. `recover` refuses a folder whose lock is held.
 inline constexpr const char* kCaptureLockFile = ".rk-capture.lock";

@@ -91,6 +91,125 @@ class Checker {
   const JsonPositions& pos_;
 };
 
+
+// A WGS-84 position {"lat_deg","lon_deg","h_m"} at `pointer` (checked; null passes).
+void CheckPosition(const Checker& c, const Json& pos, const std::string& pointer) {
+  if (pos.is_null()) return;
+  if (!pos.is_object()) c.Fail(pointer, "must be an object {lat_deg, lon_deg, h_m}");
+  for (const char* k : {"lat_deg", "lon_deg", "h_m"}) {
+    if (!pos.contains(k)) c.Fail(pointer, std::string("missing field '") + k + "'");
+    if (!pos.at(k).is_number()) c.Fail(pointer + "/" + k, "must be a number");
+  }
+  const double lat = pos.at("lat_deg").get<double>(), lon = pos.at("lon_deg").get<double>();
+  if (!(lat >= -90 && lat <= 90)) c.Fail(pointer + "/lat_deg", "latitude must be in [-90, 90] degrees");
+  if (!(lon >= -180 && lon <= 360)) c.Fail(pointer + "/lon_deg", "longitude must be in [-180, 360] degrees");
+}
+
+// One camera of "cameras" at pointer `p`; `root` gives the trial-wide "target".
+CameraEntry ParseCamera(const Checker& c, const std::string& name, const Json& cam, const std::string& p,
+                        const Json& root) {
+  static const std::regex name_re("^[A-Za-z0-9][A-Za-z0-9_.-]*$");
+  if (!std::regex_match(name, name_re) || name == "radar" || name == "plots" || name == "steps") {
+    c.Fail(p, "camera name '" + name + "' must be letters, digits, '_', '-', '.' (not radar/plots/steps)", true);
+  }
+  if (!cam.is_object()) c.Fail(p, "must be an object");
+  CameraEntry e;
+  e.name = name;
+  if (!cam.contains("video")) c.Fail(p, "missing field 'video'");
+  const Json& v = cam.at("video");
+  if (v.is_string()) {
+    e.video.push_back(c.Path(v, p + "/video"));
+  } else if (v.is_array() && !v.empty()) {
+    for (std::size_t i = 0; i < v.size(); ++i) e.video.push_back(c.Path(v[i], p + "/video/" + std::to_string(i)));
+  } else {
+    c.Fail(p + "/video", "must be a path or a non-empty list of paths");
+  }
+  e.frames = c.OptionalPath(cam, "frames", p);
+  if (cam.contains("fps") && !cam.at("fps").is_null()) {
+    if (!cam.at("fps").is_number() || !(cam.at("fps").get<double>() > 0)) c.Fail(p + "/fps", "must be a frame rate > 0 Hz");
+    e.fps = cam.at("fps").get<double>();
+  }
+  if (cam.contains("t0_s") && !cam.at("t0_s").is_null()) {
+    if (!cam.at("t0_s").is_number()) c.Fail(p + "/t0_s", "must be a number (s)");
+    e.t0_s = cam.at("t0_s").get<double>();
+  }
+  if (e.frames.empty() && !e.fps) c.Fail(p, "give 'frames' (frame-times CSV) or 'fps'");
+  if (!e.frames.empty() && e.fps) c.Fail(p + "/fps", "give either 'frames' or 'fps', not both");
+  e.model = c.RequirePath(cam, "model", p);
+  if (!cam.contains("role") || !cam.at("role").is_string()) c.Fail(p, "missing field 'role' (beacon, features or silhouette)");
+  const std::string role = cam.at("role").get<std::string>();
+  if (!ParseCameraRole(role, &e.role)) c.Fail(p + "/role", "'" + role + "' is not one of beacon, features, silhouette");
+  e.target = c.OptionalPath(cam, "target", p);
+  if (e.target.empty() && root.contains("target") && !root.at("target").is_null()) e.target = c.OptionalPath(root, "target", "");
+  if (e.role != CameraRole::kBeacon && e.target.empty()) {
+    c.Fail(p, std::string("a ") + role + " camera needs 'target' (target model JSON)");
+  }
+  if (cam.contains("boresight_deg") && !cam.at("boresight_deg").is_null()) {
+    const Json& b = cam.at("boresight_deg");
+    if (!b.is_array() || b.size() != 2 || !b[0].is_number() || !b[1].is_number()) {
+      c.Fail(p + "/boresight_deg", "must be [azimuth_deg, elevation_deg]");
+    }
+    e.boresight_deg = std::make_pair(b[0].get<double>(), b[1].get<double>());
+  }
+  return e;
+}
+
+// What one station's part of a manifest says (the top level of a single-station manifest, pointer "", or
+// "stations": {NAME: ...} at "/stations/NAME"): station position and pointing, cameras, turret/range/theodolite.
+void ParseStationPart(const Checker& c, const Json& obj, const std::string& prefix, const Json& root,
+                      StationEntry* out) {
+  StationEntry& s = *out;
+  s.station = obj.contains("station") ? obj.at("station") : Json(nullptr);
+  CheckPosition(c, s.station, prefix + "/station");
+  if (!s.station.is_null()) s.pointing = c.OptionalPath(s.station, "pointing", prefix + "/station");
+  if (obj.contains("cameras") && !obj.at("cameras").is_null()) {
+    const Json& cams = obj.at("cameras");
+    if (!cams.is_object()) c.Fail(prefix + "/cameras", "must be an object {name: camera}");
+    for (const auto& [name, cam] : cams.items()) {
+      s.cameras.push_back(ParseCamera(c, name, cam, prefix + "/cameras/" + PointerToken(name), root));
+    }
+    std::sort(s.cameras.begin(), s.cameras.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+  }
+  s.turret = c.OptionalPath(obj, "turret", prefix);
+  s.range = c.OptionalPath(obj, "range", prefix);
+  s.theodolite = c.OptionalPath(obj, "theodolite", prefix);
+}
+
+// "stations" of a multi-station manifest (two or more, each with its position) and "origin"; the top level
+// then may not carry a station's own keys.
+void ParseStations(const Checker& c, const Json& j, Manifest* m) {
+  for (const char* key : {"station", "cameras", "turret", "range", "theodolite"}) {
+    if (j.contains(key) && !j.at(key).is_null()) {
+      c.Fail(std::string("/") + key,
+             std::string("a manifest with 'stations' gives '") + key + "' per station (stations.NAME." + key + ")",
+             true);
+    }
+  }
+  const Json& sts = j.at("stations");
+  if (!sts.is_object()) c.Fail("/stations", "must be an object {name: station}");
+  if (sts.size() < 2) c.Fail("/stations", "a multi-station trial needs at least two stations");
+  static const std::regex name_re("^[A-Za-z0-9][A-Za-z0-9_-]*$");
+  for (const auto& [name, st] : sts.items()) {
+    const std::string p = "/stations/" + PointerToken(name);
+    if (!std::regex_match(name, name_re) || name == "radar" || name == "plots" || name == "steps" ||
+        name == kTrajectoryUnit) {
+      c.Fail(p, "station name '" + name + "' must be letters, digits, '_', '-' (not radar/plots/steps/" +
+                    kTrajectoryUnit + ")", true);
+    }
+    if (!st.is_object()) c.Fail(p, "must be an object {station, cameras, turret, range, theodolite}");
+    if (!st.contains("station") || st.at("station").is_null()) {
+      c.Fail(p, "missing field 'station' ({lat_deg, lon_deg, h_m}: the intersection needs every station's position)");
+    }
+    StationEntry e;
+    e.name = name;
+    ParseStationPart(c, st, p, j, &e);
+    m->stations.push_back(std::move(e));
+  }
+  std::sort(m->stations.begin(), m->stations.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+  m->origin = j.contains("origin") ? j.at("origin") : Json(nullptr);
+  CheckPosition(c, m->origin, "/origin");
+}
+
 }  // namespace
 
 void FailAt(const std::string& file, const JsonPositions& positions, const std::string& pointer,
@@ -124,76 +243,18 @@ Manifest ParseManifest(const std::string& text, const std::string& manifest_path
     m.epoch_utc = j.at("epoch_utc").get<std::string>();
     if (!std::regex_match(m.epoch_utc, iso)) c.Fail("/epoch_utc", "'" + m.epoch_utc + "' is not ISO-8601 (2026-11-21T08:00:00Z)");
   }
-  m.station = j.contains("station") ? j.at("station") : Json(nullptr);
-  if (!m.station.is_null()) {
-    if (!m.station.is_object()) c.Fail("/station", "must be an object {lat_deg, lon_deg, h_m}");
-    for (const char* k : {"lat_deg", "lon_deg", "h_m"}) {
-      if (!m.station.contains(k)) c.Fail("/station", std::string("missing field '") + k + "'");
-      if (!m.station.at(k).is_number()) c.Fail(std::string("/station/") + k, "must be a number");
-    }
-    const double lat = m.station.at("lat_deg").get<double>(), lon = m.station.at("lon_deg").get<double>();
-    if (!(lat >= -90 && lat <= 90)) c.Fail("/station/lat_deg", "latitude must be in [-90, 90] degrees");
-    if (!(lon >= -180 && lon <= 360)) c.Fail("/station/lon_deg", "longitude must be in [-180, 360] degrees");
-    m.pointing = c.OptionalPath(m.station, "pointing", "/station");
-  }
-
-  if (!j.contains("cameras") || j.at("cameras").is_null()) {
-    m.cameras.clear();
+  if (j.contains("stations") && !j.at("stations").is_null()) {
+    ParseStations(c, j, &m);
   } else {
-    const Json& cams = j.at("cameras");
-    if (!cams.is_object()) c.Fail("/cameras", "must be an object {name: camera}");
-    for (const auto& [name, cam] : cams.items()) {
-      const std::string p = "/cameras/" + PointerToken(name);
-      static const std::regex name_re("^[A-Za-z0-9][A-Za-z0-9_.-]*$");
-      if (!std::regex_match(name, name_re) || name == "radar" || name == "plots" || name == "steps") {
-        c.Fail(p, "camera name '" + name + "' must be letters, digits, '_', '-', '.' (not radar/plots/steps)", true);
-      }
-      if (!cam.is_object()) c.Fail(p, "must be an object");
-      CameraEntry e;
-      e.name = name;
-      if (!cam.contains("video")) c.Fail(p, "missing field 'video'");
-      const Json& v = cam.at("video");
-      if (v.is_string()) {
-        e.video.push_back(c.Path(v, p + "/video"));
-      } else if (v.is_array() && !v.empty()) {
-        for (std::size_t i = 0; i < v.size(); ++i) e.video.push_back(c.Path(v[i], p + "/video/" + std::to_string(i)));
-      } else {
-        c.Fail(p + "/video", "must be a path or a non-empty list of paths");
-      }
-      e.frames = c.OptionalPath(cam, "frames", p);
-      if (cam.contains("fps") && !cam.at("fps").is_null()) {
-        if (!cam.at("fps").is_number() || !(cam.at("fps").get<double>() > 0)) c.Fail(p + "/fps", "must be a frame rate > 0 Hz");
-        e.fps = cam.at("fps").get<double>();
-      }
-      if (cam.contains("t0_s") && !cam.at("t0_s").is_null()) {
-        if (!cam.at("t0_s").is_number()) c.Fail(p + "/t0_s", "must be a number (s)");
-        e.t0_s = cam.at("t0_s").get<double>();
-      }
-      if (e.frames.empty() && !e.fps) c.Fail(p, "give 'frames' (frame-times CSV) or 'fps'");
-      if (!e.frames.empty() && e.fps) c.Fail(p + "/fps", "give either 'frames' or 'fps', not both");
-      e.model = c.RequirePath(cam, "model", p);
-      if (!cam.contains("role") || !cam.at("role").is_string()) c.Fail(p, "missing field 'role' (beacon, features or silhouette)");
-      const std::string role = cam.at("role").get<std::string>();
-      if (!ParseCameraRole(role, &e.role)) c.Fail(p + "/role", "'" + role + "' is not one of beacon, features, silhouette");
-      e.target = c.OptionalPath(cam, "target", p);
-      if (e.target.empty() && j.contains("target") && !j.at("target").is_null()) e.target = c.OptionalPath(j, "target", "");
-      if (e.role != CameraRole::kBeacon && e.target.empty()) {
-        c.Fail(p, std::string("a ") + role + " camera needs 'target' (target model JSON)");
-      }
-      if (cam.contains("boresight_deg") && !cam.at("boresight_deg").is_null()) {
-        const Json& b = cam.at("boresight_deg");
-        if (!b.is_array() || b.size() != 2 || !b[0].is_number() || !b[1].is_number()) {
-          c.Fail(p + "/boresight_deg", "must be [azimuth_deg, elevation_deg]");
-        }
-        e.boresight_deg = std::make_pair(b[0].get<double>(), b[1].get<double>());
-      }
-      m.cameras.push_back(e);
-    }
-    std::sort(m.cameras.begin(), m.cameras.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
+    StationEntry top;
+    ParseStationPart(c, j, "", j, &top);
+    m.station = top.station;
+    m.pointing = top.pointing;
+    m.cameras = std::move(top.cameras);
+    m.turret = top.turret;
+    m.range = top.range;
+    m.theodolite = top.theodolite;
   }
-  m.turret = c.OptionalPath(j, "turret", "");
-  m.range = c.OptionalPath(j, "range", "");
-  m.theodolite = c.OptionalPath(j, "theodolite", "");
   if (j.contains("radar") && !j.at("radar").is_null()) {
     const Json& r = j.at("radar");
     if (!r.is_object()) c.Fail("/radar", "must be null or {\"plots\": ..., \"nav\": ...}");
@@ -212,16 +273,30 @@ Manifest LoadManifest(const std::string& path) {
   return ParseManifest(io::ReadFile(file), file);
 }
 
+std::vector<StationEntry> Manifest::Stations() const {
+  if (!stations.empty()) return stations;
+  StationEntry top;
+  top.station = station;
+  top.pointing = pointing;
+  top.cameras = cameras;
+  top.turret = turret;
+  top.range = range;
+  top.theodolite = theodolite;
+  return {top};
+}
+
 std::vector<std::string> Manifest::AllPaths() const {
   std::vector<std::string> out;
-  for (const auto& cam : cameras) {
-    for (const auto& v : cam.video) out.push_back(v);
-    if (!cam.frames.empty()) out.push_back(cam.frames);
-    out.push_back(cam.model);
-    if (!cam.target.empty()) out.push_back(cam.target);
-  }
-  for (const std::string* p : {&turret, &range, &theodolite, &pointing}) {
-    if (!p->empty()) out.push_back(*p);
+  for (const StationEntry& st : Stations()) {
+    for (const auto& cam : st.cameras) {
+      for (const auto& v : cam.video) out.push_back(v);
+      if (!cam.frames.empty()) out.push_back(cam.frames);
+      out.push_back(cam.model);
+      if (!cam.target.empty()) out.push_back(cam.target);
+    }
+    for (const std::string* p : {&st.turret, &st.range, &st.theodolite, &st.pointing}) {
+      if (!p->empty()) out.push_back(*p);
+    }
   }
   if (radar) {
     out.push_back(radar->plots);
@@ -230,13 +305,11 @@ std::vector<std::string> Manifest::AllPaths() const {
   return out;
 }
 
-Json ManifestToJson(const Manifest& m) {
-  Json j;
-  j["name"] = m.name;
-  j["epoch_utc"] = m.epoch_utc;
-  j["station"] = m.station;
+namespace {
+
+Json CamerasToJson(const std::vector<CameraEntry>& cameras) {
   Json cams = Json::object();
-  for (const CameraEntry& cam : m.cameras) {
+  for (const CameraEntry& cam : cameras) {
     Json c;
     c["video"] = cam.video;
     if (!cam.frames.empty()) c["frames"] = cam.frames;
@@ -248,11 +321,33 @@ Json ManifestToJson(const Manifest& m) {
     if (cam.boresight_deg) c["boresight_deg"] = {cam.boresight_deg->first, cam.boresight_deg->second};
     cams[cam.name] = c;
   }
-  j["cameras"] = cams;
+  return cams;
+}
+
+// station, cameras, turret, range, theodolite of one station into `j`.
+void StationPartToJson(const StationEntry& s, Json* j) {
   const auto path_or_null = [](const std::string& p) { return p.empty() ? Json(nullptr) : Json(p); };
-  j["turret"] = path_or_null(m.turret);
-  j["range"] = path_or_null(m.range);
-  j["theodolite"] = path_or_null(m.theodolite);
+  (*j)["station"] = s.station;
+  (*j)["cameras"] = CamerasToJson(s.cameras);
+  (*j)["turret"] = path_or_null(s.turret);
+  (*j)["range"] = path_or_null(s.range);
+  (*j)["theodolite"] = path_or_null(s.theodolite);
+}
+
+}  // namespace
+
+Json ManifestToJson(const Manifest& m) {
+  Json j;
+  j["name"] = m.name;
+  j["epoch_utc"] = m.epoch_utc;
+  if (m.stations.empty()) {
+    StationPartToJson(m.Stations().front(), &j);
+  } else {
+    j["origin"] = m.origin;
+    Json sts = Json::object();
+    for (const StationEntry& st : m.stations) StationPartToJson(st, &sts[st.name]);
+    j["stations"] = sts;
+  }
   j["radar"] = m.radar ? Json{{"plots", m.radar->plots}, {"nav", m.radar->nav}} : Json(nullptr);
   j["steps"] = m.steps;
   for (const auto& [key, value] : m.extra.items()) j[key] = value;

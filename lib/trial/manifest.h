@@ -45,6 +45,20 @@ struct RadarEntry {
   std::string nav;    // platform navigation CSV
 };
 
+// One station of a multi-station trial (docs/rk-run.md "Several stations"): what a single-station manifest
+// says at its top level (station position and pointing model, cameras, logs), under "stations": {NAME: {...}}.
+// Paths are still relative to the trial folder.
+struct StationEntry {
+  std::string name;                  // key in "stations" (letters, digits, '_', '-'; the folder in out/)
+  io::Json station;                  // {"lat_deg","lon_deg","h_m"} (required in a multi-station manifest)
+  std::string pointing;              // station.pointing, "" = none
+  std::vector<CameraEntry> cameras;  // read: in name order
+  std::string turret, range, theodolite;  // empty = none
+  // The unit name of one of its cameras: "<station>/<camera>", or the camera's name for the single station
+  // of a single-station manifest (name empty).
+  std::string Unit(const CameraEntry& camera) const { return name.empty() ? camera.name : name + "/" + camera.name; }
+};
+
 struct Manifest {
   // Where it was read from (empty for a manifest being written).
   std::string manifest_path;  // absolute path of trial.json
@@ -60,6 +74,16 @@ struct Manifest {
   std::vector<CameraEntry> cameras;  // read: in name order
   std::string turret, range, theodolite;  // empty = none
   std::optional<RadarEntry> radar;
+  // Several stations (docs/rk-run.md "Several stations"): "stations" {NAME: StationEntry} and "origin"
+  // (the trajectory's ENU origin, {"lat_deg","lon_deg","h_m"}, null = the first station). When `stations` is
+  // not empty, the single-station keys above (station, cameras, turret, range, theodolite) are empty: a
+  // manifest has one form or the other.
+  std::vector<StationEntry> stations;  // read: in name order
+  io::Json origin;                     // null when absent
+  bool multi_station() const { return !stations.empty(); }
+  // The stations to process: `stations`, or the top level as one station with an empty name.
+  std::vector<StationEntry> Stations() const;
+
   io::Json steps = io::Json::object();  // rk-run's "steps" object (the reader checks only that it is one)
   // Written: further top-level keys, e.g. {"sim": {...}} or {"capture": {...}} (read: see `json`).
   io::Json extra = io::Json::object();
@@ -81,7 +105,8 @@ Manifest ParseManifest(const std::string& text, const std::string& manifest_path
 
 // The manifest as written: name, epoch_utc, station, cameras (video always a list; model null when empty;
 // frames, target, fps, t0_s, boresight_deg only when set), turret/range/theodolite (path or null), radar
-// (object or null), steps, then the keys of `extra`.
+// (object or null), steps, then the keys of `extra`. A multi-station manifest has "origin" and "stations"
+// (each station's station, cameras and logs in the same form) instead of station, cameras and the logs.
 io::Json ManifestToJson(const Manifest& manifest);
 // ManifestToJson written atomically (io::WriteJson) to `path`.
 void WriteManifest(const std::string& path, const Manifest& manifest);

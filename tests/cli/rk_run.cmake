@@ -31,6 +31,13 @@ rk_cli_script(rk_run/rk_run_bad_input REQUIRES sim_small)
 # manifest errors; a chain switched off asks for nothing.
 rk_cli_script(rk_run/rk_run_plan_by_unit REQUIRES sim_small)
 
+# Several stations (issue 18, docs/rk-run.md "Several stations"): rk-sim multistation --video writes a
+# three-station trial (rendered frames, turret logs, trial.json with "stations"); rk-run runs each station's
+# chain and rk-intersect (--smooth, as the manifest asks) into one out/; the trajectory is within a named
+# tolerance of truth; a second run skips everything; malformed multi-station manifests fail with exit 3 at
+# trial.json:LINE:COL (4 for a missing file), and a single-station manifest may not ask for the intersection.
+rk_cli_script(rk_run/rk_run_multistation REQUIRES sim_small)
+
 # rk-nightly: parallel run over a root of trials, a failing trial reported with its reason, summary JSON
 # and text table, log file, non-zero exit; the second run finds everything up to date; a second
 # instance exits at once (75).

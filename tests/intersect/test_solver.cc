@@ -122,6 +122,30 @@ TEST(IntersectSolver, AzimuthAcrossNorth) {
   }
 }
 
+// Stations at very different heights (a valley station 350 m below the origin, a mountain station 2600 m above
+// it, 15 km out): each sees the target with its own vertical, some below their horizon (negative elevation
+// from the mountain); noise-free lines still meet exactly.
+TEST(IntersectSolver, StationsAtVeryDifferentHeights) {
+  Layout s;
+  s.geo = {AtEnu(0, 0, 0), AtEnu(15000, 2000, 2600), AtEnu(4000, 12000, -350)};
+  for (const Geodetic& g : s.geo) s.frames.push_back(MakeStationFrame(kOrigin, g));
+  int below_horizon = 0;
+  for (const Eigen::Vector3d& p : {Eigen::Vector3d(8000, 6000, 300), Eigen::Vector3d(12000, 3000, 1500),
+                                  Eigen::Vector3d(2000, 9000, 6000), Eigen::Vector3d(-5000, 20000, 100)}) {
+    std::vector<LineObservation> obs;
+    for (int i = 0; i < 3; ++i) obs.push_back(Truth(i, s.geo[i], p, 1e-5));
+    below_horizon += obs[1].el_rad < 0 ? 1 : 0;
+    const RowResult r = SolveRow(s.frames, obs.data(), 3, SolverOptions{});
+    ASSERT_EQ(r.solution.status, SolveStatus::kOk);
+    EXPECT_LT((r.solution.p - p).norm(), kExactM) << p.transpose();
+    // Two stations alone (the valley and the mountain) too.
+    const Solution two = SolveMasked(s.frames, obs.data(), 3, 0b110);
+    ASSERT_EQ(two.status, SolveStatus::kOk);
+    EXPECT_LT((two.p - p).norm(), kExactM) << p.transpose();
+  }
+  EXPECT_GE(below_horizon, 2);  // the case is exercised
+}
+
 TEST(IntersectSolver, OutlierStationIsRejected) {
   Layout s = ThreeStations();
   s.geo.push_back(AtEnu(-6000, 12000, 150));

@@ -328,5 +328,102 @@ TEST(Plan, BindingAddedToTheTableIsReserved) {
   EXPECT_FALSE(IsReservedOption("no-such-kind", "input"));
 }
 
+
+// Several stations (docs/rk-run.md "Several stations"): each camera's chain with its own station's logs,
+// pointing model and position, into out/S/C/; then rk-intersect after every locate step, through the
+// stations.json the plan writes (positions, origin, located paths relative to it).
+constexpr const char* kTwoStations = R"({"name": "ms", "origin": {"lat_deg": 47, "lon_deg": 8, "h_m": 400},
+ "stations": {
+  "s2": {"station": {"lat_deg": 47.01, "lon_deg": 8.05, "h_m": 750},
+         "cameras": {"az": {"video": "s2/az/video.mkv", "frames": "s2/az/frames.csv",
+                            "model": "s2/az/camera.json", "role": "beacon"}},
+         "turret": "s2/turret.csv"},
+  "s1": {"station": {"lat_deg": 47, "lon_deg": 8, "h_m": 400, "pointing": "s1/pointing.json"},
+         "cameras": {"az": {"video": "s1/az/video.mkv", "frames": "s1/az/frames.csv",
+                            "model": "s1/az/camera.json", "role": "beacon"}},
+         "turret": "s1/turret.csv", "range": "s1/range.csv"}},
+ "steps": {"intersect": {"smooth": true}, "s2/az/locate": {"turret-max-gap": 0.2}}})";
+
+TEST(Plan, SeveralStationsRunEachChainThenTheIntersection) {
+  const TrialManifest m = ParseManifest(kTwoStations, "/t/trial.json");
+  const std::vector<Step> plan = BuildPlan(m, PlanOptions{.plots = false});
+  const Step& lo1 = Find(plan, "s1/az/locate");
+  EXPECT_EQ(Argv(lo1), (std::vector<std::string>{"rk-locate", "--track", "out/s1/az/track.csv", "--camera",
+                                                 "s1/az/camera.json", "--turret", "s1/turret.csv", "--range",
+                                                 "s1/range.csv", "--pointing", "s1/pointing.json", "--station",
+                                                 "47,8,400", "-o", "out/s1/az/located.csv"}));
+  const Step& lo2 = Find(plan, "s2/az/locate");
+  EXPECT_EQ(Argv(lo2), (std::vector<std::string>{"rk-locate", "--track", "out/s2/az/track.csv", "--camera",
+                                                 "s2/az/camera.json", "--turret", "s2/turret.csv", "--station",
+                                                 "47.01,8.05,750", "-o", "out/s2/az/located.csv",
+                                                 "--turret-max-gap", "0.2"}));
+  EXPECT_EQ(Find(plan, "s2/az/resample-range").state, PlanState::kNotApplicable);  // s2 has no range log
+  const Step& in = Find(plan, "trajectory/intersect");
+  EXPECT_EQ(in.state, PlanState::kActive);
+  EXPECT_EQ(Argv(in), (std::vector<std::string>{"rk-intersect", "--stations", "out/trajectory/stations.json", "-o",
+                                                "out/trajectory/trajectory.csv", "--smooth"}));
+  EXPECT_EQ(in.depends_on, (std::vector<std::string>{"s1/az/locate", "s2/az/locate"}));
+  // The intersection comes after every locate step it reads.
+  const auto pos = [&](const std::string& id) {
+    return std::find_if(plan.begin(), plan.end(), [&](const Step& s) { return s.id == id; }) - plan.begin();
+  };
+  EXPECT_GT(pos("trajectory/intersect"), pos("s2/az/locate"));
+  ASSERT_EQ(in.generated.size(), 1u);
+  EXPECT_EQ(in.generated[0].first, "trajectory/stations.json");
+  const io::Json st = io::Json::parse(in.generated[0].second);
+  EXPECT_EQ(st["origin"]["h_m"], 400);
+  ASSERT_EQ(st["stations"].size(), 2u);
+  EXPECT_EQ(st["stations"][0]["name"], "s1/az");
+  EXPECT_EQ(st["stations"][0]["located"], "../s1/az/located.csv");
+  EXPECT_EQ(st["stations"][1]["lat_deg"], 47.01);
+  EXPECT_EQ(st["stations"][1]["h_m"], 750);
+  // Units: one per camera, and the trajectory.
+  std::vector<std::string> units;
+  for (const UnitPlan& u : PlanByUnit(m, plan)) units.push_back(u.unit);
+  EXPECT_EQ(units, (std::vector<std::string>{"s1/az", "s2/az", "trajectory"}));
+  EXPECT_NO_THROW(CheckRequestedProducts(m, plan));
+}
+
+TEST(Plan, SeveralStationsErrorsAtTheirPlace) {
+  std::string two = kTwoStations;
+  // The intersection asks for two located targets: one station without a turret log cannot give one.
+  std::string no_turret = two;
+  const std::string s2_turret = "\"turret\": \"s2/turret.csv\"";
+  no_turret.replace(no_turret.find(s2_turret), s2_turret.size(), "\"turret\": null");
+  const TrialManifest m = ParseManifest(no_turret, "/t/trial.json");
+  const std::vector<Step> plan = BuildPlan(m, PlanOptions{});
+  EXPECT_EQ(Find(plan, "trajectory/intersect").state, PlanState::kNotApplicable);
+  try {
+    CheckRequestedProducts(m, plan);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    // The "s2/az/locate" key asks for it first (the camera's role would too).
+    EXPECT_NE(std::string(e.what()).find("steps.s2/az/locate: asks for s2/az/locate, which cannot run"),
+              std::string::npos)
+        << e.what();
+  }
+  // Step keys: an unknown station/camera, and the intersection in a single-station manifest.
+  std::string unit = two;
+  unit.replace(unit.find("\"s2/az/locate\""), std::string("\"s2/az/locate\"").size(), "\"s9/az/locate\"");
+  EXPECT_NE(ManifestError(unit).find("steps.s9/az/locate: no camera 'STATION/CAMERA' named 's9/az'"),
+            std::string::npos);
+  EXPECT_NE(ManifestError(WithSteps(R"({"intersect": {}})")).find("step 'intersect' needs several stations"),
+            std::string::npos);
+  // A unit key reaches its camera only.
+  const TrialManifest ok = ParseManifest(two, "/t/trial.json");
+  EXPECT_TRUE(ok.Settings("s1/az", "locate").options.empty());
+  EXPECT_EQ(ok.Settings("s2/az", "locate").options.size(), 1u);
+}
+
+// A single-station manifest plans exactly as before: no trajectory unit, camera units by their names.
+TEST(Plan, SingleStationManifestHasNoIntersection) {
+  const TrialManifest m = ParseManifest(testing::kBeaconManifest, "/t/trial.json");
+  for (const Step& s : BuildPlan(m, PlanOptions{})) {
+    EXPECT_NE(s.kind, "intersect");
+    EXPECT_TRUE(s.generated.empty());
+    EXPECT_EQ(s.id.rfind("az/", 0), 0u) << s.id;
+  }
+}
+
 }  // namespace
 }  // namespace rk::run

@@ -32,4 +32,6 @@ dump("stations_nopos.json", nopos)
 dump("stations_syntax.json", None, '{"stations": [\n  {"name": "s1",, "lat_deg": 1}\n]}\n')
 PY
 echo 't_s' >"$d/times.csv"; printf '1.0\n2.0\n3.0\n' >>"$d/times.csv"
+# --at times after every station's last row (issue 18: the error says so, not "never overlap").
+echo 't_s' >"$d/times_after.csv"; printf '500.0\n501.0\n' >>"$d/times_after.csv"
 echo ok

@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# CLI test rk_run_multistation: registered, and described, in tests/cli/rk_run.cmake.
+set -eu
+# Every test script gets the same three arguments (tests/cli/CMakeLists.txt, rk_cli_script).
+# shellcheck disable=SC2034
+data=$1 expect=$2 src=$3
+. "$src/tests/cli/rk_run/lib.sh"
+d=$data/run/multi; rm -rf "$d"; mkdir -p "$d"
+t=$d/ms
+# Three rendered stations (5 km baseline, 350 m and 900 m above station 1), a crossing at 3 km, 3 s at 10 Hz
+# (stations 2 and 3 at 12.5 and 8 Hz), station 1 with a rangefinder.
+rk-sim multistation --out "$t" --stations 3 --duration 3 --rate 10 --path crossing --baseline 5 \
+  --range-stations 1 --video mkv --seed 5 --quiet
+json "$t/trial.json" 'sorted(d["stations"])' | grep -q "\['s1', 's2', 's3'\]"
+rk-run "$t" --no-plots > "$d/run.out"; cat "$d/run.out"
+for s in s1/az/extract-beacon s1/az/locate s2/az/locate s3/az/locate trajectory/intersect; do
+  grep -Eq "^$s +ok" "$d/run.out" || { echo "step $s did not run ok"; exit 1; }
+done
+check_out --no-temporaries "$t"
+# One report: the intersection's quality figures and the stations.json rk-run wrote (each station's position).
+json "$t/out/report.json" '[s["status"] for s in d["steps"] if s["id"]=="trajectory/intersect"][0]' | grep -qx ok
+json "$t/out/trajectory/stations.json" 'len(d["stations"])' | grep -qx 3
+# The trajectory against truth. Tolerance: each line of sight carries the turret log's 0.003 deg encoder steps
+# (±26 µrad) and 5" servo jitter (24 µrad RMS), ≈ 0.25 m across at 5–6 km; the crossing angles (≥ 30°) at most
+# triple that: 2 m per axis at every ok row. At least 90 % of the rows ok (the stations' first and last frames
+# lack a second line of sight within one frame interval).
+python3 - "$t/out/trajectory/trajectory.csv" "$t/truth.csv" <<'PY'
+import csv, sys, bisect
+TOL_M = 2.0          # see above
+MIN_OK_FRACTION = 0.9
+rows = list(csv.DictReader(l for l in open(sys.argv[1]) if not l.startswith("#")))
+truth = list(csv.DictReader(l for l in open(sys.argv[2]) if not l.startswith("#")))
+tt = [float(r["t_s"]) for r in truth]
+ok = [r for r in rows if r["status"] == "ok"]
+assert len(ok) >= MIN_OK_FRACTION * len(rows), (len(ok), len(rows))
+assert "ve_mps" in rows[0], "the manifest's steps ask for --smooth"
+worst = 0.0
+for r in ok:
+    t = float(r["t_s"]); i = min(max(bisect.bisect_left(tt, t), 1), len(tt) - 1)
+    a, b = truth[i - 1], truth[i]; w = (t - tt[i - 1]) / (tt[i] - tt[i - 1])
+    for c in ("e_m", "n_m", "u_m"):
+        ref = float(a[c]) + w * (float(b[c]) - float(a[c]))   # the crossing is straight and level: exact
+        worst = max(worst, abs(float(r[c]) - ref))
+print("rows", len(rows), "ok", len(ok), "worst axis error m", round(worst, 3))
+assert worst <= TOL_M, worst
+PY
+rk-run "$t" --no-plots | grep -q 'trajectory/intersect *skipped'
+
+# Malformed multi-station manifests: exit 3 at trial.json:LINE:COL, nothing written.
+bad() {  # bad NAME PYTHON-EDIT: a copy of the trial with its manifest edited (m = the manifest)
+  rm -rf "$d/$1"; cp -r "$t" "$d/$1"; rm -rf "$d/$1/out" "$d/$1"/last-run.json "$d/$1"/rk-run.log
+  python3 -c "import json,sys; p=sys.argv[1]; m=json.load(open(p)); $2; json.dump(m,open(p,'w'),indent=1)" "$d/$1/trial.json"
+}
+bad one 'm["stations"]={"s1": m["stations"]["s1"]}'
+"$expect" 3 "$d/one/out" "trial.json:[0-9]+:[0-9]+: stations: a multi-station trial needs at least two stations" -- rk-run "$d/one"
+bad nopos 'del m["stations"]["s2"]["station"]'
+"$expect" 3 "$d/nopos/out" "trial.json:[0-9]+:[0-9]+: stations.s2: missing field 'station'" -- rk-run "$d/nopos"
+bad role 'm["stations"]["s3"]["cameras"]["az"]["role"]="beakon"'
+line=$(grep -n beakon "$d/role/trial.json" | cut -d: -f1)
+"$expect" 3 "$d/role/out" "trial.json:$line:[0-9]+: stations.s3.cameras.az.role: 'beakon' is not one of" -- rk-run "$d/role"
+bad both 'm["cameras"]=m["stations"]["s1"]["cameras"]'
+"$expect" 3 "$d/both/out" "trial.json:[0-9]+:[0-9]+: cameras: a manifest with 'stations' gives 'cameras' per station" -- rk-run "$d/both"
+bad name 'm["stations"]["trajectory"]=m["stations"].pop("s3")'
+"$expect" 3 "$d/name/out" "trial.json:[0-9]+:[0-9]+: stations.trajectory: station name 'trajectory'" -- rk-run "$d/name"
+bad lat 'm["stations"]["s2"]["station"]["lat_deg"]=95'
+"$expect" 3 "$d/lat/out" "trial.json:[0-9]+:[0-9]+: stations.s2.station.lat_deg: latitude must be in" -- rk-run "$d/lat"
+bad unit 'm["steps"]["s9/az/locate"]={}'
+"$expect" 3 "$d/unit/out" "trial.json:[0-9]+:[0-9]+: steps.s9/az/locate: no camera 'STATION/CAMERA' named 's9/az'" -- rk-run "$d/unit"
+bad noturret 'm["stations"]["s2"]["turret"]=None; m["stations"]["s3"]["turret"]=None'
+"$expect" 3 "$d/noturret/out" "trial.json:[0-9]+:[0-9]+: stations.s2.cameras.az.role: a beacon camera asks for s2/az/locate, which cannot run" -- rk-run "$d/noturret"
+bad missing 'm["stations"]["s2"]["turret"]="s2/no_such.csv"'
+"$expect" 4 "$d/missing/out" 's2/no_such.csv' -- rk-run "$d/missing"
+# The intersection needs several stations: a single-station manifest may not ask for it.
+s=$d/single; fresh "$s"; python3 -c "import json,sys; p=sys.argv[1]; m=json.load(open(p)); m['steps']={'intersect': {'smooth': True}}; json.dump(m,open(p,'w'),indent=1)" "$s/trial.json"
+"$expect" 3 "$s/out" "trial.json:[0-9]+:[0-9]+: steps.intersect: step 'intersect' needs several stations" -- rk-run "$s"
+echo ok
