@@ -64,7 +64,7 @@ std::string Dotted(const std::string& pointer) {
 // Errors that point into trial.json.
 class Checker {
  public:
-  Checker(const std::string& file, const JsonPositions& pos) : file_(file), pos_(pos) {}
+  Checker(const std::string& file, const io::JsonPositions& pos) : file_(file), pos_(pos) {}
 
   [[noreturn]] void Fail(const std::string& pointer, const std::string& what, bool at_key = false) const {
     FailAt(file_, pos_, pointer, what, at_key);
@@ -72,7 +72,7 @@ class Checker {
   // A relative (or absolute) path string; empty = absent (null or missing).
   std::string OptionalPath(const Json& obj, const std::string& key, const std::string& pointer) const {
     if (!obj.contains(key) || obj.at(key).is_null()) return "";
-    return Path(obj.at(key), pointer + "/" + PointerToken(key));
+    return Path(obj.at(key), pointer + "/" + io::PointerToken(key));
   }
   std::string Path(const Json& v, const std::string& pointer) const {
     if (!v.is_string()) Fail(pointer, "must be a path (string, relative to the trial folder)");
@@ -83,19 +83,19 @@ class Checker {
   }
   std::string RequirePath(const Json& obj, const std::string& key, const std::string& pointer) const {
     if (!obj.contains(key) || obj.at(key).is_null()) Fail(pointer, "missing field '" + key + "'");
-    return Path(obj.at(key), pointer + "/" + PointerToken(key));
+    return Path(obj.at(key), pointer + "/" + io::PointerToken(key));
   }
 
  private:
   std::string file_;
-  const JsonPositions& pos_;
+  const io::JsonPositions& pos_;
 };
 
 }  // namespace
 
-void FailAt(const std::string& file, const JsonPositions& positions, const std::string& pointer,
+void FailAt(const std::string& file, const io::JsonPositions& positions, const std::string& pointer,
             const std::string& what, bool at_key) {
-  const TextPosition p = at_key ? positions.KeyAt(pointer) : positions.At(pointer);
+  const io::TextPosition p = at_key ? positions.KeyAt(pointer) : positions.At(pointer);
   throw DataError(file, p.line, p.column, Dotted(pointer) + (pointer.empty() ? "" : ": ") + what);
 }
 
@@ -107,7 +107,7 @@ Manifest ParseManifest(const std::string& text, const std::string& manifest_path
   m.dir = abs.parent_path().string();
   m.text = text;
   m.json = io::ParseJson(text, manifest_path);
-  m.positions = JsonPositions(text);
+  m.positions = io::JsonPositions(text);
   const Checker c(manifest_path, m.positions);
   const Json& j = m.json;
   if (!j.is_object()) c.Fail("", "the manifest must be a JSON object");
@@ -143,7 +143,7 @@ Manifest ParseManifest(const std::string& text, const std::string& manifest_path
     const Json& cams = j.at("cameras");
     if (!cams.is_object()) c.Fail("/cameras", "must be an object {name: camera}");
     for (const auto& [name, cam] : cams.items()) {
-      const std::string p = "/cameras/" + PointerToken(name);
+      const std::string p = "/cameras/" + io::PointerToken(name);
       static const std::regex name_re("^[A-Za-z0-9][A-Za-z0-9_.-]*$");
       if (!std::regex_match(name, name_re) || name == "radar" || name == "plots" || name == "steps") {
         c.Fail(p, "camera name '" + name + "' must be letters, digits, '_', '-', '.' (not radar/plots/steps)", true);
