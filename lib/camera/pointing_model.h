@@ -11,6 +11,7 @@
 #include <string>
 
 #include "geo/pointing.h"
+#include "io/json_positions.h"
 #include "io/json_util.h"
 
 namespace rk::camera {
@@ -34,10 +35,13 @@ struct PointingModel {
   }
 };
 
-// Reads and validates pointing.json; DataError names the file and the key (terms finite, |term| ≤ 360°,
-// tilts ≤ 10°, σ finite and ≥ 0).
+// Reads and validates pointing.json; DataError names the file, the line and column of the offending value
+// (io::JsonPositions) and the key (terms numbers, finite, |term| ≤ 360°, tilts ≤ 10°, σ finite and ≥ 0).
 PointingModel LoadPointingModel(const std::string& path);
-PointingModel PointingModelFromJson(const io::Json& j, const std::string& where);
+PointingModel ParsePointingModel(const std::string& text, const std::string& name);
+// The same for parsed JSON; with `positions` of its text the errors name line and column, else the file only.
+PointingModel PointingModelFromJson(const io::Json& j, const std::string& where,
+                                    const io::JsonPositions& positions = io::JsonPositions());
 io::Json PointingModelToJson(const PointingModel& model);
 
 }  // namespace rk::camera

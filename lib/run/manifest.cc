@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "io/error.h"
+#include "io/json_positions.h"
 #include "trial/layout.h"
 
 namespace rk::run {
@@ -71,14 +72,14 @@ namespace {
 // Errors that point into trial.json (trial::FailAt).
 class Checker {
  public:
-  Checker(const std::string& file, const trial::JsonPositions& pos) : file_(file), pos_(pos) {}
+  Checker(const std::string& file, const io::JsonPositions& pos) : file_(file), pos_(pos) {}
   [[noreturn]] void Fail(const std::string& pointer, const std::string& what, bool at_key = false) const {
     trial::FailAt(file_, pos_, pointer, what, at_key);
   }
 
  private:
   std::string file_;
-  const trial::JsonPositions& pos_;
+  const io::JsonPositions& pos_;
 };
 
 bool ValidOptionName(const std::string& name) {
@@ -91,7 +92,7 @@ void CheckStepValue(const Checker& c, const Json& v, const std::string& pointer,
   if (!v.is_object())
     c.Fail(pointer, "must be an object of options, true or false (switch the step off)");
   for (const auto& [name, value] : v.items()) {
-    const std::string p = pointer + "/" + trial::PointerToken(name);
+    const std::string p = pointer + "/" + io::PointerToken(name);
     std::string opt = name;
     while (!opt.empty() && opt[0] == '-') opt.erase(0, 1);
     if (!ValidOptionName(opt)) c.Fail(p, "'" + name + "' is not an option name", true);
@@ -139,7 +140,7 @@ TrialManifest CheckSteps(trial::Manifest read, const std::string& manifest_path)
   static_cast<trial::Manifest&>(m) = std::move(read);
   const Checker c(manifest_path, m.positions);
   for (const auto& [key, value] : m.steps.items()) {
-    const std::string p = "/steps/" + trial::PointerToken(key);
+    const std::string p = "/steps/" + io::PointerToken(key);
     if (key == kBadRowsSetting) {
       if (!value.is_string() || (value.get<std::string>() != "error" && value.get<std::string>() != "skip")) {
         c.Fail(p, "must be \"error\" or \"skip\" (--bad-rows of every step that reads CSV)");

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "io/error.h"
+#include "io/json_positions.h"
 #include "run/plan.h"
 #include "trial/layout.h"
 #include "trial/manifest.h"
@@ -123,7 +124,7 @@ void CheckRequestedProducts(const TrialManifest& m, const std::vector<Step>& pla
     const std::string kind = slash == std::string::npos ? key : key.substr(slash + 1);
     // Plots are warnings; the intersection is checked last, after the cameras whose chains it needs.
     if (kind == "plot" || kind == "intersect") continue;
-    const std::string pointer = "/steps/" + trial::PointerToken(key);
+    const std::string pointer = "/steps/" + io::PointerToken(key);
     if (unit == "radar" && !m.radar) {
       fail(pointer, "asks for " + kind + " of the radar, but the manifest has no \"radar\" block ({\"plots\", \"nav\"})",
            true);
@@ -141,8 +142,8 @@ void CheckRequestedProducts(const TrialManifest& m, const std::vector<Step>& pla
                                    [&](const Step& s) { return s.unit == unit && s.kind == MainKind(cam.role); });
       if (it == plan.end() || it->state != PlanState::kNotApplicable) continue;
       if (it->note.find(", which is off") != std::string::npos) continue;  // "steps" switched its chain off
-      const std::string station = st.name.empty() ? "" : "/stations/" + trial::PointerToken(st.name);
-      fail(station + "/cameras/" + trial::PointerToken(cam.name) + "/role",
+      const std::string station = st.name.empty() ? "" : "/stations/" + io::PointerToken(st.name);
+      fail(station + "/cameras/" + io::PointerToken(cam.name) + "/role",
            "a " + std::string(CameraRoleName(cam.role)) + " camera asks for " + it->id + ", which cannot run: " +
                it->note + " (switch it off in \"steps\" to run the rest)",
            false);

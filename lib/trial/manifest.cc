@@ -64,7 +64,7 @@ std::string Dotted(const std::string& pointer) {
 // Errors that point into trial.json.
 class Checker {
  public:
-  Checker(const std::string& file, const JsonPositions& pos) : file_(file), pos_(pos) {}
+  Checker(const std::string& file, const io::JsonPositions& pos) : file_(file), pos_(pos) {}
 
   [[noreturn]] void Fail(const std::string& pointer, const std::string& what, bool at_key = false) const {
     FailAt(file_, pos_, pointer, what, at_key);
@@ -72,7 +72,7 @@ class Checker {
   // A relative (or absolute) path string; empty = absent (null or missing).
   std::string OptionalPath(const Json& obj, const std::string& key, const std::string& pointer) const {
     if (!obj.contains(key) || obj.at(key).is_null()) return "";
-    return Path(obj.at(key), pointer + "/" + PointerToken(key));
+    return Path(obj.at(key), pointer + "/" + io::PointerToken(key));
   }
   std::string Path(const Json& v, const std::string& pointer) const {
     if (!v.is_string()) Fail(pointer, "must be a path (string, relative to the trial folder)");
@@ -83,12 +83,12 @@ class Checker {
   }
   std::string RequirePath(const Json& obj, const std::string& key, const std::string& pointer) const {
     if (!obj.contains(key) || obj.at(key).is_null()) Fail(pointer, "missing field '" + key + "'");
-    return Path(obj.at(key), pointer + "/" + PointerToken(key));
+    return Path(obj.at(key), pointer + "/" + io::PointerToken(key));
   }
 
  private:
   std::string file_;
-  const JsonPositions& pos_;
+  const io::JsonPositions& pos_;
 };
 
 
@@ -166,7 +166,7 @@ void ParseStationPart(const Checker& c, const Json& obj, const std::string& pref
     const Json& cams = obj.at("cameras");
     if (!cams.is_object()) c.Fail(prefix + "/cameras", "must be an object {name: camera}");
     for (const auto& [name, cam] : cams.items()) {
-      s.cameras.push_back(ParseCamera(c, name, cam, prefix + "/cameras/" + PointerToken(name), root));
+      s.cameras.push_back(ParseCamera(c, name, cam, prefix + "/cameras/" + io::PointerToken(name), root));
     }
     std::sort(s.cameras.begin(), s.cameras.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
   }
@@ -190,7 +190,7 @@ void ParseStations(const Checker& c, const Json& j, Manifest* m) {
   if (sts.size() < 2) c.Fail("/stations", "a multi-station trial needs at least two stations");
   static const std::regex name_re("^[A-Za-z0-9][A-Za-z0-9_-]*$");
   for (const auto& [name, st] : sts.items()) {
-    const std::string p = "/stations/" + PointerToken(name);
+    const std::string p = "/stations/" + io::PointerToken(name);
     if (!std::regex_match(name, name_re) || name == "radar" || name == "plots" || name == "steps" ||
         name == kTrajectoryUnit) {
       c.Fail(p, "station name '" + name + "' must be letters, digits, '_', '-' (not radar/plots/steps/" +
@@ -212,9 +212,9 @@ void ParseStations(const Checker& c, const Json& j, Manifest* m) {
 
 }  // namespace
 
-void FailAt(const std::string& file, const JsonPositions& positions, const std::string& pointer,
+void FailAt(const std::string& file, const io::JsonPositions& positions, const std::string& pointer,
             const std::string& what, bool at_key) {
-  const TextPosition p = at_key ? positions.KeyAt(pointer) : positions.At(pointer);
+  const io::TextPosition p = at_key ? positions.KeyAt(pointer) : positions.At(pointer);
   throw DataError(file, p.line, p.column, Dotted(pointer) + (pointer.empty() ? "" : ": ") + what);
 }
 
@@ -226,7 +226,7 @@ Manifest ParseManifest(const std::string& text, const std::string& manifest_path
   m.dir = abs.parent_path().string();
   m.text = text;
   m.json = io::ParseJson(text, manifest_path);
-  m.positions = JsonPositions(text);
+  m.positions = io::JsonPositions(text);
   const Checker c(manifest_path, m.positions);
   const Json& j = m.json;
   if (!j.is_object()) c.Fail("", "the manifest must be a JSON object");

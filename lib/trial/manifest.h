@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "io/json_util.h"
-#include "trial/json_positions.h"
+#include "io/json_positions.h"
 
 namespace rk::trial {
 
@@ -65,7 +65,7 @@ struct Manifest {
   std::string dir;            // absolute trial directory (the manifest's folder)
   std::string text;           // the file's text (its SHA-256 is part of rk-run's report)
   io::Json json;              // the whole manifest, extra keys included
-  JsonPositions positions;
+  io::JsonPositions positions;
 
   std::string name;  // "name", else the folder's name
   std::string epoch_utc;
@@ -100,7 +100,7 @@ Manifest ParseManifest(const std::string& text, const std::string& manifest_path
 
 // DataError at the value (or, at_key, the key) of JSON pointer `pointer` of a manifest read from `file`:
 // "file:LINE:COL: dotted.pointer: what".
-[[noreturn]] void FailAt(const std::string& file, const JsonPositions& positions, const std::string& pointer,
+[[noreturn]] void FailAt(const std::string& file, const io::JsonPositions& positions, const std::string& pointer,
                          const std::string& what, bool at_key = false);
 
 // The manifest as written: name, epoch_utc, station, cameras (video always a list; model null when empty;

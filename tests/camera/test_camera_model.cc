@@ -151,5 +151,33 @@ TEST(PointingModel, JsonRoundTripKeepsSigmaAndExtraKeys) {
   }
 }
 
+// pointing.json errors name the file, line and column of the offending value (SPEC.md §4).
+TEST(PointingModel, ErrorsNameLineAndColumnOfTheValue) {
+  struct Case {
+    const char* text;
+    const char* where;  // expected "pointing.json:L:C:" prefix
+    const char* key;
+  };
+  const Case cases[] = {
+      {"{\n  \"az_offset_deg\": 1.5,\n  \"tilt_east_deg\": 12\n}\n", "pointing.json:3:20:", "tilt_east_deg"},
+      {"{\"az_offset_deg\": \"x\"}", "pointing.json:1:19:", "az_offset_deg"},
+      {"{\"az_offset_deg\": 1,\n \"sigma\": {\"tilt_north_deg\": 0.1,\n   \"az_offset_deg\": -1}}",
+       "pointing.json:3:21:", "sigma.az_offset_deg"},
+      {"{\"sigma\": [1]}", "pointing.json:1:11:", "sigma"},
+      {"[1, 2]", "pointing.json:1:1:", "object"},
+  };
+  for (const Case& c : cases) {
+    try {
+      ParsePointingModel(c.text, "pointing.json");
+      ADD_FAILURE() << c.text;
+    } catch (const Error& e) {
+      const std::string what = e.what();
+      EXPECT_EQ(e.code(), ExitCode::kInvalidData) << what;
+      EXPECT_EQ(what.rfind(c.where, 0), 0u) << what;
+      EXPECT_NE(what.find(c.key), std::string::npos) << what;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rk::camera

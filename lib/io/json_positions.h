@@ -1,5 +1,5 @@
-// Where each value of a JSON text sits (line and column), so that errors about a manifest's
-// fields can say "trial.json:7:22: ..." like every other input error (SPEC.md §4). nlohmann-json
+// Where each value of a JSON text sits (line and column), so that errors about a JSON file's fields
+// (trial.json, pointing.json) can say "trial.json:7:22: ..." like every other input error (SPEC.md §4). nlohmann-json
 // keeps no positions, so this is a small scanner over the text that nlohmann already accepted
 // (it understands the same // and /* */ comments that io::ParseJson allows).
 #pragma once
@@ -8,7 +8,7 @@
 #include <map>
 #include <string>
 
-namespace rk::trial {
+namespace rk::io {
 
 struct TextPosition {
   std::size_t line = 0;    // 1-based; 0 = unknown
@@ -34,4 +34,4 @@ class JsonPositions {
 // JSON pointer escaping of one reference token (~ → ~0, / → ~1).
 std::string PointerToken(const std::string& key);
 
-}  // namespace rk::trial
+}  // namespace rk::io

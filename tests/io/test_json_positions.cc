@@ -1,11 +1,11 @@
-// Unit tests of trial/json_positions.h: where each value and key of a JSON text sits.
+// Unit tests of io/json_positions.h: where each value and key of a JSON text sits.
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "trial/json_positions.h"
+#include "io/json_positions.h"
 
-namespace rk::trial {
+namespace rk::io {
 namespace {
 
 TEST(JsonPositions, NestedValuesKeysAndComments) {
@@ -27,4 +27,4 @@ TEST(JsonPositions, NestedValuesKeysAndComments) {
 }
 
 }  // namespace
-}  // namespace rk::trial
+}  // namespace rk::io

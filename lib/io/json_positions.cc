@@ -1,8 +1,8 @@
-#include "trial/json_positions.h"
+#include "io/json_positions.h"
 
 #include <cctype>
 
-namespace rk::trial {
+namespace rk::io {
 namespace {
 
 class Scanner {
@@ -189,4 +189,4 @@ TextPosition JsonPositions::KeyAt(const std::string& pointer) const {
   return At(pointer);
 }
 
-}  // namespace rk::trial
+}  // namespace rk::io
