@@ -1,7 +1,7 @@
 // rk-calibrate lens speed (issue 17 target: 20 five-megapixel views ≤ 30 s on 2 cores): 20 views of a 9 × 6
 // chessboard rendered through a 2448 × 2048 camera with distortion (sim/lens_board.h), written once as a PNG
 // sequence, then calibrate::CalibrateLens timed end to end (read, detect on 2 threads, solve).
-// Run (Release): build/bench/bench_lens_calibration --benchmark_min_time=1x   (one iteration is enough)
+// Run (Release): build-rel/bench/bench_lens_calibration   (one iteration each; argument: --detect-max-px, 0 = off)
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
@@ -57,6 +57,7 @@ void BM_LensCalibration20x5MP(benchmark::State& state) {
   opt.rows = 6;
   opt.square_mm = 30.0;
   opt.threads = 2;
+  opt.detect_max_px = static_cast<int>(state.range(0));  // 0: full-size search; 1600: scaled copy + cornerSubPix
   for (auto _ : state) {
     const rk::calibrate::LensResult res = rk::calibrate::CalibrateLens({pattern}, opt);
     state.counters["views_used"] = res.ViewsUsed();
@@ -66,7 +67,7 @@ void BM_LensCalibration20x5MP(benchmark::State& state) {
     state.counters["map_err_px"] = rk::calibrate::MapDifferenceRmsPx(FiveMegapixelCamera(), res.camera, 16);
   }
 }
-BENCHMARK(BM_LensCalibration20x5MP)->Unit(benchmark::kSecond)->Iterations(1);
+BENCHMARK(BM_LensCalibration20x5MP)->Arg(0)->Arg(1600)->Unit(benchmark::kSecond)->Iterations(1);
 
 }  // namespace
 

@@ -7,14 +7,16 @@
 // Solved by Zhang's method (Z. Zhang, "A flexible new technique for camera calibration", PAMI 2000) as
 // OpenCV's cv::calibrateCamera does it: closed-form initialisation from the board homographies, then
 // Levenberg–Marquardt over intrinsics and every view's pose, minimising the sum of squared pixel
-// residuals. The 1σ are OpenCV's: sqrt(diag((JᵀJ)⁻¹)) · s, with s² = Σr² / (2N − parameters), which
-// assumes independent corner errors of equal variance.
+// residuals. The covariance of the intrinsics is s² (JᵀJ)⁻¹ with the poses marginalised, s² = Σr² / (2N −
+// parameters) over the 2N residual components (OpenCV's own 1σ divide by N − parameters: √2 too large); it
+// assumes independent corner errors of equal variance. From it, the predicted error of the pixel map.
 //
 // Robustness: views without a board are listed and skipped; a view whose RMS exceeds
 // reject_ratio × the median view RMS (and kRejectFloorPx) is rejected and the solve repeated until none
 // is; fewer than min_views usable views is a ProcessingError (exit 1) naming the reason.
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <cstdint>
 #include <functional>
@@ -59,6 +61,10 @@ struct LensOptions {
   bool fix_principal_point = false;  // (cx, cy) = image centre ((w − 1) / 2, (h − 1) / 2)
   bool zero_tangent = false;         // p1 = p2 = 0
   bool subpix = false;               // chessboard: refine findChessboardCornersSB's corners with cv::cornerSubPix
+  // Chessboard: search images larger than this (longer side, px) on a scaled copy and refine the corners at full
+  // size with cv::cornerSubPix (findChessboardCornersSB's cost grows with the pixel count); 0 = full-size search.
+  // Off by default until its corners are shown as good as the full-size search's (docs/benchmarks.md).
+  int detect_max_px = 0;
   double reject_ratio = kRejectRatio;
   int min_views = 3;
   int threads = 0;  // board detection threads (0 = one per core)
@@ -88,10 +94,21 @@ struct LensSigma {
   std::array<double, 5> distortion{};  // k1, k2, p1, p2, k3
 };
 
+// Predicted error of the calibrated pixel map (from the intrinsics' covariance), RMS over the image (px).
+struct MapSigma {
+  double rms_px = 0.0;                  // as MapDifferenceRmsPx measures it against the truth
+  double modulo_rotation_rms_px = 0.0;  // what is left after the best common rotation of the rays (a mount or
+                                        // pointing calibration absorbs that rotation: most of a principal-point error)
+};
+
 struct LensResult {
   int width_px = 0, height_px = 0;
   camera::CameraModel camera;  // the calibrated model (SPEC.md §3)
   LensSigma sigma;
+  // Covariance of (fx, fy, cx, cy, k1, k2, p1, p2, k3) (px, px, px, px, 1, ...), the views' poses marginalised;
+  // rows and columns of fixed terms 0. The σ above are the roots of its diagonal.
+  Eigen::Matrix<double, 9, 9> covariance = Eigen::Matrix<double, 9, 9>::Zero();
+  MapSigma map_sigma;           // PredictedMapSigma of camera and covariance
   double rms_px = 0.0;          // over every corner of the used views
   int solves = 0;               // calibrateCamera runs (1 + rejection rounds)
   std::vector<LensView> views;  // in input order
@@ -122,6 +139,13 @@ LensResult CalibrateLens(const std::vector<std::string>& inputs, const LensOptio
 // Difference of two models' pixel maps over the image: for a grid of pixels (every `step_px`) of `a`, the ray
 // a sees there, projected by `b`; RMS of the pixel differences (px). Same image size assumed.
 double MapDifferenceRmsPx(const camera::CameraModel& a, const camera::CameraModel& b, int step_px = 8);
+// The same after rotating a's rays by the rotation that minimises it: the map error left once a mount or
+// pointing calibration (which estimates the camera's orientation) has absorbed the common rotation.
+double MapDifferenceModuloRotationRmsPx(const camera::CameraModel& a, const camera::CameraModel& b, int step_px = 8);
+// The expected RMS (over a grid every `step_px`) of MapDifferenceRmsPx(truth, estimate) and of the modulo-rotation
+// figure, for an estimate `cam` with the covariance `cov` of (fx, fy, cx, cy, k1, k2, p1, p2, k3), linearised
+// (central differences of the map in every parameter).
+MapSigma PredictedMapSigma(const camera::CameraModel& cam, const Eigen::Matrix<double, 9, 9>& cov, int step_px = 8);
 
 // The PNG (encoded bytes) of residual vectors over the image, exaggerated (scale written on the image), and of
 // the image's coverage by board corners (cells shaded by count).

@@ -7,28 +7,62 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <cmath>
 
 #include "calibrate/lens_calibration.h"
 
 namespace rk::calibrate {
 namespace {
 
-void DetectChessboard(const cv::Mat& gray, const LensOptions& opt, LensView* v) {
-  const cv::Size pattern(opt.cols, opt.rows);
-  std::vector<cv::Point2f> corners;
-  if (!cv::findChessboardCornersSB(gray, pattern, corners, cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_ACCURACY)) return;
-  if (opt.subpix) {  // window: 0.3 × the smallest corner spacing, 2–7 px half-size
-    double spacing = 1e9;
-    for (int r = 0; r < opt.rows; ++r) {
-      for (int c = 0; c + 1 < opt.cols; ++c) {
-        const std::size_t k = static_cast<std::size_t>(r * opt.cols + c);
-        spacing = std::min(spacing, static_cast<double>(cv::norm(corners[k + 1] - corners[k])));
-      }
+// Smallest spacing between neighbouring corners of a row (px).
+double RowSpacing(const std::vector<cv::Point2f>& corners, int cols, int rows) {
+  double spacing = 1e9;
+  for (int r = 0; r < rows; ++r) {
+    for (int c = 0; c + 1 < cols; ++c) {
+      const std::size_t k = static_cast<std::size_t>(r * cols + c);
+      spacing = std::min(spacing, static_cast<double>(cv::norm(corners[k + 1] - corners[k])));
     }
-    const int half = std::clamp(static_cast<int>(0.3 * spacing), 2, 7);
-    cv::cornerSubPix(gray, corners, cv::Size(half, half), cv::Size(-1, -1),
-                     cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-4));
   }
+  return spacing;
+}
+
+// cv::cornerSubPix with a window of 0.3 × `spacing`, the smallest corner spacing (2–7 px half-size), and a tight
+// stop (1e-4 px).
+void RefineCorners(const cv::Mat& gray, double spacing, std::vector<cv::Point2f>* corners) {
+  const int half = std::clamp(static_cast<int>(0.3 * spacing), 2, 7);
+  cv::cornerSubPix(gray, *corners, cv::Size(half, half), cv::Size(-1, -1),
+                   cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-4));
+}
+
+// findChessboardCornersSB on `gray`, or on a copy scaled to opt.detect_max_px (then refined at full resolution).
+bool FindChessboard(const cv::Mat& gray, const LensOptions& opt, std::vector<cv::Point2f>* corners) {
+  const cv::Size pattern(opt.cols, opt.rows);
+  const int flags = cv::CALIB_CB_NORMALIZE_IMAGE | cv::CALIB_CB_ACCURACY;
+  const int longest = std::max(gray.cols, gray.rows);
+  if (opt.detect_max_px == 0 || longest <= opt.detect_max_px) {
+    if (!cv::findChessboardCornersSB(gray, pattern, *corners, flags)) return false;
+    if (opt.subpix) RefineCorners(gray, RowSpacing(*corners, opt.cols, opt.rows), corners);
+    return true;
+  }
+  const double scale = static_cast<double>(opt.detect_max_px) / longest;
+  cv::Mat small;
+  // An explicit size: OpenCV then scales by exactly small / full in each axis.
+  cv::resize(gray, small, cv::Size(std::max(1, static_cast<int>(std::lround(gray.cols * scale))),
+                                   std::max(1, static_cast<int>(std::lround(gray.rows * scale)))),
+             0, 0, cv::INTER_AREA);
+  if (!cv::findChessboardCornersSB(small, pattern, *corners, flags)) return false;
+  // INTER_AREA: small pixel i covers full pixels [i / s − 0.5, (i + 1) / s − 0.5], its centre at (i + 0.5) / s − 0.5.
+  const double sx = static_cast<double>(small.cols) / gray.cols, sy = static_cast<double>(small.rows) / gray.rows;
+  for (auto& p : *corners) {
+    p = cv::Point2f(static_cast<float>((p.x + 0.5) / sx - 0.5), static_cast<float>((p.y + 0.5) / sy - 0.5));
+  }
+  RefineCorners(gray, RowSpacing(*corners, opt.cols, opt.rows), corners);
+  return true;
+}
+
+void DetectChessboard(const cv::Mat& gray, const LensOptions& opt, LensView* v) {
+  std::vector<cv::Point2f> corners;
+  if (!FindChessboard(gray, opt, &corners)) return;
   v->found = true;
   v->image_px = corners;
   for (int r = 0; r < opt.rows; ++r) {

@@ -61,6 +61,8 @@ io::Json LensResult::CameraJson(const LensOptions& opt, const std::string& date_
                       {"board", BoardJson(opt)},
                       {"fixed", FixedNames(opt)},
                       {"rms_px", rms_px},
+                      {"map_sigma_px", map_sigma.rms_px},
+                      {"map_sigma_modulo_rotation_px", map_sigma.modulo_rotation_rms_px},
                       {"views", views.size()},
                       {"views_used", used},
                       {"views_rejected", rejected},
@@ -82,6 +84,8 @@ io::Json LensResult::SummaryJson() const {
           {"sigma_fy_px", sigma.fy_px},
           {"sigma_cx_px", sigma.cx_px},
           {"sigma_cy_px", sigma.cy_px},
+          {"map_sigma_px", map_sigma.rms_px},
+          {"map_sigma_modulo_rotation_px", map_sigma.modulo_rotation_rms_px},
           {"solves", solves}};
 }
 

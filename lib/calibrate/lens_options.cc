@@ -59,6 +59,9 @@ const io::OptionTable<LensOptions>& LensOptions::Table() {
           .Flag("--zero-tangent", &O::zero_tangent, "Keep p1 = p2 = 0 (no tangential distortion)")
           .Flag("--subpix", &O::subpix,
                 "Chessboard: refine the corners with cornerSubPix (sharp images; window 0.3 x the corner spacing)")
+          .Integer("--detect-max-px", &O::detect_max_px, "px", B::Closed(0, 100000),
+                   "Chessboard: search larger images on a copy this size (longer side), then refine the corners at "
+                   "full size with cornerSubPix (0 = search at full size; 1600: 2.5x less CPU on 5 Mpx images)")
           .Real("--reject-ratio", &O::reject_ratio, "", B::AtLeast(1).Finite(),
                 "Reject a view whose RMS exceeds this times the median view RMS (and 0.1 px), then solve again")
           .Integer("--min-views", &O::min_views, "", B::Closed(1, 100000),

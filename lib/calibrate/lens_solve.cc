@@ -1,5 +1,6 @@
 // SolveLens: cv::calibrateCamera with OpenCV's 1σ, rejection of views far above the median RMS, the
 // calibrated camera model and its JSON.
+#include <Eigen/Dense>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -14,6 +15,7 @@ namespace {
 
 struct LensSolve {
   cv::Mat K, dist, std_intrinsics;
+  std::vector<cv::Mat> rvecs, tvecs;  // per used view
   std::vector<double> view_rms;  // per used view, in the order of `used`
   double rms_px = 0.0;
 };
@@ -29,11 +31,10 @@ LensSolve RunCalibrateCamera(const std::vector<LensView>& views, const std::vect
   LensSolve s;
   s.K = cv::Mat::eye(3, 3, CV_64F);  // fx/fy = 1 is the ratio --fix-aspect keeps
   s.dist = cv::Mat::zeros(5, 1, CV_64F);
-  std::vector<cv::Mat> rvecs, tvecs;
   cv::Mat std_extrinsics, per_view;
   const cv::TermCriteria crit(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-12);
   try {
-    s.rms_px = cv::calibrateCamera(obj, img, size, s.K, s.dist, rvecs, tvecs, s.std_intrinsics, std_extrinsics,
+    s.rms_px = cv::calibrateCamera(obj, img, size, s.K, s.dist, s.rvecs, s.tvecs, s.std_intrinsics, std_extrinsics,
                                    per_view, opt.OpenCvFlags(), crit);
   } catch (const cv::Exception& e) {
     throw ProcessingError("calibration failed (OpenCV: " + e.err + ")");
@@ -106,16 +107,69 @@ camera::CameraModel ModelFrom(const LensSolve& s, int w, int h, const LensOption
   return cam;
 }
 
-LensSigma SigmaFrom(const LensSolve& s, const LensOptions& opt) {
-  const auto sd = [&](int i) { return s.std_intrinsics.at<double>(i); };
+// The free intrinsics as columns of T (9 × p): (fx, fy, cx, cy, k1, k2, p1, p2, k3) = T · free, to first order.
+// --fix-aspect keeps fx = a · fy (OpenCV estimates fy; a = fx / fy of the solution).
+Eigen::MatrixXd FreeIntrinsics(const LensOptions& opt, double aspect) {
+  std::vector<Eigen::Matrix<double, 9, 1>> cols;
+  const auto unit = [](int i) { return Eigen::Matrix<double, 9, 1>::Unit(i); };
+  if (opt.fix_aspect) {
+    cols.push_back(aspect * unit(0) + unit(1));
+  } else {
+    cols.push_back(unit(0));
+    cols.push_back(unit(1));
+  }
+  if (!opt.fix_principal_point) cols.insert(cols.end(), {unit(2), unit(3)});
+  cols.insert(cols.end(), {unit(4), unit(5)});
+  if (!opt.zero_tangent) cols.insert(cols.end(), {unit(6), unit(7)});
+  if (!opt.fix_k3) cols.push_back(unit(8));
+  Eigen::MatrixXd T(9, static_cast<Eigen::Index>(cols.size()));
+  for (std::size_t k = 0; k < cols.size(); ++k) T.col(static_cast<Eigen::Index>(k)) = cols[k];
+  return T;
+}
+
+// Covariance of the intrinsics with every view's pose marginalised: σ² (A − Σ Bᵢ Cᵢ⁻¹ Bᵢᵀ)⁻¹ over the Gauss–Newton
+// normal matrix [[A, B], [Bᵀ, C]] of calibrateCamera's problem at its solution (cv::projectPoints' Jacobians),
+// σ² = Σr² / (2N − parameters) over the 2N residual components. (calibrateCamera's own stdDeviationsIntrinsics
+// divide by N − parameters, N the number of points, and so overstate every 1σ by about √2.)
+Eigen::Matrix<double, 9, 9> IntrinsicCovariance(const std::vector<LensView>& views, const std::vector<std::size_t>& used,
+                                                const LensSolve& s, const LensOptions& opt) {
+  const Eigen::MatrixXd T = FreeIntrinsics(opt, s.K.at<double>(0, 0) / s.K.at<double>(1, 1));
+  const Eigen::Index p = T.cols();
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(p, p);
+  double ss = 0;
+  std::size_t n = 0;
+  for (std::size_t k = 0; k < used.size(); ++k) {
+    const LensView& v = views[used[k]];
+    std::vector<cv::Point2f> proj;
+    cv::Mat jac;  // 2N × (3 rotation, 3 translation, fx, fy, cx, cy, k1, k2, p1, p2, k3)
+    cv::projectPoints(v.board_mm, s.rvecs[k], s.tvecs[k], s.K, s.dist, proj, jac);
+    Eigen::MatrixXd J(jac.rows, 15);
+    for (int r = 0; r < jac.rows; ++r) {
+      for (int c = 0; c < 15; ++c) J(r, c) = jac.at<double>(r, c);
+    }
+    const Eigen::MatrixXd Ji = J.rightCols(9) * T;
+    const Eigen::MatrixXd Jp = J.leftCols(6);
+    const Eigen::Matrix<double, 6, 6> C = Jp.transpose() * Jp;
+    const Eigen::MatrixXd B = Ji.transpose() * Jp;
+    A += Ji.transpose() * Ji - B * C.ldlt().solve(B.transpose());
+    for (std::size_t q = 0; q < proj.size(); ++q) {
+      const cv::Point2f d = v.image_px[q] - proj[q];
+      ss += d.dot(d);
+    }
+    n += proj.size();
+  }
+  const double dof = 2.0 * static_cast<double>(n) - static_cast<double>(p + 6 * static_cast<Eigen::Index>(used.size()));
+  const double s2 = dof > 0 ? ss / dof : 0.0;
+  Eigen::Matrix<double, 9, 9> cov = T * (s2 * A.inverse()) * T.transpose();
+  return 0.5 * (cov + cov.transpose());
+}
+
+// The 1σ: roots of the covariance's diagonal (0 for a fixed term).
+LensSigma SigmaFrom(const Eigen::Matrix<double, 9, 9>& cov) {
+  const auto sd = [&](int i) { return std::sqrt(std::max(0.0, cov(i, i))); };
   LensSigma g;
   g.fx_px = sd(0);
   g.fy_px = sd(1);
-  if (opt.fix_aspect) {  // OpenCV estimates fy and keeps fx = fy · aspect: one σ, scaled
-    const double one = std::max(sd(0), sd(1));
-    g.fy_px = sd(1) > 0 ? sd(1) : one * s.K.at<double>(1, 1) / s.K.at<double>(0, 0);
-    g.fx_px = sd(0) > 0 ? sd(0) : one * s.K.at<double>(0, 0) / s.K.at<double>(1, 1);
-  }
   g.cx_px = sd(2);
   g.cy_px = sd(3);
   for (int i = 0; i < 5; ++i) g.distortion[static_cast<std::size_t>(i)] = sd(4 + i);
@@ -192,7 +246,9 @@ LensResult SolveLens(std::vector<LensView> views, int width_px, int height_px, c
   res.height_px = height_px;
   res.rms_px = s.rms_px;
   res.camera = ModelFrom(s, width_px, height_px, opt);
-  res.sigma = SigmaFrom(s, opt);
+  res.covariance = IntrinsicCovariance(views, used, s, opt);
+  res.sigma = SigmaFrom(res.covariance);
+  res.map_sigma = PredictedMapSigma(res.camera, res.covariance, std::max(1, std::max(width_px, height_px) / 64));
   ComputeResiduals(&views, s.K, s.dist);
   res.views = std::move(views);
   res.warnings = SigmaWarnings(res.camera, res.sigma);
@@ -208,21 +264,6 @@ int LensResult::ViewsWithoutBoard() const {
 }
 int LensResult::ViewsRejected() const {
   return static_cast<int>(views.size()) - ViewsUsed() - ViewsWithoutBoard();
-}
-
-double MapDifferenceRmsPx(const camera::CameraModel& a, const camera::CameraModel& b, int step_px) {
-  double ss = 0;
-  std::size_t n = 0;
-  for (int y = 0; y < a.height_px; y += step_px) {
-    for (int x = 0; x < a.width_px; x += step_px) {
-      const Eigen::Vector2d px(x, y);
-      const auto q = b.Project(a.NormalisedRay(px));
-      if (!q) continue;
-      ss += (*q - px).squaredNorm();
-      ++n;
-    }
-  }
-  return n ? std::sqrt(ss / static_cast<double>(n)) : 0.0;
 }
 
 }  // namespace rk::calibrate

@@ -142,7 +142,7 @@ cv::Mat BoardRenderer::Render(const Eigen::Matrix3d& R_cam_board, const Eigen::V
 }
 
 std::vector<BoardPose> VariedBoardPoses(const camera::CameraModel& cam, double x0, double y0, double x1, double y1,
-                                        int n, std::uint64_t seed) {
+                                        int n, std::uint64_t seed, const BoardPoseSpread& spread) {
   std::mt19937_64 rng(seed);
   std::uniform_real_distribution<double> u01(0.0, 1.0);
   const double pi = 3.14159265358979323846;
@@ -150,14 +150,17 @@ std::vector<BoardPose> VariedBoardPoses(const camera::CameraModel& cam, double x
   const Eigen::Vector3d outline[4] = {{x0, y0, 0}, {x1, y0, 0}, {x0, y1, 0}, {x1, y1, 0}};
   std::vector<BoardPose> poses;
   for (int tries = 0; static_cast<int>(poses.size()) < n && tries < 10000 * n; ++tries) {
-    const double axis_angle = 2 * pi * u01(rng), tilt = (10 + 30 * u01(rng)) * pi / 180;
-    const double turn = (-30 + 60 * u01(rng)) * pi / 180;
+    const double axis_angle = 2 * pi * u01(rng);
+    const double tilt = (spread.tilt_min_deg + (spread.tilt_max_deg - spread.tilt_min_deg) * u01(rng)) * pi / 180;
+    const double turn = (-spread.turn_deg + 2 * spread.turn_deg * u01(rng)) * pi / 180;
     const Eigen::Vector3d axis(std::cos(axis_angle), std::sin(axis_angle), 0.0);
     const Eigen::Matrix3d R = (Eigen::AngleAxisd(tilt, axis) * Eigen::AngleAxisd(turn, Eigen::Vector3d::UnitZ()))
                                   .toRotationMatrix();
-    const double fill = 0.30 + 0.30 * u01(rng);
+    const double fill = spread.fill_min + (spread.fill_max - spread.fill_min) * u01(rng);
     const double dist = cam.fx() * (x1 - x0) / (fill * cam.width_px);
-    const Eigen::Vector2d aim(cam.width_px * (0.1 + 0.8 * u01(rng)), cam.height_px * (0.1 + 0.8 * u01(rng)));
+    const double a0 = 0.5 * (1 - spread.aim_fraction);
+    const Eigen::Vector2d aim(cam.width_px * (a0 + spread.aim_fraction * u01(rng)),
+                              cam.height_px * (a0 + spread.aim_fraction * u01(rng)));
     const Eigen::Vector3d ray = cam.NormalisedRay(aim);
     const Eigen::Vector3d t = ray.normalized() * dist - R * centre;
     bool inside = true;

@@ -57,10 +57,18 @@ struct BoardPose {
   Eigen::Vector3d t_cam_board_mm;
 };
 
-// `n` varied views of a board spanning [x0, x1] × [y0, y1] mm (its outline, margin included): tilts of
-// 10–40° about random in-plane axes, in-plane turns of ±30°, the board filling 30–60 % of the image
-// width, aimed anywhere in the middle 80 % of the image that keeps the whole outline inside the image. Deterministic in `seed`.
+// The spread of VariedBoardPoses (defaults: its original, moderate set).
+struct BoardPoseSpread {
+  double tilt_min_deg = 10, tilt_max_deg = 40;  // tilt about a random in-plane axis
+  double turn_deg = 30;                         // in-plane turn, ±
+  double fill_min = 0.30, fill_max = 0.60;      // board outline width / image width (before the tilt)
+  double aim_fraction = 0.8;                    // board centre aimed anywhere in this middle fraction of the image
+};
+
+// `n` varied views of a board spanning [x0, x1] × [y0, y1] mm (its outline, margin included): tilts about
+// random in-plane axes, in-plane turns, the board filling part of the image width, aimed anywhere in the
+// middle of the image as `spread` says, keeping the whole outline inside the image. Deterministic in `seed`.
 std::vector<BoardPose> VariedBoardPoses(const camera::CameraModel& cam, double x0, double y0, double x1, double y1,
-                                        int n, std::uint64_t seed);
+                                        int n, std::uint64_t seed, const BoardPoseSpread& spread = {});
 
 }  // namespace rk::sim

@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <random>
 #include <opencv2/aruco/charuco.hpp>
 #include <opencv2/calib3d.hpp>
 #include <opencv2/imgproc.hpp>
@@ -22,15 +24,21 @@ namespace {
 
 // A parameter estimate is consistent when it lies within this many of its 1σ of the truth (99.7 % each).
 constexpr double kSigmaBound = 3.0;
-// Issue 17's target: the calibrated pixel map agrees with the true one to 0.1 px RMS over the image. NOT MET: with
-// 16 views of 640 × 480 and 0.067 px corners, σ(cx) = 0.57 px and σ(fx) = 0.5 px, and the map error (0.43 px)
-// is that uncertainty (parameters all within 0.9σ). The test holds the measured figure against regressions.
+// Issue 17's target: the calibrated pixel map agrees with the true one to 0.1 px RMS over the image. Met modulo a
+// common rotation of the rays (which the pointing calibration absorbs as mount angles) by the recommended field
+// view set (20 views, tilts 30–50°, boards 40–70 % of the width, aimed over 90 % of the image): 0.06 px for this
+// seed, 0.07 px RMS over ten seeds. Not met absolutely: the principal point's 1σ (≈ 0.3 px with these 0.06 px
+// corners) shifts the whole map; the predicted absolute error (from the covariance) is ≈ 0.4 px and the measured
+// one agrees with it (docs/benchmarks.md). The absolute error is held to this multiple of its prediction (a
+// single draw of a ~χ² with few degrees of freedom: ratios up to 1.6 seen over ten seeds).
 constexpr double kMapTargetPx = 0.1;
-constexpr double kMapTolerancePx = 0.6;
+constexpr double kMapOverPrediction = 2.0;
 // Circle grids (10 views of 44 centres, 0.01 px RMS): 0.11 px measured; a looser map tolerance.
 constexpr double kLooseMapTolerancePx = 0.2;
-// ChArUco: a test of the path (markers, interpolated corners, ids to board points), not of accuracy yet: 10 views
-// gave 0.16 px RMS and a 1.06 px map error (to be investigated: corner count per view, coverage).
+// ChArUco: a test of the path (markers, interpolated corners, ids to board points), not of accuracy: 10 views give
+// 0.16 px RMS and a 1.06 px map error. Not the board geometry (the same views with the true corner positions: map
+// 0.0002 px) but OpenCV's interpolated corners, 0.69 px RMS from the truth with errors shared within a view
+// (the poses and intrinsics absorb them: small residuals, large map error). docs/benchmarks.md.
 constexpr double kCharucoRmsPx = 0.3;
 constexpr double kCharucoMapPx = 1.5;
 
@@ -99,29 +107,47 @@ void ExpectParametersWithinSigma(const LensResult& res, const camera::CameraMode
   }
 }
 
-// Every estimated parameter within 3σ of the truth, with k3 free and with k3 fixed at its true 0; the pixel map's
-// RMS error over the whole image printed and held under kMapTolerancePx (see kMapTargetPx). Also the camera JSON
-// and the plot.
-TEST(LensCalibration, ChessboardParametersWithinThreeSigmaAndMapWithinTolerance) {
-  LensOptions sub = ChessOptions();
-  sub.subpix = true;  // findChessboardCornersSB alone leaves ≈ 0.1 px RMS on these sharp images: map ≈ 0.3 px
-  const std::vector<LensView> views = RenderAndDetect(sim::ChessboardTexture(sub.cols, sub.rows, sub.square_mm), sub,
-                                                      -20, -20, 180, 120, 16, 17);
-  for (const auto& v : views) EXPECT_TRUE(v.found) << v.name;
-  LensOptions opt = sub;
+// Every estimated parameter within 3σ of the truth, with k3 free and with k3 fixed at its true 0, for the field view
+// set docs/rk-calibrate.md recommends; the pixel map's RMS error over the image modulo a rotation within the target,
+// the absolute one as predicted (see kMapTargetPx). Also the camera JSON and the plot.
+TEST(LensCalibration, FieldViewSetParametersWithinThreeSigmaAndMapWithinTarget) {
+  LensOptions opt = ChessOptions();
+  opt.subpix = true;  // findChessboardCornersSB alone leaves ≈ 0.1 px RMS on these sharp images
+  sim::BoardPoseSpread field;
+  field.tilt_min_deg = 30;
+  field.tilt_max_deg = 50;
+  field.fill_min = 0.4;
+  field.fill_max = 0.7;
+  field.aim_fraction = 0.9;
   const camera::CameraModel truth = TruthCamera();
+  const sim::BoardRenderer renderer(truth);
+  std::vector<LensView> views;
+  for (const auto& pose : sim::VariedBoardPoses(truth, -20, -20, 180, 120, 20, 17, field)) {
+    sim::BoardViewOptions vo;
+    vo.seed = 17 + views.size();
+    LensView v;
+    v.name = "view" + std::to_string(views.size());
+    DetectBoard(renderer.Render(pose.R_cam_board, pose.t_cam_board_mm, sim::ChessboardTexture(9, 6, 20.0), vo), opt,
+                &v);
+    EXPECT_TRUE(v.found) << v.name;
+    views.push_back(v);
+  }
+  ASSERT_EQ(views.size(), 20u);
   const LensResult free_k3 = SolveLens(views, 640, 480, opt);
   EXPECT_EQ(free_k3.ViewsUsed(), static_cast<int>(views.size()));
   std::printf("  k3 free: rms %.4f px over %d views\n", free_k3.rms_px, free_k3.ViewsUsed());
   ExpectParametersWithinSigma(free_k3, truth, true);
-  std::printf("  k3 free: map error %.4f px RMS over the image\n", MapDifferenceRmsPx(truth, free_k3.camera, 4));
   opt.fix_k3 = true;
   const LensResult res = SolveLens(views, 640, 480, opt);
   std::printf("  k3 fixed: rms %.4f px\n", res.rms_px);
   ExpectParametersWithinSigma(res, truth, false);
-  const double map_rms = MapDifferenceRmsPx(truth, res.camera, 4);
-  std::printf("  k3 fixed: map error %.4f px RMS over the image (issue target %.2f px)\n", map_rms, kMapTargetPx);
-  EXPECT_LE(map_rms, kMapTolerancePx);
+  for (const LensResult* r : {&free_k3, &res}) {
+    const double map = MapDifferenceRmsPx(truth, r->camera, 4), rot = MapDifferenceModuloRotationRmsPx(truth, r->camera, 4);
+    std::printf("  map error over the image: %.4f px RMS (predicted %.4f), modulo rotation %.4f px (predicted %.4f; "
+                "target %.2f)\n", map, r->map_sigma.rms_px, rot, r->map_sigma.modulo_rotation_rms_px, kMapTargetPx);
+    EXPECT_LE(rot, kMapTargetPx);
+    EXPECT_LE(map, kMapOverPrediction * r->map_sigma.rms_px);
+  }
   // fx ≠ fy goes into pixel_size_mm[1]; focal_length_mm from fx and --pixel-size-mm.
   EXPECT_DOUBLE_EQ(res.camera.pixel_size_mm[0], opt.pixel_size_mm);
   EXPECT_NEAR(res.camera.focal_length_mm / res.camera.pixel_size_mm[1], res.camera.fy(), 1e-9);
@@ -144,6 +170,53 @@ TEST(LensCalibration, ChessboardParametersWithinThreeSigmaAndMapWithinTolerance)
   ASSERT_FALSE(img.empty());
   EXPECT_EQ(img.cols, 960);
   EXPECT_GT(img.rows, 720);
+}
+
+// Large images are searched on a scaled copy (--detect-max-px) and refined at full size: the corners are as close
+// to the truth as a full-size search refined the same way (here 640 × 480 searched on a 400 px copy).
+TEST(LensCalibration, ChessboardFoundOnScaledCopyAndRefinedAtFullSize) {
+  // The copy only seeds cornerSubPix, which converges to the same corners: equal to rounding, plus a margin for a
+  // seed in another basin of the refinement.
+  constexpr double kCopyOverFullRms = 1.05;
+  const camera::CameraModel truth = TruthCamera();
+  const sim::BoardRenderer renderer(truth);
+  LensOptions full = ChessOptions(), copy = ChessOptions();
+  full.subpix = true;
+  copy.detect_max_px = 400;
+  double ss_full = 0, ss_copy = 0;
+  int i = 0;
+  for (const auto& pose : sim::VariedBoardPoses(truth, -20, -20, 180, 120, 6, 23)) {
+    sim::BoardViewOptions vo;
+    vo.seed = static_cast<std::uint64_t>(++i);
+    const cv::Mat img = renderer.Render(pose.R_cam_board, pose.t_cam_board_mm, sim::ChessboardTexture(9, 6, 20.0), vo);
+    LensView a, b;
+    DetectBoard(img, full, &a);
+    DetectBoard(img, copy, &b);
+    ASSERT_TRUE(a.found && b.found) << i;
+    // The truth in the detector's order (findChessboardCornersSB may start from the opposite corner).
+    const auto error2 = [&](const LensView& v) {
+      double ss = 0;
+      for (std::size_t k = 0; k < v.image_px.size(); ++k) {
+        const cv::Point3f& bm = v.board_mm[k];
+        const auto q = truth.Project(pose.R_cam_board * Eigen::Vector3d(bm.x, bm.y, 0) + pose.t_cam_board_mm);
+        ss += std::pow(v.image_px[k].x - q->x(), 2) + std::pow(v.image_px[k].y - q->y(), 2);
+      }
+      return ss;
+    };
+    const auto ordered = [&](LensView v) {  // reverse the detections when they start at the board's far corner
+      const auto q0 = truth.Project(pose.R_cam_board * Eigen::Vector3d(0, 0, 0) + pose.t_cam_board_mm);
+      if (std::hypot(v.image_px[0].x - q0->x(), v.image_px[0].y - q0->y()) > 10) {
+        std::reverse(v.image_px.begin(), v.image_px.end());
+      }
+      return v;
+    };
+    ss_full += error2(ordered(a));
+    ss_copy += error2(ordered(b));
+  }
+  const double n = 6 * 54;
+  std::printf("  corner error vs truth: full size + cornerSubPix %.4f px RMS, 400 px copy + cornerSubPix %.4f px\n",
+              std::sqrt(ss_full / n), std::sqrt(ss_copy / n));
+  EXPECT_LE(std::sqrt(ss_copy / n), kCopyOverFullRms * std::sqrt(ss_full / n));
 }
 
 TEST(LensCalibration, ViewsWithoutBoardSkippedAndOutlierViewRejected) {
@@ -254,6 +327,132 @@ TEST(LensCalibration, Charuco) {
   std::printf("  charuco: %d views, rms %.4f px, map error %.4f px\n", res.ViewsUsed(), res.rms_px, map_rms);
   EXPECT_LE(res.rms_px, kCharucoRmsPx);
   EXPECT_LE(map_rms, kCharucoMapPx);
+}
+
+// True corners of `poses` (projected through `cam`) with Gaussian noise of `sigma_px`: views for the solver alone.
+std::vector<LensView> NoisyTrueViews(const camera::CameraModel& cam, const std::vector<sim::BoardPose>& poses,
+                                     double sigma_px, std::mt19937_64* rng) {
+  const LensOptions o = ChessOptions();
+  std::normal_distribution<double> noise(0.0, sigma_px);
+  std::vector<LensView> views;
+  for (const auto& pose : poses) {
+    LensView v;
+    v.name = "view" + std::to_string(views.size());
+    v.found = true;
+    for (int r = 0; r < o.rows; ++r) {
+      for (int c = 0; c < o.cols; ++c) {
+        const Eigen::Vector3d p(c * o.square_mm, r * o.square_mm, 0.0);
+        const auto q = cam.Project(pose.R_cam_board * p + pose.t_cam_board_mm);
+        v.image_px.emplace_back(static_cast<float>(q->x() + noise(*rng)), static_cast<float>(q->y() + noise(*rng)));
+        v.board_mm.emplace_back(static_cast<float>(p.x()), static_cast<float>(p.y()), 0.f);
+      }
+    }
+    views.push_back(v);
+  }
+  return views;
+}
+
+// The intrinsics' covariance (our Jacobians from cv::projectPoints, poses marginalised) against cv::calibrateCamera's
+// own stdDeviationsIntrinsics, which divide Σr² by N − p (N points) where the 2N residual components call for
+// 2N − p: ours must be OpenCV's × √((N − p)/(2N − p)). With every term free, with --fix-aspect (fx = a fy: fx and fy
+// fully correlated) and with --fix-k3 --zero-tangent (their rows zero).
+TEST(LensCalibration, IntrinsicCovarianceDiagonalIsOpenCvSigmaRescaled) {
+  // The same normal matrix at the same solution, assembled independently: equal to the solver's convergence.
+  constexpr double kSameSigmaRelative = 1e-3;
+  std::mt19937_64 rng(4);
+  const camera::CameraModel truth = TruthCamera();
+  const auto views = NoisyTrueViews(truth, sim::VariedBoardPoses(truth, -20, -20, 180, 120, 12, 8), 0.05, &rng);
+  const int free_intrinsics[3] = {9, 8, 6};
+  for (int variant = 0; variant < 3; ++variant) {
+    LensOptions opt = ChessOptions();
+    opt.fix_aspect = variant == 1;
+    opt.fix_k3 = opt.zero_tangent = variant == 2;
+    const LensResult res = SolveLens(views, 640, 480, opt);
+    std::vector<std::vector<cv::Point3f>> obj;
+    std::vector<std::vector<cv::Point2f>> img;
+    for (const auto& v : views) obj.push_back(v.board_mm), img.push_back(v.image_px);
+    cv::Mat K = cv::Mat::eye(3, 3, CV_64F), dist = cv::Mat::zeros(5, 1, CV_64F), sd, sd_ext, per_view;
+    std::vector<cv::Mat> rv, tv;
+    cv::calibrateCamera(obj, img, cv::Size(640, 480), K, dist, rv, tv, sd, sd_ext, per_view, opt.OpenCvFlags(),
+                        cv::TermCriteria(cv::TermCriteria::COUNT + cv::TermCriteria::EPS, 100, 1e-12));
+    const double n = static_cast<double>(views.size() * views[0].image_px.size());
+    const double p = free_intrinsics[variant] + 6.0 * static_cast<double>(views.size());
+    const double rescale = std::sqrt((n - p) / (2 * n - p));
+    for (int i = 0; i < 9; ++i) {
+      const double theirs = sd.at<double>(i) * rescale;
+      if (theirs == 0.0) continue;  // fixed in OpenCV's parameterisation (fx under --fix-aspect)
+      EXPECT_NEAR(std::sqrt(res.covariance(i, i)), theirs, kSameSigmaRelative * theirs)
+          << "variant " << variant << " parameter " << i;
+    }
+    EXPECT_TRUE(res.covariance.isApprox(res.covariance.transpose()));
+    if (variant == 1) {  // fx = a fy: correlation 1
+      EXPECT_NEAR(res.covariance(0, 1) / std::sqrt(res.covariance(0, 0) * res.covariance(1, 1)), 1.0, 1e-9);
+    }
+    if (variant == 2) {
+      EXPECT_EQ(res.covariance(8, 8), 0.0);
+    }
+  }
+}
+
+// PredictedMapSigma linearises the map in the intrinsics by central differences: for a small parameter change δ
+// (covariance δδᵀ) it predicts the map difference MapDifferenceRmsPx measures directly, and likewise modulo rotation.
+TEST(LensCalibration, LinearisedMapMatchesMapDifference) {
+  // δ is 1e-3 of typical 1σ-scale errors squared away: the linearisation error is second order (relative ~1e-3).
+  constexpr double kLinearisationRelative = 0.01;
+  const camera::CameraModel truth = TruthCamera();
+  const double deltas[4][9] = {{0.3, 0, 0, 0, 0, 0, 0, 0, 0},
+                               {0, 0, 0.5, -0.4, 0, 0, 0, 0, 0},
+                               {0.2, -0.1, 0.3, 0.1, 2e-4, -5e-4, 1e-5, -2e-5, 3e-4},
+                               {0, 0, 0, 0, 1e-3, 0, 0, 0, 0}};
+  for (const auto& d : deltas) {
+    const Eigen::Map<const Eigen::Matrix<double, 9, 1>> delta(d);
+    camera::CameraModel moved = truth;
+    moved.focal_length_mm = (truth.fx() + delta(0)) * truth.pixel_size_mm[0];
+    moved.pixel_size_mm[1] = moved.focal_length_mm / (truth.fy() + delta(1));
+    moved.principal_point_px += delta.segment<2>(2);
+    for (std::size_t k = 0; k < 5; ++k) moved.distortion[k] += delta(4 + static_cast<Eigen::Index>(k));
+    const MapSigma lin = PredictedMapSigma(truth, delta * delta.transpose(), 8);
+    const double direct = MapDifferenceRmsPx(truth, moved, 8);
+    const double direct_rot = MapDifferenceModuloRotationRmsPx(truth, moved, 8);
+    std::printf("  map %.5f px (linearised %.5f), modulo rotation %.5f px (linearised %.5f)\n", direct, lin.rms_px,
+                direct_rot, lin.modulo_rotation_rms_px);
+    EXPECT_NEAR(lin.rms_px, direct, kLinearisationRelative * direct);
+    EXPECT_NEAR(lin.modulo_rotation_rms_px, direct_rot, kLinearisationRelative * direct + 1e-6);
+  }
+  // A pure principal-point shift is nearly a rotation: little is left after removing the best one.
+  Eigen::Matrix<double, 9, 9> cov = Eigen::Matrix<double, 9, 9>::Zero();
+  cov(2, 2) = 1.0;
+  const MapSigma pp = PredictedMapSigma(truth, cov, 8);
+  EXPECT_LT(pp.modulo_rotation_rms_px, 0.5 * pp.rms_px);
+}
+
+// The predicted map error (from the covariance) is the real one: over Monte Carlo solves of noisy true corners, the
+// mean squared map error against the truth over the mean squared prediction lies in an NEES-like band.
+TEST(LensCalibration, PredictedMapSigmaMatchesMonteCarlo) {
+  constexpr int kRuns = 40;
+  // 40 runs of a squared error with ~a few effective degrees of freedom: the ratio's spread is ±25 % or so.
+  constexpr double kRatioLow = 0.6, kRatioHigh = 1.5;
+  std::mt19937_64 rng(11);
+  const camera::CameraModel truth = TruthCamera();
+  const auto poses = sim::VariedBoardPoses(truth, -20, -20, 180, 120, 16, 17);
+  LensOptions opt = ChessOptions();
+  opt.fix_k3 = true;
+  double err2 = 0, pred2 = 0, err2_rot = 0, pred2_rot = 0;
+  for (int run = 0; run < kRuns; ++run) {
+    const LensResult res = SolveLens(NoisyTrueViews(truth, poses, 0.05, &rng), 640, 480, opt);
+    err2 += std::pow(MapDifferenceRmsPx(truth, res.camera, 10), 2);
+    err2_rot += std::pow(MapDifferenceModuloRotationRmsPx(truth, res.camera, 10), 2);
+    pred2 += std::pow(res.map_sigma.rms_px, 2);
+    pred2_rot += std::pow(res.map_sigma.modulo_rotation_rms_px, 2);
+  }
+  const double ratio = err2 / pred2, ratio_rot = err2_rot / pred2_rot;
+  std::printf("  map: measured %.4f px RMS, predicted %.4f (ratio of squares %.2f); modulo rotation %.4f / %.4f (%.2f)\n",
+              std::sqrt(err2 / kRuns), std::sqrt(pred2 / kRuns), ratio, std::sqrt(err2_rot / kRuns),
+              std::sqrt(pred2_rot / kRuns), ratio_rot);
+  EXPECT_GE(ratio, kRatioLow);
+  EXPECT_LE(ratio, kRatioHigh);
+  EXPECT_GE(ratio_rot, kRatioLow);
+  EXPECT_LE(ratio_rot, kRatioHigh);
 }
 
 // OpenCV's sample images (9 × 6 inner corners, 25 mm, 640 × 480; left10.jpg is missing: 13 views) and its own

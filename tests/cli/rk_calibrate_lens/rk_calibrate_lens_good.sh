@@ -24,9 +24,11 @@ for k in ("method", "date", "rms_px", "views_used", "views_rejected", "sigma"):
 assert len(c["views_used"]) + len(c["views_rejected"]) == 13
 assert all(r["reason"] for r in c["views_rejected"])
 assert c["sigma"]["fx_px"] > 0 and len(c["sigma"]["distortion"]) == 5
+# The predicted map error: positive, and the part a rotation cannot absorb no larger than the whole.
+assert 0 < c["map_sigma_modulo_rotation_px"] <= c["map_sigma_px"], c
 s = rep["summary"]
 assert rep["status"] == "ok" and s["views"] == 13 and s["views_used"] == len(c["views_used"]), s
-assert abs(s["rms_px"] - c["rms_px"]) < 1e-12
+assert abs(s["rms_px"] - c["rms_px"]) < 1e-12 and s["map_sigma_px"] == c["map_sigma_px"]
 print("fx %.2f rms %.3f used %d" % (fx, c["rms_px"], s["views_used"]))
 PY
 test "$(head -c 8 "$W/plot.png" | od -An -c | tr -d ' ')" = '211PNG\r\n032\n'
