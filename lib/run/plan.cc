@@ -331,7 +331,10 @@ class PlanBuilder {
       const std::string station = l.unit.substr(0, l.unit.find('/'));
       const auto st = std::find_if(m_.stations.begin(), m_.stations.end(),
                                    [&](const trial::StationEntry& e) { return e.name == station; });
-      stations.push_back({{"name", l.unit},
+      // rk-intersect's station names are letters, digits, _ . - (SPEC §7): the unit 'S/C' as 'S.C'.
+      std::string name = l.unit;
+      std::replace(name.begin(), name.end(), '/', '.');
+      stations.push_back({{"name", name},
                           {"lat_deg", st->station.at("lat_deg")},
                           {"lon_deg", st->station.at("lon_deg")},
                           {"h_m", st->station.at("h_m")},

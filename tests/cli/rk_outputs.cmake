@@ -12,8 +12,9 @@ rk_cli_script(rk_outputs/rk_outputs_plot REQUIRES locate_data)
 # Folder outputs behind a link: rk-sim --out and rk-run's out/ keep the link and replace its target.
 rk_cli_script(rk_outputs/rk_outputs_folders)
 
-# The suite never damages the machine: /dev/null is a character device before and after every test
-# (every CLI and unit test requires the devnull fixture, so devnull_after runs last).
-rk_cli_test(devnull_before COMMAND test -c /dev/null SETUP devnull)
-rk_cli_test(devnull_after COMMAND test -c /dev/null)
+# The suite never damages the machine: /dev/null is a character device, and neither it nor /dev/stdout,
+# /dev/stderr, /dev/stdin is a regular file, before and after every test (every CLI and unit test requires the
+# devnull fixture, so devnull_after runs last).
+rk_cli_test(devnull_before COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/rk_outputs/device_files_intact.sh SETUP devnull)
+rk_cli_test(devnull_after COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/rk_outputs/device_files_intact.sh)
 set_tests_properties(devnull_after PROPERTIES FIXTURES_CLEANUP devnull)

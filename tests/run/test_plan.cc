@@ -373,7 +373,7 @@ TEST(Plan, SeveralStationsRunEachChainThenTheIntersection) {
   const io::Json st = io::Json::parse(in.generated[0].second);
   EXPECT_EQ(st["origin"]["h_m"], 400);
   ASSERT_EQ(st["stations"].size(), 2u);
-  EXPECT_EQ(st["stations"][0]["name"], "s1/az");
+  EXPECT_EQ(st["stations"][0]["name"], "s1.az"  /* rk-intersect names: no slash */);
   EXPECT_EQ(st["stations"][0]["located"], "../s1/az/located.csv");
   EXPECT_EQ(st["stations"][1]["lat_deg"], 47.01);
   EXPECT_EQ(st["stations"][1]["h_m"], 750);
