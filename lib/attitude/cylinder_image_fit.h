@@ -7,7 +7,8 @@
 // blurred ellipse). The Cramér–Rao bound of yaw and pitch from the image (bench/cylinder_crlb) is 4–20× below
 // what the three-point route achieves on rendered frames; this fit uses every pixel near the outline.
 //
-// Model of the frame inside a window around the target (the initial outline's bounding box + a margin):
+// Model of the frame at the pixels within a margin of the initial outline (inside the outline's bounding box
+// + the margin; the box's far corners carry nothing about the pose and are left out):
 //   I(x, y) = sky(x, y) · (1 − α(x, y)) + body(x, y) · α(x, y) + noise
 //   sky = s0 + s1 x̃ + s2 ỹ (a plane; x̃, ỹ window coordinates scaled to [−1, 1]),
 //   body = b0 + b1 v (v: signed distance from the image axis over the tail half-width, clamped to [−1, 1]: a
@@ -19,7 +20,7 @@
 // sees only through its scale), yaw, pitch, the nose-cone length (the target file gives only length and
 // diameter: the cone length is a nuisance, started from the best of a coarse scan) and σ (7 nonlinear);
 // s0..s2, b0, b1 (5 linear, eliminated in closed form at every evaluation: variable projection).
-// Levenberg–Marquardt with Marquardt's diagonal scaling, Jacobian by central differences of the reduced
+// Levenberg–Marquardt with Marquardt's diagonal scaling, Jacobian by forward differences of the reduced
 // residual, no step turning the axis by more than 1° (near side-on a mirror minimum of equal cost lies a few
 // degrees away: the fit stays in the basin of the solution it starts from). The lines of sight come from
 // camera::CameraModel::ProjectEnu (SPEC.md §3 exactly: distortion, mount, boresight).
@@ -83,7 +84,7 @@ struct CylinderImageFitResult {
   double contrast_dn = 0.0;                           // body − sky at the window centre
   int iterations = 0;
   int evaluations = 0;  // model renderings
-  int pixels = 0;       // window size
+  int pixels = 0;       // pixels fitted
   double noise_c0 = 0.0, noise_c1 = 0.0;  // noise model fitted to the final residuals
   // The start this result gives the next frame's fit.
   CylinderImageFitStart NextStart() const { return {nose_cone_length_m, psf_sigma_px, noise_c0, noise_c1}; }

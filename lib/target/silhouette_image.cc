@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <opencv2/imgproc.hpp>
+#include <vector>
 
 namespace rk::target {
 namespace {
@@ -110,23 +111,57 @@ std::vector<Eigen::Vector2d> SilhouettePolygon(const camera::CameraModel& cam, c
 
 cv::Mat RasterizeConvexPolygon(const std::vector<Eigen::Vector2d>& poly, const cv::Rect& roi) {
   cv::Mat cov(roi.size(), CV_32FC1, cv::Scalar(0));
-  if (poly.size() < 3) return cov;
-  std::vector<Eigen::Vector2d> a, band, b, cell;
+  const int n = static_cast<int>(poly.size());
+  if (n < 3 || roi.height <= 0 || roi.width <= 0) return cov;
+  // Each row's band (the polygon clipped to the row's slab) is clipped from a reduced polygon: vertex 0 and
+  // the end points of every edge reaching the slab. The vertices left out lie in runs outside the slab on one
+  // side, whose end points are kept: both clips give the same band, vertex for vertex, as from the whole
+  // polygon (so the same areas to the bit), at the cost of the edges near the row instead of all of them.
+  std::vector<std::vector<int>> near(static_cast<std::size_t>(roi.height));
+  for (int k = 0; k < n; ++k) {
+    const Eigen::Vector2d& a = poly[static_cast<std::size_t>(k)];
+    const Eigen::Vector2d& b = poly[static_cast<std::size_t>((k + 1) % n)];
+    const double y0 = std::min(a.y(), b.y()) - roi.y, y1 = std::max(a.y(), b.y()) - roi.y;
+    const int i0 = std::max(0, static_cast<int>(std::floor(y0 - 0.5)) - 1);
+    const int i1 = std::min(roi.height - 1, static_cast<int>(std::ceil(y1 + 0.5)) + 1);
+    for (int i = i0; i <= i1; ++i) {
+      near[static_cast<std::size_t>(i)].push_back(k);
+      near[static_cast<std::size_t>(i)].push_back((k + 1) % n);
+    }
+  }
+  std::vector<Eigen::Vector2d> sub, a, band, b, cell;
   for (int i = 0; i < roi.height; ++i) {
-    const double y = roi.y + i;
-    ClipAxis(poly, 1, y - 0.5, true, &a);
-    ClipAxis(a, 1, y + 0.5, false, &band);
+    std::vector<int>& idx = near[static_cast<std::size_t>(i)];
+    if (idx.empty()) continue;
+    idx.push_back(0);
+    std::sort(idx.begin(), idx.end());
+    idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
+    sub.clear();
+    for (int k : idx) sub.push_back(poly[static_cast<std::size_t>(k)]);
+    const double y = roi.y + i, ya = y - 0.5, yb = y + 0.5;
+    ClipAxis(sub, 1, ya, true, &a);
+    ClipAxis(a, 1, yb, false, &band);
     if (band.size() < 3) continue;
+    // The band is convex with its top and bottom edges on y = ya and y = yb: a pixel whose four corners lie
+    // on those edges is inside (area 1).
     double xmin = band[0].x(), xmax = band[0].x();
+    double la = HUGE_VAL, ra = -HUGE_VAL, lb = HUGE_VAL, rb = -HUGE_VAL;
     for (const auto& p : band) {
       xmin = std::min(xmin, p.x());
       xmax = std::max(xmax, p.x());
+      if (p.y() == ya) la = std::min(la, p.x()), ra = std::max(ra, p.x());
+      if (p.y() == yb) lb = std::min(lb, p.x()), rb = std::max(rb, p.x());
     }
+    const double full_lo = std::max(la, lb), full_hi = std::min(ra, rb);
     const int j0 = std::max(0, static_cast<int>(std::floor(xmin + 0.5)) - roi.x);
     const int j1 = std::min(roi.width - 1, static_cast<int>(std::floor(xmax + 0.5)) - roi.x);
     float* row = cov.ptr<float>(i);
     for (int j = j0; j <= j1; ++j) {
       const double x = roi.x + j;
+      if (x - 0.5 >= full_lo && x + 0.5 <= full_hi) {
+        row[j] = 1.0f;
+        continue;
+      }
       ClipAxis(band, 0, x - 0.5, true, &b);
       ClipAxis(b, 0, x + 0.5, false, &cell);
       if (cell.size() >= 3) row[j] = static_cast<float>(std::min(1.0, PolygonArea(cell)));
