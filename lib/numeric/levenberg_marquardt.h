@@ -15,6 +15,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <algorithm>
+#include <concepts>
 
 namespace rk::numeric {
 
@@ -51,6 +52,12 @@ struct LmSummary {
 //   void Accept()                                   the last candidate becomes the state
 //   bool Linearize(Matrix* H, Vector* g)            JᵀJ and Jᵀr at the state; false: cannot evaluate
 //   bool Converged(const Vector& step, double cost_before, double cost_after)  after an accepted step
+// and optionally
+//   bool AtMinimum(const Matrix& H, const Vector& g, double cost)  at every linearisation, the start's
+//                                                   included: true stops (converged) before another step —
+//                                                   e.g. when the Gauss–Newton step's predicted decrease
+//                                                   gᵀH⁻¹g is below the cost's noise, which saves the
+//                                                   damped tries that would find no descent.
 // `cost` is the cost at the start and *H, *g its linearisation (the caller builds them: it often has
 // them already). The step solves (H + λ D) step = −g, D = diag(max(H_qq, floor)).
 template <int N, class Problem>
@@ -60,6 +67,16 @@ LmSummary LevenbergMarquardt(Problem& problem, double cost, const LmDamping& dam
   using Vec = Eigen::Matrix<double, N, 1>;
   LmSummary out;
   double lambda = damping.initial;
+  constexpr bool kHasAtMinimum = requires(const Problem& p, const Mat& h, const Vec& v, double c) {
+    { p.AtMinimum(h, v, c) } -> std::convertible_to<bool>;
+  };
+  if constexpr (kHasAtMinimum) {
+    if (problem.AtMinimum(*H, *g, cost)) {
+      out.status = LmStatus::kConverged;
+      out.cost = cost;
+      return out;
+    }
+  }
   for (int k = 0; k < max_iterations; ++k) {
     out.iterations = k + 1;
     bool accepted = false;
@@ -99,6 +116,12 @@ LmSummary LevenbergMarquardt(Problem& problem, double cost, const LmDamping& dam
     if (converged) {
       out.status = LmStatus::kConverged;
       break;
+    }
+    if constexpr (kHasAtMinimum) {
+      if (problem.AtMinimum(*H, *g, cost)) {
+        out.status = LmStatus::kConverged;
+        break;
+      }
     }
   }
   out.cost = cost;

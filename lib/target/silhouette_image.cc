@@ -124,20 +124,20 @@ cv::Mat RasterizeConvexPolygon(const std::vector<Eigen::Vector2d>& poly, const c
     const double y0 = std::min(a.y(), b.y()) - roi.y, y1 = std::max(a.y(), b.y()) - roi.y;
     const int i0 = std::max(0, static_cast<int>(std::floor(y0 - 0.5)) - 1);
     const int i1 = std::min(roi.height - 1, static_cast<int>(std::ceil(y1 + 0.5)) + 1);
-    for (int i = i0; i <= i1; ++i) {
-      near[static_cast<std::size_t>(i)].push_back(k);
-      near[static_cast<std::size_t>(i)].push_back((k + 1) % n);
+    for (int i = i0; i <= i1; ++i) {  // ascending without repeats: edges come in order
+      std::vector<int>& idx = near[static_cast<std::size_t>(i)];
+      if (idx.empty() || idx.back() != k) idx.push_back(k);
+      if (k + 1 < n) idx.push_back(k + 1);  // the closing edge's end is vertex 0, always taken
     }
   }
   std::vector<Eigen::Vector2d> sub, a, band, b, cell;
   for (int i = 0; i < roi.height; ++i) {
     std::vector<int>& idx = near[static_cast<std::size_t>(i)];
     if (idx.empty()) continue;
-    idx.push_back(0);
-    std::sort(idx.begin(), idx.end());
-    idx.erase(std::unique(idx.begin(), idx.end()), idx.end());
-    sub.clear();
-    for (int k : idx) sub.push_back(poly[static_cast<std::size_t>(k)]);
+    sub.assign(1, poly[0]);
+    for (int k : idx) {
+      if (k != 0) sub.push_back(poly[static_cast<std::size_t>(k)]);
+    }
     const double y = roi.y + i, ya = y - 0.5, yb = y + 0.5;
     ClipAxis(sub, 1, ya, true, &a);
     ClipAxis(a, 1, yb, false, &band);
