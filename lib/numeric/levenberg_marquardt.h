@@ -67,7 +67,7 @@ LmSummary LevenbergMarquardt(Problem& problem, double cost, const LmDamping& dam
   using Vec = Eigen::Matrix<double, N, 1>;
   LmSummary out;
   double lambda = damping.initial;
-  constexpr bool kHasAtMinimum = requires(const Problem& p, const Mat& h, const Vec& v, double c) {
+  constexpr bool kHasAtMinimum = requires(Problem& p, const Mat& h, const Vec& v, double c) {
     { p.AtMinimum(h, v, c) } -> std::convertible_to<bool>;
   };
   if constexpr (kHasAtMinimum) {
