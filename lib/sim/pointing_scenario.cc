@@ -215,6 +215,7 @@ void SimulateValidation(const PointingSimOptions& o, PointingSession* s) {
     v.frame_t_s.push_back(t);
     v.px.push_back(*px + Eigen::Vector2d(noise(rng), noise(rng)));
     v.p_enu.push_back(p);
+    v.true_t_s.push_back(t_true);
   }
 }
 

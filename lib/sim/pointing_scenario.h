@@ -75,6 +75,7 @@ struct ValidationTrack {
   std::vector<Eigen::Vector2d> px;                               // observed beacon pixel per frame
   std::vector<double> turret_t_s, turret_az_deg, turret_el_deg;  // logged turret
   std::vector<Eigen::Vector3d> p_enu;                            // true target position per frame (m)
+  std::vector<double> true_t_s;  // mid-exposure time of each frame (stamp + the camera's time offset): p_enu's
 };
 
 struct PointingSession {

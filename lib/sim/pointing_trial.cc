@@ -64,9 +64,10 @@ void WriteValidation(const PointingSession& s, const TrialFolder& dir) {
     const auto f = static_cast<std::int64_t>(k);
     frames.Add(f).Add(v.frame_t_s[k], kTimeDecimals).EndRow();
     track.Add(f).Add(v.frame_t_s[k], kTimeDecimals).Add(v.px[k].x(), kPixelDecimals).Add(v.px[k].y(), kPixelDecimals).Add("ok").EndRow();
-    // Truth at the frame's true (mid-exposure) time: the camera's time offset later than its stamp.
+    // Truth at the frame's true (mid-exposure) time, the camera's time offset later than its stamp, and
+    // labelled with it: the time rk-locate gives the frame (SPEC.md §3.1: stamp + time_offset_s).
     const Eigen::Vector3d& p = v.p_enu[k];
-    truth.Add(v.frame_t_s[k], kTimeDecimals)
+    truth.Add(v.true_t_s[k], kTimeDecimals)
         .Add(geo::RadToDeg(geo::WrapTwoPi(std::atan2(p.x(), p.y()))), kAngleDecimals)
         .Add(geo::RadToDeg(std::atan2(p.z(), std::hypot(p.x(), p.y()))), kAngleDecimals)
         .Add(p.norm(), kMetreDecimals).Add(p.x(), kMetreDecimals).Add(p.y(), kMetreDecimals).Add(p.z(), kMetreDecimals)
