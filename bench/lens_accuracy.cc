@@ -291,6 +291,8 @@ static int Charuco(int n, std::uint64_t seed, bool refine) {
   std::printf("charuco: %zu views, %d corners; corner error vs truth: as-is %.4f (mean %+.4f %+.4f), y-flipped board %.4f, OpenCV raw %.4f\n",
               views.size(), ncorners, e_id.Rms(), e_id.sx / e_id.n, e_id.sy / e_id.n, e_flip.Rms(), e_ref.Rms());
   const auto res = calibrate::SolveLens(views, 640, 480, opt);
+  std::printf("  predicted map sigma %.4f (modulo rotation %.4f); measured modulo rotation %.4f\n", res.map_sigma.rms_px,
+              res.map_sigma.modulo_rotation_rms_px, calibrate::MapDifferenceModuloRotationRmsPx(truth, res.camera, 8));
   std::printf("  solve: rms %.4f map %.4f; true corners: map %.5f\n", res.rms_px, calibrate::MapDifferenceRmsPx(truth, res.camera, 8),
               calibrate::MapDifferenceRmsPx(truth, calibrate::SolveLens(tviews, 640, 480, opt).camera, 8));
   return 0;
