@@ -60,8 +60,8 @@ const io::OptionTable<LensOptions>& LensOptions::Table() {
           .Flag("--subpix", &O::subpix,
                 "Chessboard: refine the corners with cornerSubPix (sharp images; window 0.3 x the corner spacing)")
           .Integer("--detect-max-px", &O::detect_max_px, "px", B::Closed(0, 100000),
-                   "Chessboard: search larger images on a copy this size (longer side), then refine the corners at "
-                   "full size with cornerSubPix (0 = search at full size; 1600: 2.5x less CPU on 5 Mpx images)")
+                   "Chessboard: search larger images on a copy this size (longer side), then find the corners at "
+                   "full size in the board's box only (0 = search the whole image at full size)")
           .Real("--reject-ratio", &O::reject_ratio, "", B::AtLeast(1).Finite(),
                 "Reject a view whose RMS exceeds this times the median view RMS (and 0.1 px), then solve again")
           .Integer("--min-views", &O::min_views, "", B::Closed(1, 100000),

@@ -178,13 +178,14 @@ TEST(LensCalibration, FieldViewSetParametersWithinThreeSigmaAndMapWithinTarget) 
 // Large images are searched on a scaled copy (--detect-max-px) and refined at full size: the corners are as close
 // to the truth as a full-size search refined the same way (here 640 × 480 searched on a 400 px copy).
 TEST(LensCalibration, ChessboardFoundOnScaledCopyAndRefinedAtFullSize) {
-  // The copy only seeds cornerSubPix, which converges to the same corners: equal to rounding, plus a margin for a
-  // seed in another basin of the refinement.
+  // The copy only locates the board; findChessboardCornersSB then runs at full size on the board's box (without
+  // the histogram equalisation): corners as close to the truth as the whole-frame search's, within a margin
+  // (measured 0.0718 against 0.0964 px on these views: the equalisation costs the whole-frame search accuracy).
   constexpr double kCopyOverFullRms = 1.05;
   const camera::CameraModel truth = TruthCamera();
   const sim::BoardRenderer renderer(truth);
   LensOptions full = ChessOptions(), copy = ChessOptions();
-  full.subpix = true;
+  full.detect_max_px = 0;
   copy.detect_max_px = 400;
   double ss_full = 0, ss_copy = 0;
   int i = 0;
@@ -217,7 +218,7 @@ TEST(LensCalibration, ChessboardFoundOnScaledCopyAndRefinedAtFullSize) {
     ss_copy += error2(ordered(b));
   }
   const double n = 6 * 54;
-  std::printf("  corner error vs truth: full size + cornerSubPix %.4f px RMS, 400 px copy + cornerSubPix %.4f px\n",
+  std::printf("  corner error vs truth: whole frame %.4f px RMS, 400 px copy + the board's box %.4f px\n",
               std::sqrt(ss_full / n), std::sqrt(ss_copy / n));
   EXPECT_LE(std::sqrt(ss_copy / n), kCopyOverFullRms * std::sqrt(ss_full / n));
 }
