@@ -78,6 +78,7 @@ inline std::array<double, kNumPointingParams> TruthOf(const sim::PointingSession
 struct McFigures {
   std::array<double, kNumPointingParams> nees{}, err2{}, sigma{};
   double joint_nees = 0.0, solve_s = 0.0, observations = 0.0;
+  double chi2_per_dof = 0.0;  // mean over the runs of the fit's χ²/dof (pixel and prior terms)
   int runs = 0;
 };
 
@@ -115,6 +116,7 @@ inline McFigures RunMonteCarlo(const sim::PointingSimOptions& base, int runs, st
     const PointingSolution sol = SolvePointing(BuilderOf(in, opt, o.centroid_sigma_px), s.camera_nominal, est, opt);
     f.solve_s += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() / runs;
     f.observations += static_cast<double>(sol.used) / runs;
+    f.chi2_per_dof += sol.chi2_per_dof / runs;
     const auto truth = TruthOf(s);
     Eigen::VectorXd e(static_cast<Eigen::Index>(sol.estimated_params.size()));
     for (std::size_t a = 0; a < sol.estimated_params.size(); ++a) {
@@ -133,8 +135,9 @@ inline McFigures RunMonteCarlo(const sim::PointingSimOptions& base, int runs, st
 }
 
 inline void PrintMcFigures(const McFigures& f, const EstimateSet& est = EveryParameter()) {
-  std::printf("%d runs, mean %.0f observations used, mean solve %.3f s, mean joint NEES per parameter %.3f\n", f.runs,
-              f.observations, f.solve_s, f.joint_nees);
+  std::printf("%d runs, mean %.0f observations used, mean solve %.3f s, mean joint NEES per parameter %.3f, "
+              "mean chi2/dof %.3f\n",
+              f.runs, f.observations, f.solve_s, f.joint_nees, f.chi2_per_dof);
   std::printf("%-13s %9s %14s %14s  unit\n", "parameter", "mean NEES", "RMS error", "mean sigma");
   for (int k = 0; k < kNumPointingParams; ++k) {
     const auto ku = static_cast<std::size_t>(k);
