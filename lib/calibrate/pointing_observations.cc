@@ -1,7 +1,10 @@
 #include "calibrate/pointing_observations.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
+#include <optional>
 
 #include "geo/angles.h"
 #include "io/error.h"
@@ -9,10 +12,17 @@
 namespace rk::calibrate {
 namespace {
 
-constexpr double kRateStepS = 0.005;  // half-width of the central difference for turret and star rates
-// Mean of (1−w)² + w² over w uniform in [0, 1]: the quantisation variance factor of a reading
-// interpolated between two independent readings.
-constexpr double kInterpolatedQuantFactor = 2.0 / 3.0;
+constexpr double kRateStepS = 0.005;  // half-width of the central difference for star rates and log motion
+// Half-width of the central difference for the turret's rate (pointing_observations.h "Turret rate"):
+// 2.5 log intervals of a 50 Hz log, short against a slew's S-curve (≥ 0.5 s).
+constexpr double kTurretRateHalfWindowS = 0.05;
+// Two consecutive log samples of an axis moving fewer than this many encoder steps between them do not
+// have independent quantisation errors: below one step per sample the error is a sawtooth drifting with
+// the motion (e_k+1 = e_k − Δθ + ΔL), at a few steps it decorrelates. Interpolating between such samples
+// does not average their errors down, so the reading keeps the full σ = step/√12 (with √(2/3) there the
+// Monte Carlo of tests/calibrate/test_pointing_mc.cc found mean NEES up to 1.5, σ 15–20 % optimistic:
+// most image points of a slew are taken near its S-curve ends, where the turret is slow).
+constexpr double kSlowStepsPerSample = 3.0;
 
 std::string PointingFixed(double v, int digits) {
   char buf[64];
@@ -49,39 +59,124 @@ void TurretAt(const locate::BoresightSource& turret, const ImagePoints& pts, con
   }
   o->az_log_rad = b->az_rad;
   o->el_log_rad = b->el_rad;
+  o->sample_weight = turret.SampleWeight(t);
   const auto lo = turret.At(t - kRateStepS), hi = turret.At(t + kRateStepS);
-  const double t_lo = lo ? t - kRateStepS : t, t_hi = hi ? t + kRateStepS : t;
-  const geo::AzEl a = lo ? *lo : *b, c = hi ? *hi : *b;
+  for (const auto& v : {lo, hi}) {
+    if (v && (v->az_rad != b->az_rad || v->el_rad != b->el_rad)) o->log_moving = true;
+  }
+  if (!o->log_moving) return;  // a still reading: rate zero
+  const double w = kTurretRateHalfWindowS;
+  const auto wlo = turret.At(t - w), whi = turret.At(t + w);
+  const double t_lo = wlo ? t - w : t, t_hi = whi ? t + w : t;
+  const geo::AzEl a = wlo ? *wlo : *b, c = whi ? *whi : *b;
   if (t_hi > t_lo) {
     o->az_rate_rps = geo::WrapPi(c.az_rad - a.az_rad) / (t_hi - t_lo);
     o->el_rate_rps = (c.el_rad - a.el_rad) / (t_hi - t_lo);
   }
 }
 
+// Creep window (pointing_observations.h "Shared errors"): (1 + √2) bounds the creep after the last
+// transition at constant deceleration; 2.5 leaves margin for the log's sampling of the transition times.
+constexpr double kCreepFactor = 2.5;
+constexpr double kMaxCreepSearchS = 10.0;  // transitions are looked for this far from a still stretch
+
+bool SameReading(const std::optional<geo::AzEl>& a, const std::optional<geo::AzEl>& b) {
+  return a && b && a->az_rad == b->az_rad && a->el_rad == b->el_rad;
+}
+
+// Time (s) the turret creeps inside its cell at the end of a still stretch reading `r` at t0, searched in
+// direction dir (−1: the approach before t0, +1: the departure after t0): kCreepFactor × the time between
+// the stretch's transition and the one before it, plus one log interval. 0 when no transition is found.
+double CreepWindow(const locate::BoresightSource& turret, double t0, int dir, double dt) {
+  const std::optional<geo::AzEl> r = turret.At(t0);
+  double t = t0, t_edge = std::numeric_limits<double>::quiet_NaN();
+  std::optional<geo::AzEl> cell;  // the reading just outside the stretch
+  for (; std::abs(t - t0) <= kMaxCreepSearchS; t += dir * dt) {
+    const std::optional<geo::AzEl> v = turret.At(t);
+    if (!v) return 0.0;
+    if (!SameReading(v, r)) {
+      t_edge = t;
+      cell = v;
+      break;
+    }
+  }
+  if (std::isnan(t_edge)) return 0.0;
+  for (t = t_edge + dir * dt; std::abs(t - t0) <= kMaxCreepSearchS; t += dir * dt) {
+    const std::optional<geo::AzEl> v = turret.At(t);
+    if (!v) break;
+    if (!SameReading(v, cell)) return kCreepFactor * std::abs(t - t_edge) + dt;
+  }
+  return 0.0;
+}
+
+// Splits off the image points of a still cluster taken while the turret may still be creeping in its cell.
+void SplitCreep(const locate::BoresightSource& turret, double dt, double sigma_q, PointingObservations* out) {
+  if (!(dt > 0.0)) return;
+  const std::size_t n_clusters = out->cluster_sigma_rad.size();
+  std::vector<std::size_t> first(n_clusters, out->obs.size()), last(n_clusters, 0);
+  for (std::size_t i = 0; i < out->obs.size(); ++i) {
+    const auto c = static_cast<std::size_t>(out->obs[i].cluster);
+    first[c] = std::min(first[c], i);
+    last[c] = i;
+  }
+  for (std::size_t c = 0; c < n_clusters; ++c) {
+    const PointingObservation& a = out->obs[first[c]];
+    if (a.log_moving) continue;
+    const double t_in = a.t_turret_s, t_out = out->obs[last[c]].t_turret_s;
+    // stretch ends: probe from the cluster's first and last image point
+    const double w_in = CreepWindow(turret, t_in, -1, dt), w_out = CreepWindow(turret, t_out, +1, dt);
+    if (w_in == 0.0 && w_out == 0.0) continue;
+    double start = t_in, end = t_out;  // the stretch's ends (to one log interval)
+    while (SameReading(turret.At(start - dt), turret.At(t_in)) && t_in - start < kMaxCreepSearchS) start -= dt;
+    while (SameReading(turret.At(end + dt), turret.At(t_out)) && end - t_out < kMaxCreepSearchS) end += dt;
+    for (std::size_t i = first[c]; i <= last[c]; ++i) {
+      PointingObservation& o = out->obs[i];
+      if (o.cluster != static_cast<int>(c)) continue;
+      if (o.t_turret_s >= start + w_in && o.t_turret_s <= end - w_out) continue;
+      --out->cluster_size[c];
+      o.cluster = static_cast<int>(out->cluster_sigma_rad.size());
+      out->cluster_sigma_rad.push_back(Eigen::Vector2d::Constant(sigma_q));
+      out->cluster_size.push_back(1);
+    }
+  }
+}
+
+// σ of one axis's reading interpolated at weight w between two log samples during a slew:
+// step/√12 · √((1 − w)² + w²) when the axis moves at least kSlowStepsPerSample steps per log interval
+// (independent sample errors), step/√12 when slower.
+double MovingReadingSigma(double sigma_q, double rate_rps, double w, double step_rad, double log_interval_s) {
+  const bool fast = std::isfinite(log_interval_s) && std::isfinite(w) &&
+                    std::abs(rate_rps) * log_interval_s >= kSlowStepsPerSample * step_rad;
+  return fast ? sigma_q * std::sqrt((1 - w) * (1 - w) + w * w) : sigma_q;
+}
+
 // Groups consecutive observations with bit-identical logged angles: one dwell's encoder reading, or, during
 // a slew, the one interpolated reading of a frame in which several targets are seen.
-void AssignClusters(double step_rad, PointingObservations* out) {
+void AssignClusters(const locate::BoresightSource& turret, double step_rad, PointingObservations* out) {
+  const double log_interval_s = turret.mean_sample_interval_s();
   const double sigma_q = step_rad / std::sqrt(12.0);
   int current = -1;
-  std::vector<char> moving;
+  std::vector<char> still;
   for (std::size_t i = 0; i < out->obs.size(); ++i) {
     PointingObservation& o = out->obs[i];
     const bool same = i > 0 && o.az_log_rad == out->obs[i - 1].az_log_rad && o.el_log_rad == out->obs[i - 1].el_log_rad;
     if (!same) {
       current = static_cast<int>(out->cluster_sigma_rad.size());
-      out->cluster_sigma_rad.push_back(Eigen::Vector2d::Constant(sigma_q));
+      const bool moving = o.log_moving;
+      still.push_back(!moving);
+      const double w = o.sample_weight;
+      out->cluster_sigma_rad.push_back(
+          moving ? Eigen::Vector2d(MovingReadingSigma(sigma_q, o.az_rate_rps, w, step_rad, log_interval_s),
+                                   MovingReadingSigma(sigma_q, o.el_rate_rps, w, step_rad, log_interval_s))
+                 : Eigen::Vector2d::Constant(sigma_q));
       out->cluster_size.push_back(0);
-      moving.push_back(o.az_rate_rps != 0.0 || o.el_rate_rps != 0.0);
     }
     o.cluster = current;
     ++out->cluster_size[static_cast<std::size_t>(current)];
   }
-  for (std::size_t c = 0; c < out->cluster_size.size(); ++c) {
-    if (moving[c]) {
-      out->cluster_sigma_rad[c] *= std::sqrt(kInterpolatedQuantFactor);
-    } else if (out->cluster_size[c] > 1) {
-      ++out->dwells;
-    }
+  SplitCreep(turret, log_interval_s, sigma_q, out);
+  for (std::size_t c = 0; c < still.size(); ++c) {
+    if (still[c] && out->cluster_size[c] > 1) ++out->dwells;
   }
 }
 
@@ -145,6 +240,7 @@ PointingObservations BuildObservations(const ImagePoints& pts, const TargetCatal
                             PointingFixed(geo::RadToDeg(std::asin(o.dir_enu.z())), 3) + " deg; check --epoch-utc and --station)");
       }
     }
+    o.t_turret_s = t;
     TurretAt(turret, pts, p, t, &o);
     auto [slot, inserted] = target_slot.emplace(code, static_cast<int>(out.target_ids.size()));
     if (inserted) {
@@ -159,7 +255,7 @@ PointingObservations BuildObservations(const ImagePoints& pts, const TargetCatal
     o.target = slot->second;
     out.obs.push_back(o);
   }
-  AssignClusters(encoder_step_rad, &out);
+  AssignClusters(turret, encoder_step_rad, &out);
   return out;
 }
 

@@ -1,6 +1,7 @@
 // Turret boresight at frame times; see boresight.h.
 #include "locate/boresight.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -57,6 +58,17 @@ std::optional<geo::AzEl> BoresightSource::At(double t_s, track::InterpStatus* st
 
 double BoresightSource::first_time() const { return fixed_ ? std::nan("") : az_->first_time(); }
 double BoresightSource::last_time() const { return fixed_ ? std::nan("") : az_->last_time(); }
+double BoresightSource::SampleWeight(double t_s) const {
+  if (fixed_) return std::nan("");
+  const auto b = az_->Bracket(t_s);
+  if (!b || !(b->second > b->first)) return std::nan("");
+  return std::clamp((t_s - b->first) / (b->second - b->first), 0.0, 1.0);
+}
+
+double BoresightSource::mean_sample_interval_s() const {
+  if (fixed_ || az_->usable_samples() < 2) return std::nan("");
+  return (az_->last_time() - az_->first_time()) / static_cast<double>(az_->usable_samples() - 1);
+}
 
 std::string BoresightSource::CoverageText() const {
   if (fixed_) return "is a fixed boresight";

@@ -35,6 +35,12 @@ class BoresightSource {
   // Time span of the usable samples (NaN for a fixed boresight or an empty log).
   double first_time() const;
   double last_time() const;
+  // Mean interval between usable samples (s): (last − first) / (samples − 1); NaN for a fixed boresight or
+  // a log with fewer than two usable samples.
+  double mean_sample_interval_s() const;
+  // Where t_s lies between the two azimuth samples it is interpolated from: (t − t_k) / (t_k+1 − t_k) in
+  // [0, 1]; NaN for a fixed boresight or outside the samples.
+  double SampleWeight(double t_s) const;
   // The error for a run none of whose frame times (t_first .. t_last, from `frames_source`) the log
   // covers: DataError naming the log, e.g. "turret log covers t_s A .. B but no frame time of F (t_s C ..
   // D) is covered within the --turret-max-gap limit". `kind` = "turret" / "theodolite".

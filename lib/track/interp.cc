@@ -157,6 +157,13 @@ TimeSeriesInterpolator::TimeSeriesInterpolator(std::vector<double> t_s,
 double TimeSeriesInterpolator::first_time() const { return t_.empty() ? std::nan("") : t_.front(); }
 double TimeSeriesInterpolator::last_time() const { return t_.empty() ? std::nan("") : t_.back(); }
 
+std::optional<std::pair<double, double>> TimeSeriesInterpolator::Bracket(double t) const {
+  if (t_.size() < 2 || !std::isfinite(t) || t < t_.front() || t > t_.back()) return std::nullopt;
+  std::size_t k = static_cast<std::size_t>(std::upper_bound(t_.begin(), t_.end(), t) - t_.begin()) - 1;
+  if (k + 1 >= t_.size()) k = t_.size() - 2;
+  return std::make_pair(t_[k], t_[k + 1]);
+}
+
 InterpValue TimeSeriesInterpolator::At(double t) const {
   InterpValue out;
   if (t_.empty() || !std::isfinite(t) || t < t_.front() || t > t_.back()) return out;  // kOutside

@@ -39,6 +39,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rk::track {
@@ -87,6 +88,9 @@ class TimeSeriesInterpolator {
                          const InterpOptions& options);
 
   InterpValue At(double t_s) const;
+  // The usable samples' times t_k <= t_s <= t_k+1 around t_s (the interval At interpolates on), or nullopt
+  // outside the samples.
+  std::optional<std::pair<double, double>> Bracket(double t_s) const;
 
   std::size_t samples() const { return n_samples_; }
   std::size_t usable_samples() const { return t_.size(); }
