@@ -84,29 +84,39 @@ bool SameReading(const std::optional<geo::AzEl>& a, const std::optional<geo::AzE
   return a && b && a->az_rad == b->az_rad && a->el_rad == b->el_rad;
 }
 
-// Time (s) the turret creeps inside its cell at the end of a still stretch reading `r` at t0, searched in
-// direction dir (−1: the approach before t0, +1: the departure after t0): kCreepFactor × the time between
-// the stretch's transition and the one before it, plus one log interval. 0 when no transition is found.
-double CreepWindow(const locate::BoresightSource& turret, double t0, int dir, double dt) {
+// The end of a still stretch reading `r` at t0, searched in direction dir (−1: the approach before t0, +1: the
+// departure after t0) on the log grid dt: `edge`, the stretch's last time still reading r (t0 when no
+// transition is found), and `window`, the time the turret creeps inside its cell there: kCreepFactor × the
+// time between the stretch's transition and the one before it, plus one log interval (0 when either
+// transition is not found).
+struct StretchEnd {
+  double edge = 0.0, window = 0.0;
+};
+StretchEnd FindStretchEnd(const locate::BoresightSource& turret, double t0, int dir, double dt) {
   const std::optional<geo::AzEl> r = turret.At(t0);
+  StretchEnd end{t0, 0.0};
   double t = t0, t_edge = std::numeric_limits<double>::quiet_NaN();
   std::optional<geo::AzEl> cell;  // the reading just outside the stretch
   for (; std::abs(t - t0) <= kMaxCreepSearchS; t += dir * dt) {
     const std::optional<geo::AzEl> v = turret.At(t);
-    if (!v) return 0.0;
+    if (!v) return end;
     if (!SameReading(v, r)) {
       t_edge = t;
       cell = v;
       break;
     }
+    end.edge = t;
   }
-  if (std::isnan(t_edge)) return 0.0;
+  if (std::isnan(t_edge)) return end;
   for (t = t_edge + dir * dt; std::abs(t - t0) <= kMaxCreepSearchS; t += dir * dt) {
     const std::optional<geo::AzEl> v = turret.At(t);
     if (!v) break;
-    if (!SameReading(v, cell)) return kCreepFactor * std::abs(t - t_edge) + dt;
+    if (!SameReading(v, cell)) {
+      end.window = kCreepFactor * std::abs(t - t_edge) + dt;
+      return end;
+    }
   }
-  return 0.0;
+  return end;
 }
 
 // Splits off the image points of a still cluster taken while the turret may still be creeping in its cell.
@@ -123,12 +133,11 @@ void SplitCreep(const locate::BoresightSource& turret, double dt, double sigma_q
     const PointingObservation& a = out->obs[first[c]];
     if (a.log_moving) continue;
     const double t_in = a.t_turret_s, t_out = out->obs[last[c]].t_turret_s;
-    // stretch ends: probe from the cluster's first and last image point
-    const double w_in = CreepWindow(turret, t_in, -1, dt), w_out = CreepWindow(turret, t_out, +1, dt);
+    // stretch ends (to one log interval) and their creep windows, probed from the cluster's first and last
+    // image point
+    const StretchEnd in = FindStretchEnd(turret, t_in, -1, dt), out_end = FindStretchEnd(turret, t_out, +1, dt);
+    const double w_in = in.window, w_out = out_end.window, start = in.edge, end = out_end.edge;
     if (w_in == 0.0 && w_out == 0.0) continue;
-    double start = t_in, end = t_out;  // the stretch's ends (to one log interval)
-    while (SameReading(turret.At(start - dt), turret.At(t_in)) && t_in - start < kMaxCreepSearchS) start -= dt;
-    while (SameReading(turret.At(end + dt), turret.At(t_out)) && end - t_out < kMaxCreepSearchS) end += dt;
     for (std::size_t i = first[c]; i <= last[c]; ++i) {
       PointingObservation& o = out->obs[i];
       if (o.cluster != static_cast<int>(c)) continue;
