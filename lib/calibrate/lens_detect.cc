@@ -26,12 +26,16 @@ double RowSpacing(const std::vector<cv::Point2f>& corners, int cols, int rows) {
   return spacing;
 }
 
-// cv::cornerSubPix with a window of 0.3 × `spacing`, the smallest corner spacing (2–7 px half-size), and a tight
-// stop (1e-4 px).
-void RefineCorners(const cv::Mat& gray, double spacing, std::vector<cv::Point2f>* corners) {
-  const int half = std::clamp(static_cast<int>(0.3 * spacing), 2, 7);
+// cv::cornerSubPix with a half-window of `half_px` clamped to 2–7 px and a tight stop (1e-4 px).
+void SubPixel(const cv::Mat& gray, double half_px, std::vector<cv::Point2f>* corners) {
+  const int half = std::clamp(static_cast<int>(half_px), 2, 7);
   cv::cornerSubPix(gray, *corners, cv::Size(half, half), cv::Size(-1, -1),
                    cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-4));
+}
+
+// Chessboard corners refined in a window of 0.3 × `spacing`, the smallest corner spacing.
+void RefineCorners(const cv::Mat& gray, double spacing, std::vector<cv::Point2f>* corners) {
+  SubPixel(gray, 0.3 * spacing, corners);
 }
 
 // findChessboardCornersSB on `gray`; or, for an image larger than opt.detect_max_px, the board searched on a copy
@@ -155,9 +159,7 @@ void RefineCharucoCorners(const cv::Mat& gray, const std::vector<std::vector<cv:
   for (const auto& m : markers) side += 0.25 * cv::arcLength(m, true);
   side /= static_cast<double>(markers.size());
   const double gap_px = side * (opt.square_mm - opt.marker_mm) / (2.0 * opt.marker_mm);
-  const int half = std::clamp(static_cast<int>(0.9 * gap_px), 2, 7);
-  cv::cornerSubPix(gray, *corners, cv::Size(half, half), cv::Size(-1, -1),
-                   cv::TermCriteria(cv::TermCriteria::EPS + cv::TermCriteria::COUNT, 50, 1e-4));
+  SubPixel(gray, 0.9 * gap_px, corners);
 }
 
 void DetectCharuco(const cv::Mat& gray, const LensOptions& opt, LensView* v) {
