@@ -1,6 +1,7 @@
 #include "io/json_positions.h"
 
 #include <cctype>
+#include <set>
 
 namespace rk::io {
 namespace {
@@ -8,11 +9,16 @@ namespace {
 class Scanner {
  public:
   Scanner(const std::string& text, std::map<std::string, TextPosition>* values,
-          std::map<std::string, TextPosition>* keys)
-      : s_(text), values_(values), keys_(keys) {}
+          std::map<std::string, TextPosition>* keys, std::optional<JsonDuplicateKey>* duplicate)
+      : s_(text), values_(values), keys_(keys), duplicate_(duplicate) {
+    // A UTF-8 byte-order mark is not part of the text an editor shows: line 1 starts after it.
+    if (s_.compare(0, 3, "\xEF\xBB\xBF") == 0) i_ = 3;
+  }
 
   bool Value(const std::string& pointer) {
     Skip();
+    // Nesting deeper than any real file: the rest is not indexed (no recursion without bound).
+    if (depth_ >= kMaxDepth) return false;
     if (i_ >= s_.size()) return false;
     (*values_)[pointer] = Here();
     const char c = s_[i_];
@@ -89,7 +95,14 @@ class Scanner {
     Advance();  // closing quote
     return true;
   }
+  struct Depth {
+    explicit Depth(std::size_t* d) : d_(d) { ++*d_; }
+    ~Depth() { --*d_; }
+    std::size_t* d_;
+  };
   bool Object(const std::string& pointer) {
+    const Depth depth(&depth_);
+    std::set<std::string> seen;
     Advance();
     Skip();
     if (i_ < s_.size() && s_[i_] == '}') {
@@ -103,6 +116,9 @@ class Scanner {
       std::string key;
       if (!String(&key)) return false;
       const std::string child = pointer + "/" + PointerToken(key);
+      if (!seen.insert(key).second && !*duplicate_) {
+        *duplicate_ = JsonDuplicateKey{child, key_pos, (*keys_)[child]};
+      }
       (*keys_)[child] = key_pos;
       Skip();
       if (i_ >= s_.size() || s_[i_] != ':') return false;
@@ -123,6 +139,7 @@ class Scanner {
     return false;
   }
   bool Array(const std::string& pointer) {
+    const Depth depth(&depth_);
     Advance();
     Skip();
     if (i_ < s_.size() && s_[i_] == ']') {
@@ -149,7 +166,9 @@ class Scanner {
   const std::string& s_;
   std::map<std::string, TextPosition>* values_;
   std::map<std::string, TextPosition>* keys_;
-  std::size_t i_ = 0, line_ = 1, col_ = 1;
+  std::optional<JsonDuplicateKey>* duplicate_;
+  static constexpr std::size_t kMaxDepth = 512;
+  std::size_t i_ = 0, line_ = 1, col_ = 1, depth_ = 0;
 };
 
 }  // namespace
@@ -168,7 +187,7 @@ std::string PointerToken(const std::string& key) {
 }
 
 JsonPositions::JsonPositions(const std::string& text) {
-  Scanner scanner(text, &values_, &keys_);
+  Scanner scanner(text, &values_, &keys_, &duplicate_);
   scanner.Value("");
 }
 

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <string>
 
 namespace rk::io {
@@ -13,6 +14,13 @@ namespace rk::io {
 struct TextPosition {
   std::size_t line = 0;    // 1-based; 0 = unknown
   std::size_t column = 0;  // 1-based
+};
+
+// A key that stands twice in one object (nlohmann keeps the last silently).
+struct JsonDuplicateKey {
+  std::string pointer;   // "/cameras/az/role"
+  TextPosition at;       // the second occurrence
+  TextPosition first;    // the first
 };
 
 class JsonPositions {
@@ -25,10 +33,14 @@ class JsonPositions {
   TextPosition At(const std::string& pointer) const;
   // Position of the key naming the value at `pointer` (e.g. an unknown key), else At(pointer).
   TextPosition KeyAt(const std::string& pointer) const;
+  // The first key that stands twice in one object, if any. A UTF-8 byte-order mark at the start is
+  // skipped (positions count from the character after it); nesting deeper than 512 is not indexed.
+  const std::optional<JsonDuplicateKey>& duplicate() const { return duplicate_; }
 
  private:
   std::map<std::string, TextPosition> values_;
   std::map<std::string, TextPosition> keys_;
+  std::optional<JsonDuplicateKey> duplicate_;
 };
 
 // JSON pointer escaping of one reference token (~ → ~0, / → ~1).

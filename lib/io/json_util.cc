@@ -6,6 +6,7 @@
 
 #include "io/error.h"
 #include "io/file_util.h"
+#include "io/json_positions.h"
 
 namespace rk::io {
 
@@ -15,7 +16,8 @@ namespace {
 std::pair<std::size_t, std::size_t> LineColumn(const std::string& text, std::size_t offset) {
   std::size_t line = 1, col = 1;
   const std::size_t end = std::min(offset, text.size());
-  for (std::size_t i = 0; i < end; ++i) {
+  const std::size_t bom = text.compare(0, 3, "\xEF\xBB\xBF") == 0 ? 3 : 0;  // not a column
+  for (std::size_t i = std::min(bom, end); i < end; ++i) {
     if (text[i] == '\n') {
       ++line;
       col = 1;
@@ -35,7 +37,16 @@ std::string FromParseError(const std::string& what) {
 
 Json ParseJson(const std::string& text, const std::string& name) {
   try {
-    return Json::parse(text, nullptr, true, /*ignore_comments=*/true);
+    Json j = Json::parse(text, nullptr, true, /*ignore_comments=*/true);
+    // A key given twice would silently lose its first value: refused, at the second.
+    const JsonPositions positions(text);
+    if (const auto& d = positions.duplicate()) {
+      const std::string key = d->pointer.substr(d->pointer.rfind('/') + 1);
+      throw DataError(name, d->at.line, d->at.column,
+                      "duplicate key '" + key + "' (first at line " + std::to_string(d->first.line) + ":" +
+                          std::to_string(d->first.column) + "); a key may stand only once in an object");
+    }
+    return j;
   } catch (const nlohmann::json::parse_error& e) {
     // e.byte is the 1-based offset of the offending byte.
     const auto [line, col] = LineColumn(text, e.byte > 0 ? e.byte - 1 : 0);
@@ -99,8 +110,8 @@ std::string RequireString(const Json& j, const std::string& key, const std::stri
 
 // Strings taken from input files (a CSV cell quoted in a problem message, a file name) need not be valid
 // UTF-8; nlohmann::json would throw type_error 316 while writing them. Invalid bytes become U+FFFD.
-void WriteJson(const std::string& path, const Json& j) {
-  WriteFileAtomic(path, j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n");
-}
+std::string JsonText(const Json& j) { return j.dump(2, ' ', false, Json::error_handler_t::replace) + "\n"; }
+
+void WriteJson(const std::string& path, const Json& j) { WriteFileAtomic(path, JsonText(j)); }
 
 }  // namespace rk::io

@@ -25,5 +25,7 @@ std::string RequireString(const Json& j, const std::string& key, const std::stri
 
 // Writes pretty JSON atomically ("-" = stdout).
 void WriteJson(const std::string& path, const Json& j);
+// The text WriteJson writes.
+std::string JsonText(const Json& j);
 
 }  // namespace rk::io

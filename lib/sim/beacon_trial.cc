@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <regex>
 
 #include "camera/camera_model.h"
 #include "camera/pointing_model.h"
 #include "geo/angles.h"
+#include "io/utc_time.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
@@ -42,8 +42,8 @@ bool TrialWriteOptions::Check(std::string* why) const {
   };
   if (out_dir.empty() || out_dir == "-") return fail("--out must name a folder");
   if (format != "mkv" && format != "png") return fail("format must be 'mkv' or 'png'");
-  static const std::regex iso(R"(\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}(\.\d+)?Z)");
-  if (!std::regex_match(epoch_utc, iso)) return fail("epoch must be ISO-8601 UTC, e.g. 2026-01-01T00:00:00Z");
+  io::UtcTime utc_epoch;
+  if (!io::ParseUtcIso(epoch_utc, &utc_epoch, nullptr)) return fail("epoch must be ISO-8601 UTC, e.g. 2026-01-01T00:00:00Z");
   if (!(std::abs(station_lat_deg) <= 90 && std::abs(station_lon_deg) <= 180 && std::isfinite(station_h_m))) {
     return fail("station latitude/longitude out of range");
   }

@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <regex>
 
 #include "camera/camera_model.h"
 #include "geo/angles.h"
+#include "io/utc_time.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
@@ -48,8 +48,8 @@ bool TheodoliteWriteOptions::Check(std::string* why) const {
     *why = "--images must be none, png or mkv";
     return false;
   }
-  static const std::regex iso(R"(\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}(\.\d+)?Z)");
-  if (!std::regex_match(epoch_utc, iso)) {
+  io::UtcTime utc_epoch;
+  if (!io::ParseUtcIso(epoch_utc, &utc_epoch, nullptr)) {
     *why = "epoch must be ISO-8601 UTC, e.g. 2026-01-01T00:00:00Z";
     return false;
   }

@@ -1,5 +1,7 @@
 #include "target/calibration_targets.h"
 
+#include "io/utc_time.h"
+
 #include <GeographicLib/LocalCartesian.hpp>
 #include <erfa.h>
 
@@ -129,13 +131,13 @@ std::vector<Star> ReadStars(const io::CsvTable& t) {
 }
 
 UtcJd ParseUtc(const std::string& iso, const std::string& what) {
-  int y = 0, mo = 0, d = 0, h = 0, mi = 0, n = 0;
-  double sec = 0.0;
-  const bool parsed = std::sscanf(iso.c_str(), "%4d-%2d-%2dT%2d:%2d:%lf%n", &y, &mo, &d, &h, &mi, &sec, &n) == 6;
-  const std::string rest = parsed ? iso.substr(static_cast<std::size_t>(n)) : "";
+  io::UtcTime t;
+  std::string why;
   UtcJd u;
-  if (!parsed || !(rest.empty() || rest == "Z") || eraDtf2d("UTC", y, mo, d, h, mi, sec, &u.jd1, &u.jd2) < 0) {
-    throw UsageError(what + " must be an ISO-8601 UTC time YYYY-MM-DDThh:mm:ss[.fff][Z], got '" + iso + "'");
+  if (!io::ParseUtcIso(iso, &t, &why) ||
+      eraDtf2d("UTC", t.year, t.month, t.day, t.hour, t.minute, t.second, &u.jd1, &u.jd2) < 0) {
+    throw UsageError(what + " must be an ISO-8601 UTC time " + io::kUtcIsoFormat + ", got '" + iso + "'" +
+                     (why.empty() ? "" : ": " + why));
   }
   return u;
 }

@@ -8,6 +8,7 @@
 
 #include "io/error.h"
 #include "io/file_util.h"
+#include "io/utc_time.h"
 #include "trial/layout.h"
 
 namespace rk::trial {
@@ -110,7 +111,9 @@ CameraEntry ParseCamera(const Checker& c, const std::string& name, const Json& c
                         const Json& root) {
   static const std::regex name_re("^[A-Za-z0-9][A-Za-z0-9_.-]*$");
   if (!std::regex_match(name, name_re) || name == "radar" || name == "plots" || name == "steps") {
-    c.Fail(p, "camera name '" + name + "' must be letters, digits, '_', '-', '.' (not radar/plots/steps)", true);
+    c.Fail(p, "camera name '" + name + "' may use only ASCII letters A-Z a-z, digits 0-9, '_', '-' and '.', "
+              "starting with a letter or digit (it names a folder and a step on every system), and not radar/plots/steps",
+           true);
   }
   if (!cam.is_object()) c.Fail(p, "must be an object");
   CameraEntry e;
@@ -239,9 +242,12 @@ Manifest ParseManifest(const std::string& text, const std::string& manifest_path
   }
   if (j.contains("epoch_utc") && !j.at("epoch_utc").is_null()) {
     if (!j.at("epoch_utc").is_string()) c.Fail("/epoch_utc", "must be an ISO-8601 UTC time string");
-    static const std::regex iso(R"(^\d{4}-\d{2}-\d{2}T\d{2}:\d{2}:\d{2}(\.\d+)?(Z|[+-]\d{2}:?\d{2})$)");
     m.epoch_utc = j.at("epoch_utc").get<std::string>();
-    if (!std::regex_match(m.epoch_utc, iso)) c.Fail("/epoch_utc", "'" + m.epoch_utc + "' is not ISO-8601 (2026-11-21T08:00:00Z)");
+    io::UtcTime utc;
+    std::string why;
+    if (!io::ParseUtcIso(m.epoch_utc, &utc, &why)) {
+      c.Fail("/epoch_utc", "'" + m.epoch_utc + "' is not an ISO-8601 UTC time: " + why);
+    }
   }
   if (j.contains("stations") && !j.at("stations").is_null()) {
     ParseStations(c, j, &m);

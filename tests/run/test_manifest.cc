@@ -47,7 +47,14 @@ TEST(Manifest, ErrorsNameLineAndColumn) {
   EXPECT_NE(ManifestError(no_target).find("needs 'target'"), std::string::npos);
   std::string epoch = kBeaconManifest;
   epoch.replace(epoch.find("2026-11-21T08:00:00Z"), 20, "21/11/2026 08:00");
-  EXPECT_NE(ManifestError(epoch).find("is not ISO-8601"), std::string::npos);
+  EXPECT_NE(ManifestError(epoch).find("is not an ISO-8601 UTC time"), std::string::npos);
+  // One UTC reader everywhere (io::ParseUtcIso): a month 13, an hour 25 and an offset are refused too.
+  for (const char* bad : {"2026-13-21T08:00:00Z", "2026-11-21T25:00:00Z", "2026-11-21T08:00:60Z",
+                          "2026-11-21T08:00:00+02:00"}) {
+    std::string e = kBeaconManifest;
+    e.replace(e.find("2026-11-21T08:00:00Z"), 20, bad);
+    EXPECT_NE(ManifestError(e).find("is not an ISO-8601 UTC time"), std::string::npos) << bad;
+  }
   EXPECT_NE(ManifestError("{\"cameras\": [}").find("invalid JSON"), std::string::npos);
   EXPECT_EQ(ManifestError(WithSteps(R"({"locate": {"range-interp": "linear"}, "az/plot": false})")), "");
 }

@@ -1,0 +1,82 @@
+#include "io/utc_time.h"
+
+#include <charconv>
+
+namespace rk::io {
+namespace {
+
+// Reads exactly `n` digits at text[*i].
+bool Digits(std::string_view text, std::size_t* i, std::size_t n, int* value) {
+  if (*i + n > text.size()) return false;
+  int v = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    const char c = text[*i + k];
+    if (c < '0' || c > '9') return false;
+    v = v * 10 + (c - '0');
+  }
+  *i += n;
+  *value = v;
+  return true;
+}
+
+bool Expect(std::string_view text, std::size_t* i, char c) {
+  if (*i >= text.size() || text[*i] != c) return false;
+  ++*i;
+  return true;
+}
+
+int DaysInMonth(int year, int month) {
+  static constexpr int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+  return month == 2 && leap ? 29 : kDays[month - 1];
+}
+
+}  // namespace
+
+bool ParseUtcIso(std::string_view text, UtcTime* out, std::string* why) {
+  const auto fail = [&](const std::string& w) {
+    if (why) *why = w;
+    return false;
+  };
+  UtcTime t;
+  std::size_t i = 0;
+  if (!Digits(text, &i, 4, &t.year) || !Expect(text, &i, '-') || !Digits(text, &i, 2, &t.month) ||
+      !Expect(text, &i, '-') || !Digits(text, &i, 2, &t.day) || !Expect(text, &i, 'T') ||
+      !Digits(text, &i, 2, &t.hour) || !Expect(text, &i, ':') || !Digits(text, &i, 2, &t.minute) ||
+      !Expect(text, &i, ':')) {
+    return fail("not of the form " + std::string(kUtcIsoFormat));
+  }
+  int whole = 0;
+  if (!Digits(text, &i, 2, &whole)) return fail("not of the form " + std::string(kUtcIsoFormat));
+  double fraction = 0.0;
+  if (i < text.size() && text[i] == '.') {
+    const std::size_t start = i;
+    ++i;
+    while (i < text.size() && text[i] >= '0' && text[i] <= '9') ++i;
+    if (i == start + 1) return fail("a decimal point with no digits after it");
+    std::from_chars(text.data() + start, text.data() + i, fraction);  // "0.fff" without the 0: from_chars reads ".fff"
+  }
+  if (i < text.size() && text[i] == 'Z') ++i;
+  if (i != text.size()) {
+    const char c = text[i];
+    if (c == '+' || c == '-') return fail("a time-zone offset: write the time in UTC with Z");
+    return fail("unexpected '" + std::string(text.substr(i)) + "' after the seconds");
+  }
+  if (t.month < 1 || t.month > 12) return fail("month " + std::to_string(t.month) + " is out of range");
+  if (t.day < 1 || t.day > DaysInMonth(t.year, t.month)) {
+    return fail("day " + std::to_string(t.day) + " does not exist in month " + std::to_string(t.month));
+  }
+  if (t.hour > 23) return fail("hour " + std::to_string(t.hour) + " is out of range");
+  if (t.minute > 59) return fail("minute " + std::to_string(t.minute) + " is out of range");
+  const bool leap_second_slot = t.hour == 23 && t.minute == 59 &&
+                                ((t.month == 6 && t.day == 30) || (t.month == 12 && t.day == 31));
+  if (whole > 60 || (whole == 60 && !leap_second_slot)) {
+    return fail("second " + std::to_string(whole) + " is out of range (60 only for a leap second at 23:59:60 on "
+                "30 June or 31 December)");
+  }
+  t.second = whole + fraction;
+  *out = t;
+  return true;
+}
+
+}  // namespace rk::io

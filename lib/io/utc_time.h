@@ -1,0 +1,23 @@
+// The one reader of an ISO-8601 UTC time (trial.json "epoch_utc", rk-sim --epoch, rk-calibrate pointing
+// --utc): YYYY-MM-DDThh:mm:ss[.fff][Z], every field in range (a real calendar day; second 60 only at
+// 23:59:60 on 30 June or 31 December, where leap seconds are inserted). Offsets (+01:00) are refused:
+// the files and options are UTC by name.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+namespace rk::io {
+
+struct UtcTime {
+  int year = 0, month = 0, day = 0, hour = 0, minute = 0;
+  double second = 0.0;
+};
+
+// True and *out on success; false and *why (a phrase: "month 13 is out of range") otherwise.
+bool ParseUtcIso(std::string_view text, UtcTime* out, std::string* why);
+
+// The format in words, for messages.
+inline constexpr const char* kUtcIsoFormat = "YYYY-MM-DDThh:mm:ss[.fff]Z (UTC, e.g. 2026-11-21T08:00:00Z)";
+
+}  // namespace rk::io
