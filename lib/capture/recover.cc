@@ -18,6 +18,7 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
+#include "io/json_positions.h"
 #include "io/version.h"
 #include "trial/layout.h"
 #include "video/frame_source.h"
@@ -65,6 +66,11 @@ class Recovery {
 
  private:
   std::string Path(const std::string& rel) const { return (fs::path(dir_) / rel).string(); }
+  // Every path the manifest names (logs, camera folders, frames files) must lie inside the trial
+  // folder after links are resolved: recover writes nowhere else. Throws DataError at the key.
+  void CheckPathsInside(const io::Json& m, const std::string& manifest_path, const std::string& text) const;
+  // The last guard before a file is cut or removed: false (and a problem) for a path outside the folder.
+  bool Writable(const std::string& path);
   void Repair(const std::string& what) { s_.repairs.push_back(what); }
   void Problem(const std::string& what) { s_.problems.push_back(what); }
   bool Truncate(const std::string& path, std::int64_t bytes);
@@ -94,7 +100,35 @@ class Recovery {
   RecoverSummary s_;
 };
 
+void Recovery::CheckPathsInside(const io::Json& m, const std::string& manifest_path, const std::string& text) const {
+  const io::JsonPositions pos(text);
+  const auto check = [&](const std::string& rel, const std::string& pointer, const std::string& key) {
+    if (io::IsInsideFolder(dir_, Path(rel))) return;
+    const io::TextPosition p = pos.At(pointer);
+    throw DataError(manifest_path, p.line, p.column,
+                    key + ": '" + rel + "' leads outside the trial folder (after links); recover writes only inside it");
+  };
+  for (const char* key : {"range", "turret"}) {
+    if (m.contains(key) && m[key].is_string()) check(m[key].get<std::string>(), std::string("/") + key, key);
+  }
+  for (auto it = m["cameras"].begin(); it != m["cameras"].end(); ++it) {
+    const std::string cam = "/cameras/" + io::PointerToken(it.key());
+    check(it.key(), cam, "cameras." + it.key());
+    if (it.value().is_object() && it.value().contains("frames") && it.value()["frames"].is_string()) {
+      check(it.value()["frames"].get<std::string>(), cam + "/frames", "cameras." + it.key() + ".frames");
+    }
+  }
+}
+
+bool Recovery::Writable(const std::string& path) {
+  std::error_code ec;
+  if (io::IsInsideFolder(dir_, path) && !fs::is_symlink(path, ec)) return true;
+  Problem(path + ": a link or a path outside the trial folder: not changed");
+  return false;
+}
+
 bool Recovery::Truncate(const std::string& path, std::int64_t bytes) {
+  if (!Writable(path)) return false;
   if (o_.check_only) return true;
   if (::truncate(path.c_str(), static_cast<off_t>(bytes)) != 0) {
     Problem(path + ": cannot truncate: " + std::strerror(errno));
@@ -109,6 +143,7 @@ bool Recovery::Truncate(const std::string& path, std::int64_t bytes) {
 }
 
 bool Recovery::Remove(const std::string& path) {
+  if (!Writable(path)) return false;
   if (o_.check_only) return true;
   std::error_code ec;
   fs::remove_all(path, ec);
@@ -257,6 +292,12 @@ std::vector<SegmentOnDisk> Recovery::ListSegments(const std::string& name, const
     const std::string fn = e.path().filename().string();
     std::smatch m;
     SegmentOnDisk s;
+    if (e.is_symlink(ec)) {
+      if (std::regex_match(fn, m, pgm_re) || std::regex_match(fn, m, y4m_re)) {
+        Problem(name + "/" + fn + ": a link, not a segment rk-capture wrote: not read, not changed");
+      }
+      continue;
+    }
     if (e.is_regular_file() && std::regex_match(fn, m, y4m_re)) {
       s.index = std::stoi(m[1]);
       s.rel = name + "/" + fn;
@@ -473,10 +514,12 @@ RecoverSummary Recovery::Run() {
     ::close(lock);
     if (busy) throw UsageError(dir_ + ": rk-capture is still recording into it (" + trial::kCaptureLockFile + " is held); stop it first");
   }
-  io::Json m = io::LoadJson(manifest_path);
+  const std::string manifest_text = io::ReadFile(manifest_path);
+  io::Json m = io::ParseJson(manifest_text, manifest_path);
   if (!m.is_object() || !m.contains("cameras") || !m["cameras"].is_object()) {
     throw DataError(manifest_path, 0, 0, "not a trial manifest (no \"cameras\" object)");
   }
+  CheckPathsInside(m, manifest_path, manifest_text);
   const bool by_capture = m.contains("capture") && m["capture"].is_object();
   s_.state_before = by_capture && m["capture"].contains("state") && m["capture"]["state"].is_string()
                         ? m["capture"]["state"].get<std::string>()

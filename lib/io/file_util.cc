@@ -217,4 +217,40 @@ void MakeDirectories(const std::string& path) {
   if (ec) throw IoError(path, "cannot create folder: " + ec.message());
 }
 
+void RefuseLink(const std::string& path) {
+  struct stat st {};
+  if (::lstat(path.c_str(), &st) != 0) return;  // absent (or unreadable: the open or write says why)
+  if (S_ISLNK(st.st_mode)) {
+    throw IoError(path, "is a symbolic link; a file the tool makes for itself is never written through a link "
+                        "(remove the link)");
+  }
+  if (!S_ISREG(st.st_mode)) throw IoError(path, "is not a regular file (remove it)");
+}
+
+void WriteOwnFileAtomic(const std::string& path, const std::string& data) {
+  RefuseLink(path);
+  ReplaceAtomically(path, data);
+}
+
+int OpenOwnFile(const std::string& path, int flags, unsigned mode) {
+  RefuseLink(path);
+  const int fd = ::open(path.c_str(), flags | O_NOFOLLOW | O_CLOEXEC, static_cast<mode_t>(mode));
+  if (fd >= 0) return fd;
+  const int e = errno;
+  if (e == ELOOP) RefuseLink(path);  // made a link in between
+  throw IoError(path, std::string("cannot open: ") + std::strerror(e));
+}
+
+bool IsInsideFolder(const std::string& folder, const std::string& path) {
+  std::error_code ec1, ec2;
+  const fs::path base = fs::weakly_canonical(fs::absolute(folder), ec1);
+  const fs::path p = fs::weakly_canonical(fs::absolute(path), ec2);
+  if (ec1 || ec2) return false;
+  auto b = base.begin(), i = p.begin();
+  for (; b != base.end(); ++b, ++i) {
+    if (i == p.end() || *i != *b) return false;
+  }
+  return i != p.end();
+}
+
 }  // namespace rk::io

@@ -41,6 +41,16 @@ std::string ResolveOutputFolder(const std::string& path);
 // to the descriptor for "-" and /dev/stdout.
 void WriteFileAtomic(const std::string& path, const std::string& data);
 
+// Files a tool makes for itself in a folder it works in (rk-run's TRIAL/.rk-run.lock, rk-run.log,
+// last-run.json), as opposed to outputs the user names: they never go through a symbolic link, so that
+// whoever can write the folder cannot point them at a file elsewhere (docs/conventions.md "Threat model").
+// RefuseLink throws IoError when `path` is a link or exists and is not a regular file.
+void RefuseLink(const std::string& path);
+// Replaces `path` atomically (temporary file beside it, then rename) after RefuseLink.
+void WriteOwnFileAtomic(const std::string& path, const std::string& data);
+// open(2) with O_NOFOLLOW | O_CLOEXEC added; throws IoError (naming the link) when it is a link or fails.
+int OpenOwnFile(const std::string& path, int flags, unsigned mode = 0644);
+
 // Throws UsageError if `output` names the same file as one of `inputs`
 // (nothing the user gave is overwritten), IoError if it cannot be an output file at all (a folder:
 // ResolveOutput), so that tools refuse it before doing any work. "-" is never compared.
@@ -50,5 +60,11 @@ void CheckOutputNotInput(const std::string& output, const std::vector<std::strin
 void MakeDirectories(const std::string& path);
 
 bool IsStdStream(const std::string& path);
+
+// True when `path`, with every symbolic link resolved (also in a part that does not exist yet), lies
+// inside `folder` (also resolved) and is not the folder itself. The guard of every tool that writes to
+// a path a trial folder names (docs/conventions.md "Threat model"): a trial's writer must not reach
+// a file outside it through `../`, an absolute path or a link.
+bool IsInsideFolder(const std::string& folder, const std::string& path);
 
 }  // namespace rk::io

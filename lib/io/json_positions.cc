@@ -9,8 +9,9 @@ namespace {
 class Scanner {
  public:
   Scanner(const std::string& text, std::map<std::string, TextPosition>* values,
-          std::map<std::string, TextPosition>* keys, std::optional<JsonDuplicateKey>* duplicate)
-      : s_(text), values_(values), keys_(keys), duplicate_(duplicate) {
+          std::map<std::string, TextPosition>* keys, std::optional<JsonDuplicateKey>* duplicate,
+          std::optional<TextPosition>* too_deep)
+      : s_(text), values_(values), keys_(keys), duplicate_(duplicate), too_deep_(too_deep) {
     // A UTF-8 byte-order mark is not part of the text an editor shows: line 1 starts after it.
     if (s_.compare(0, 3, "\xEF\xBB\xBF") == 0) i_ = 3;
   }
@@ -18,7 +19,10 @@ class Scanner {
   bool Value(const std::string& pointer) {
     Skip();
     // Nesting deeper than any real file: the rest is not indexed (no recursion without bound).
-    if (depth_ >= kMaxDepth) return false;
+    if (depth_ >= kMaxDepth) {
+      if (!*too_deep_) *too_deep_ = Here();
+      return false;
+    }
     if (i_ >= s_.size()) return false;
     (*values_)[pointer] = Here();
     const char c = s_[i_];
@@ -167,7 +171,8 @@ class Scanner {
   std::map<std::string, TextPosition>* values_;
   std::map<std::string, TextPosition>* keys_;
   std::optional<JsonDuplicateKey>* duplicate_;
-  static constexpr std::size_t kMaxDepth = 512;
+  std::optional<TextPosition>* too_deep_;
+  static constexpr std::size_t kMaxDepth = kMaxJsonDepth;
   std::size_t i_ = 0, line_ = 1, col_ = 1, depth_ = 0;
 };
 
@@ -187,7 +192,7 @@ std::string PointerToken(const std::string& key) {
 }
 
 JsonPositions::JsonPositions(const std::string& text) {
-  Scanner scanner(text, &values_, &keys_, &duplicate_);
+  Scanner scanner(text, &values_, &keys_, &duplicate_, &too_deep_);
   scanner.Value("");
 }
 

@@ -16,6 +16,10 @@ struct TextPosition {
   std::size_t column = 0;  // 1-based
 };
 
+// Nesting deeper than this is not indexed, and io::ParseJson refuses it: no real file nests so deep, and
+// nlohmann's writer and copies recurse once per level (a 5000-deep key overflowed rk-run's stack).
+inline constexpr std::size_t kMaxJsonDepth = 512;
+
 // A key that stands twice in one object (nlohmann keeps the last silently).
 struct JsonDuplicateKey {
   std::string pointer;   // "/cameras/az/role"
@@ -34,13 +38,16 @@ class JsonPositions {
   // Position of the key naming the value at `pointer` (e.g. an unknown key), else At(pointer).
   TextPosition KeyAt(const std::string& pointer) const;
   // The first key that stands twice in one object, if any. A UTF-8 byte-order mark at the start is
-  // skipped (positions count from the character after it); nesting deeper than 512 is not indexed.
+  // skipped (positions count from the character after it); nesting deeper than kMaxJsonDepth is not indexed.
   const std::optional<JsonDuplicateKey>& duplicate() const { return duplicate_; }
+  // Where the text first nests deeper than kMaxJsonDepth, if it does.
+  const std::optional<TextPosition>& too_deep() const { return too_deep_; }
 
  private:
   std::map<std::string, TextPosition> values_;
   std::map<std::string, TextPosition> keys_;
   std::optional<JsonDuplicateKey> duplicate_;
+  std::optional<TextPosition> too_deep_;
 };
 
 // JSON pointer escaping of one reference token (~ → ~0, / → ~1).

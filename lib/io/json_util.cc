@@ -36,10 +36,14 @@ std::string FromParseError(const std::string& what) {
 }  // namespace
 
 Json ParseJson(const std::string& text, const std::string& name) {
+  const JsonPositions positions(text);
+  if (const auto& deep = positions.too_deep()) {
+    throw DataError(name, deep->line, deep->column,
+                    "nested deeper than " + std::to_string(kMaxJsonDepth) + " levels (no rangekit file does that)");
+  }
   try {
     Json j = Json::parse(text, nullptr, true, /*ignore_comments=*/true);
     // A key given twice would silently lose its first value: refused, at the second.
-    const JsonPositions positions(text);
     if (const auto& d = positions.duplicate()) {
       const std::string key = d->pointer.substr(d->pointer.rfind('/') + 1);
       throw DataError(name, d->at.line, d->at.column,

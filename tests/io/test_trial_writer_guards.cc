@@ -76,6 +76,18 @@ TEST(JsonPositions, DeepNestingDoesNotRecurseWithoutBound) {
   for (int i = 0; i < 100000; ++i) text += "]";
   const JsonPositions p(text);  // must return (partial index), not overflow the stack
   EXPECT_EQ(p.At("").line, 1u);
+  ASSERT_TRUE(p.too_deep());
+  EXPECT_EQ(p.too_deep()->column, kMaxJsonDepth + 1);
+  try {
+    ParseJson(text, "deep.json");
+    ADD_FAILURE() << "a 100000-deep text was parsed";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("deep.json:1:513: nested deeper than 512 levels"), std::string::npos) << e.what();
+  }
+  std::string fine = "{\"extra\": ";
+  for (int i = 0; i < 300; ++i) fine += "[";
+  for (int i = 0; i < 300; ++i) fine += "]";
+  EXPECT_NO_THROW(ParseJson(fine + "}", "ok.json"));  // deep, but within the limit: kept
 }
 
 class Guards : public ::testing::Test {
