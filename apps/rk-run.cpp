@@ -33,7 +33,13 @@ int main(int argc, char** argv) {
   bool no_plots = false;
   app.add_option("trial", opt.trial, "Trial manifest trial.json, or the trial folder that holds it")->required();
   rk::cli::AddOptions(&app, &opt, rk::run::RunOptions::Table(),
-                      {{"--jobs", [&] { app.add_flag("--no-plots", no_plots, "No plot steps (rk-plot) and no report page (rk-report) this time"); }}});
+                      {{"--jobs", [&] {
+                         app.add_flag("--no-plots", no_plots,
+                                      "Draw nothing this time (no plot, no page figures); nothing already drawn is deleted");
+                       }}});
+  app.add_option("--out", opt.out_dir,
+                 "Folder for the products instead of TRIAL/out (a trial on a read-only disk); rk-run's lock, log and "
+                 "last-run.json go beside it as .DIR.rk-run.lock, DIR.rk-run.log, DIR.last-run.json");
   app.add_option("--tool-cache", opt.tool_cache,
                  "JSON file where tool identities (--version, SHA-256) are kept between runs, so that many "
                  "trials ask each tool once (rk-nightly passes one)");

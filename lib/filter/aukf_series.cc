@@ -590,7 +590,7 @@ void CheckAukfInput(const Series& series, const AukfOptions& options) {
     throw UsageError("--q: give one value or one per column (" + std::to_string(m) + ")");
   }
   const std::size_t N = series.rows();
-  if (N < 3) throw DataError(series.source, 0, 0, "needs at least 3 samples, has " + std::to_string(N));
+  if (N < 3) throw TooFewSamplesError(series.source, "needs at least 3 samples, has " + std::to_string(N));
   if (!(m * 3 + options.kappa > 0)) throw UsageError("--kappa: n + kappa must be > 0");
 }
 

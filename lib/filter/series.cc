@@ -57,7 +57,7 @@ Series ReadSeries(const io::CsvTable& table, const std::vector<std::string>& col
     if (any) ++with_value;
   }
   if (with_value < min_samples) {
-    throw DataError(table.name(), 0, 0,
+    throw TooFewSamplesError(table.name(),
                     "needs at least " + std::to_string(min_samples) + " samples with values, has " +
                         std::to_string(with_value));
   }

@@ -428,7 +428,7 @@ std::size_t MaskByStatus(const io::CsvTable& table, Series* series, std::size_t 
     if (any) ++with_value;
   }
   if (with_value < min_samples) {
-    throw DataError(table.name(), 0, 0,
+    throw TooFewSamplesError(table.name(),
                     "needs at least " + std::to_string(min_samples) + " samples with values (status ok), has " +
                         std::to_string(with_value));
   }

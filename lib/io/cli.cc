@@ -65,7 +65,7 @@ std::string RoleOf(const CLI::App& app, const std::string& path) {
 
 // Writes the report of a failed run; never throws (a failure to write it is a warning).
 void WriteFailureReport(const CLI::App& app, const std::string& tool, int argc, char** argv, int exit_code,
-                        const std::string& error) {
+                        const std::string& error, const std::string& kind) {
   int at = -1;
   const std::string path = ReportPathInArgv(argc, argv, &at);
   if (path.empty()) return;
@@ -101,6 +101,7 @@ void WriteFailureReport(const CLI::App& app, const std::string& tool, int argc, 
     rep["status"] = "failed";
     rep["exit_code"] = exit_code;
     rep["error"] = error;
+    if (!kind.empty()) rep["error_kind"] = kind;
     io::WriteJson(path, rep);
   } catch (const std::exception& e) {
     std::cerr << tool << ": warning: the report " << path << " was not written: " << e.what() << "\n";
@@ -132,9 +133,9 @@ void AddBadRowsOption(CLI::App* app, io::BadRows* bad_rows) {
 
 int Run(CLI::App& app, const std::string& tool, int argc, char** argv, const std::function<int()>& body) {
   LastReport().reset();
-  const auto fail = [&](int code, const std::string& message) {
+  const auto fail = [&](int code, const std::string& message, const std::string& kind = "") {
     std::cerr << tool << ": error: " << message << "\n";
-    WriteFailureReport(app, tool, argc, argv, code, message);
+    WriteFailureReport(app, tool, argc, argv, code, message, kind);
     return code;
   };
   try {
@@ -151,7 +152,7 @@ int Run(CLI::App& app, const std::string& tool, int argc, char** argv, const std
   try {
     return body();
   } catch (const Error& e) {
-    return fail(static_cast<int>(e.code()), e.what());
+    return fail(static_cast<int>(e.code()), e.what(), e.kind());
   } catch (const std::bad_alloc&) {
     return fail(static_cast<int>(ExitCode::kProcessing), "out of memory");
   } catch (const std::exception& e) {

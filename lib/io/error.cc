@@ -17,6 +17,10 @@ Error DataError(const std::string& file, std::size_t line, std::size_t column, c
   return Error(ExitCode::kInvalidData, msg);
 }
 
+Error TooFewSamplesError(const std::string& file, const std::string& what) {
+  return Error(ExitCode::kInvalidData, DataError(file, 0, 0, what).what(), kTooFewSamples);
+}
+
 Error IoError(const std::string& path, const std::string& what) {
   return Error(ExitCode::kIo, path + ": " + what);
 }

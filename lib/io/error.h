@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace rk {
 
@@ -22,15 +23,26 @@ enum class ExitCode : int {
 
 class Error : public std::runtime_error {
  public:
-  Error(ExitCode code, const std::string& message) : std::runtime_error(message), code_(code) {}
+  Error(ExitCode code, const std::string& message, std::string kind = "")
+      : std::runtime_error(message), code_(code), kind_(std::move(kind)) {}
   ExitCode code() const { return code_; }
+  // A machine-readable kind for errors a caller may treat differently (written to the run report as
+  // "error_kind"); "" for most. kTooFewSamples: the input is valid but holds too little for this method.
+  const std::string& kind() const { return kind_; }
 
  private:
   ExitCode code_;
+  std::string kind_;
 };
+
+// Error kinds (Error::kind(), the report's "error_kind").
+inline constexpr const char* kTooFewSamples = "too-few-samples";
 
 // "file:line:col: what" — line and column are 1-based; 0 omits them.
 Error DataError(const std::string& file, std::size_t line, std::size_t column, const std::string& what);
+// A DataError (exit 3) of kind kTooFewSamples: a valid input that holds too few usable samples for the
+// method (a beacon seen in two frames cannot be smoothed). rk-run keeps what the chain could make.
+Error TooFewSamplesError(const std::string& file, const std::string& what);
 Error IoError(const std::string& path, const std::string& what);
 Error UsageError(const std::string& what);
 Error ProcessingError(const std::string& what);

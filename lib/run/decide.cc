@@ -147,13 +147,34 @@ StepDecision DecideStep(const Step& st, const StepFacts& facts, const DecideInpu
   } else {
     why = WhyProductsGone(st, *p, in.out_files);
   }
+  if (!why.empty() && !in.plots && st.kind == "plot") {
+    // --no-plots: not drawn. A run that does less never deletes what it did not redo: the previous plot,
+    // if intact, is kept and marked stale (its record keeps the old key, so the next run with plots
+    // redraws it).
+    r.decision = Decision::kInactive;
+    r.status = "off";
+    r.reason = "--no-plots";
+    if (p && p->contains("key") && WhyProductsGone(st, *p, in.out_files).empty() &&
+        !p->value("outputs", Json::array()).empty()) {
+      r.decision = Decision::kSkip;
+      r.status = "stale";
+      r.reason = "--no-plots: not redrawn (" + why + "); the previous plot is kept";
+    }
+    return r;
+  }
   if (why.empty()) {
     r.decision = Decision::kSkip;
     r.status = "skipped";
     r.reason = "up to date";
     if (p->value("status", "") == "warning") {
       r.status = "warning";
-      r.reason = "up to date (earlier warning: " + p->value("reason", std::string("?")) + ")";
+      // The record of a skipped warning carries this same wrapper: say the original warning once.
+      const std::string wrap = "up to date (earlier warning: ";
+      std::string earlier = p->value("reason", std::string("?"));
+      while (earlier.rfind(wrap, 0) == 0 && earlier.size() > wrap.size() && earlier.back() == ')') {
+        earlier = earlier.substr(wrap.size(), earlier.size() - wrap.size() - 1);
+      }
+      r.reason = wrap + earlier + ")";
     }
   } else {
     r.decision = Decision::kRun;
@@ -179,11 +200,15 @@ void DecideRebuild(const DecideInput& in, const std::map<std::string, const Json
   std::set<std::string> before, now;
   for (const auto& [id, e] : prev_steps) {
     const std::string status = e->value("status", "");
-    if (status == "ok" || status == "skipped" || status == "warning") before.insert(id);
+    if (status == "ok" || status == "skipped" || status == "warning" || status == "stale") before.insert(id);
   }
   for (std::size_t i = 0; i < out->steps.size(); ++i) {
     const Decision d = out->steps[i].decision;
-    if (d == Decision::kSkip || (d == Decision::kBlocked && in.steps[i].warn_only)) now.insert(in.steps[i].id);
+    // A plot whose tool is missing is a warning (counted, as the report records it); one blocked by an
+    // upstream step that made nothing is not-run, which no report counts.
+    if (d == Decision::kSkip || (d == Decision::kBlocked && in.steps[i].warn_only && out->steps[i].status == "warning")) {
+      now.insert(in.steps[i].id);
+    }
   }
   if (before != now) {
     out->rebuild = true;
@@ -216,7 +241,11 @@ RunDecision Decide(const DecideInput& in) {
     const Step& st = in.steps[i];
     out.steps.push_back(DecideStep(st, in.facts[i], in, prev_steps, by_id, cannot_run));
     by_id[st.id] = &out.steps.back();
-    if (out.steps.back().decision == Decision::kBlocked) cannot_run.insert(st.id);
+    const StepDecision& sd = out.steps.back();
+    // Blocked, or up to date with a warning that left no product (too few samples): nothing downstream runs.
+    if (sd.decision == Decision::kBlocked || (sd.decision == Decision::kSkip && sd.status == "warning" && !st.warn_only)) {
+      cannot_run.insert(st.id);
+    }
   }
   DecideRebuild(in, prev_steps, &out);
   return out;

@@ -32,11 +32,14 @@ struct DecideInput {
   bool out_dir_exists = false;       // out/ is a folder
   std::string manifest_sha256;       // of trial.json's text
   bool force = false;                // --force
+  // false (--no-plots): a plot step that is up to date is kept (skipped); one that would run is not drawn,
+  // and its previous plot, if intact, is kept with status "stale"; else it is "off".
+  bool plots = true;
 };
 
 struct StepDecision {
   Decision decision = Decision::kInactive;
-  std::string status;  // "skipped", "warning", "not-run", "off", "not-applicable"; "" for kRun
+  std::string status;  // "skipped", "stale", "warning", "not-run", "off", "not-applicable"; "" for kRun
   std::string reason;  // "up to date", "new step", "input changed: turret.csv", ...
   io::Json key_parts;  // fingerprint parts {tool, args, inputs, upstream} (kRun, kSkip)
   std::string key;     // SHA-256 of key_parts.dump()

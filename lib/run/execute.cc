@@ -8,10 +8,12 @@
 #include <cerrno>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "io/csv.h"
 #include "io/file_util.h"
+#include "run/previous_report.h"
 #include "run/trial_run.h"
 
 namespace rk::run::internal {
@@ -24,8 +26,9 @@ constexpr std::size_t kLogTailLines = 40;    // lines of a failed step's log kep
 constexpr std::size_t kMaxPlotColumns = 12;  // data-dependent plots (radar biases)
 constexpr double kChildStopGraceS = 5.0;     // SIGTERM → SIGKILL delay when rk-run is stopped
 
-std::vector<std::string> TailLines(const std::string& path, std::size_t max_lines) {
-  std::ifstream in(path);
+// The last `max_lines` lines of a tool's output (progress redraws folded to their last state).
+std::vector<std::string> TailLines(const std::string& text, std::size_t max_lines) {
+  std::istringstream in(text);
   std::vector<std::string> lines;
   std::string line;
   while (std::getline(in, line)) {
@@ -98,7 +101,7 @@ std::string PlotColumnsOf(const std::string& csv_path) {
 
 // Products of the steps that are up to date are hard-linked from the previous out/.
 void TrialRun::LinkSkippedProducts() {
-  const fs::path out = fs::path(s_.trial_dir) / kOutDir;
+  const fs::path out(out_);
   for (auto& r : runs_) {
     if (r.decision != Decision::kSkip || !r.previous) continue;
     for (const auto& o : r.previous->value("outputs", Json::array())) {
@@ -132,6 +135,7 @@ void TrialRun::StartStep(std::size_t i, std::map<pid_t, std::size_t>* running) {
   for (const auto& [path, text] : r.step.generated) io::WriteFileAtomic((fs::path(work_) / path).string(), text);
   spec.cwd = s_.trial_dir;
   spec.log_path = (fs::path(work_) / r.step.LogFile()).string();
+  spec.capture = true;  // the tool's last lines are known even when its log cannot be written
   const std::string progress_env =
       progress_files_.Add(r.step.id, (fs::path(work_) / "steps" / (r.step.FileStem() + ".progress")).string());
   if (!progress_env.empty()) spec.env.push_back(progress_env);
@@ -157,7 +161,8 @@ void TrialRun::LaunchReady(const std::map<std::string, std::size_t>& index, std:
     std::string dead_why;
     for (const auto& d : r.step.depends_on) {
       const StepRun& u = runs_[index.at(d)];
-      if (u.decision == Decision::kSkip || (u.finished && (u.status == "ok"))) continue;
+      // An upstream step with a warning made no product (a plot, or too few samples): nothing to start from.
+      if ((u.decision == Decision::kSkip && u.status != "warning") || (u.finished && (u.status == "ok"))) continue;
       if (u.decision == Decision::kRun && !u.finished) {
         ready = false;
         continue;
@@ -178,7 +183,7 @@ void TrialRun::LaunchReady(const std::map<std::string, std::size_t>& index, std:
 
 void TrialRun::Execute() {
   const fs::path trial(s_.trial_dir);
-  work_ = MakeWorkDir(s_.trial_dir);
+  work_ = MakeWorkDir(out_);
   // Tools run in the trial folder: the working folder by its name there, or by its full path when
   // out/ is a link to another folder.
   work_rel_ = fs::path(work_).parent_path() == trial ? fs::path(work_).filename().string() : work_;
@@ -232,6 +237,7 @@ void TrialRun::KillChildren(std::map<pid_t, std::size_t>* running) {
       int status = 0;
       const pid_t w = ::waitpid(it->first, &status, WNOHANG);
       if (w == it->first || (w < 0 && errno == ECHILD)) {
+        CollectChildOutput(it->first);  // into its log (the folder is removed anyway), the memfd released
         StepRun& r = runs_[it->second];
         r.finished = true;
         r.status = "failed";
@@ -247,6 +253,27 @@ void TrialRun::KillChildren(std::map<pid_t, std::size_t>* running) {
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
+}
+
+// `text` with the working folder's name (out.tmp.XXXXXX, or its full path) replaced by the folder it
+// becomes: no message names a temporary path.
+std::string TrialRun::FinalOutPaths(std::string text) const {
+  const std::string final_name = fs::path(out_).parent_path() == fs::path(s_.trial_dir) ? std::string(kOutDir) : out_;
+  for (const std::string& w : {work_, work_rel_}) {
+    if (w.empty()) continue;
+    for (std::size_t at = text.find(w); at != std::string::npos; at = text.find(w, at + final_name.size())) {
+      text.replace(at, w.size(), final_name);
+    }
+  }
+  return text;
+}
+
+// The step's tool said its input was valid but held too few samples for its method (the report's
+// "error_kind": io/error.h kTooFewSamples).
+bool TrialRun::TooFewSamples(const StepRun& r) const {
+  if (r.child.exit_code != 3 || !r.step.tool_report) return false;
+  const Json rep = LoadJsonOrNull((fs::path(work_) / r.step.ReportFile()).string());
+  return rep.is_object() && rep.value("error_kind", Json()) == kTooFewSamples;
 }
 
 // The run's error for a failed step whose log's error line is `line`.
@@ -276,7 +303,6 @@ std::string TrialRun::FailureMessage(const StepRun& r, const std::string& line) 
 void TrialRun::FinishStep(StepRun* r) {
   r->finished = true;
   progress_files_.Remove(r->step.id);
-  const std::string log = (fs::path(work_) / r->step.LogFile()).string();
   const bool ok = r->child.signal == 0 && r->child.exit_code == 0;
   if (ok) {
     r->status = "ok";
@@ -284,14 +310,20 @@ void TrialRun::FinishStep(StepRun* r) {
     Say(r->step.id + ": ok in " + Fmt(r->child.wall_s) + " s");
     return;
   }
-  r->log_tail = TailLines(log, kLogTailLines);
+  r->log_tail = TailLines(r->child.output, kLogTailLines);
+  // A tool names its outputs in the working folder, which is gone after the run: say out/ instead.
+  for (auto& l : r->log_tail) l = FinalOutPaths(l);
+  if (!r->child.log_error.empty()) r->log_tail.push_back("(rk-run: the step's log could not be written: " + r->child.log_error + ")");
   std::string line = ErrorLine(r->log_tail);
   r->error = r->step.tool + " " + r->child.Describe() + (line.empty() ? "" : ": " + line);
   for (const auto& out : r->step.outputs) {
     std::error_code ec;
     fs::remove(fs::path(work_) / out, ec);
   }
-  if (r->step.warn_only) {
+  if (r->step.warn_only || TooFewSamples(*r)) {
+    // A plot, or a method that the data are too thin for (a beacon seen in two frames cannot be smoothed):
+    // a warning, not a failed trial. The chain delivers what it could; the steps that need this one's
+    // product are not run, and the page says why.
     r->status = "warning";
     r->reason = r->error;
     s_.steps_warned++;

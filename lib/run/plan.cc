@@ -125,8 +125,27 @@ class PlanBuilder {
       s->note = why;
     }
   }
+  // The manifest's options go before the outputs rk-run names, so that rk-run's own output options come
+  // last on the command line: a parser where the last of a repeated option wins still writes where
+  // rk-run says (the options themselves are checked against the tool's --help before any step runs).
   void Finish(Step* s) {
-    for (const auto& a : OverrideArgs(s->settings)) s->args.push_back({a});
+    const std::vector<std::string> over = OverrideArgs(s->settings);
+    if (!over.empty()) {
+      std::vector<StepArg> args, outs;
+      for (std::size_t i = 0; i < s->args.size(); ++i) {
+        const bool output = i + 1 < s->args.size() && s->args[i + 1].out_path &&
+                            std::find(s->outputs.begin(), s->outputs.end(), s->args[i + 1].text) != s->outputs.end();
+        if (output) {
+          outs.push_back(s->args[i]);
+          outs.push_back(s->args[++i]);
+        } else {
+          args.push_back(s->args[i]);
+        }
+      }
+      for (const auto& a : over) args.push_back({a});
+      args.insert(args.end(), outs.begin(), outs.end());
+      s->args = std::move(args);
+    }
     steps_.push_back(*s);
   }
   void Video(Step* s, const CameraEntry& cam) {

@@ -1,6 +1,8 @@
 #include "run/previous_report.h"
 
 #include <filesystem>
+#include <functional>
+#include <set>
 #include <initializer_list>
 
 #include "run/digest.h"
@@ -95,28 +97,48 @@ std::map<std::string, const Json*> PreviousSteps(const Json& report) {
   return prev_steps;
 }
 
+namespace {
+
+// Calls `each` with every path under out/ that a step record of `report` names: its products, report
+// and log, and (with `generated`) the files rk-run wrote for it.
+void ForEachStepFile(const Json& report, bool generated, const std::function<void(const std::string&)>& each) {
+  for (const auto& [id, p] : PreviousSteps(report)) {
+    const Json outs = p->value("outputs", Json::array());
+    if (outs.is_array()) {
+      for (const auto& o : outs) {
+        if (o.is_object()) each(o.value("path", ""));
+      }
+    }
+    for (const char* f : {"report", "log"}) {
+      if (p->contains(f) && (*p)[f].is_string()) each((*p)[f].get<std::string>());
+    }
+    const Json gen = generated ? p->value("key_parts", Json::object()).value("generated", Json()) : Json();
+    if (gen.is_object()) {
+      for (const auto& [path, digest] : gen.items()) each(path);
+    }
+  }
+}
+
+}  // namespace
+
 std::map<std::string, OutFileState> ProbeOutFiles(const std::string& out_dir, const Json& report) {
   std::map<std::string, OutFileState> files;
   const fs::path out(out_dir);
-  const auto probe = [&](const std::string& path) {
+  ForEachStepFile(report, false, [&](const std::string& path) {
     if (files.count(path)) return;
     OutFileState& f = files[path];
     f.stat_ok = StatFile((out / path).string(), &f.bytes, &f.mtime_ns);
     std::error_code ec;
     f.regular = fs::is_regular_file(out / path, ec);
-  };
-  for (const auto& [id, p] : PreviousSteps(report)) {
-    const Json outs = p->value("outputs", Json::array());
-    if (outs.is_array()) {
-      for (const auto& o : outs) {
-        if (o.is_object()) probe(o.value("path", ""));
-      }
-    }
-    for (const char* f : {"report", "log"}) {
-      if (p->contains(f) && (*p)[f].is_string()) probe((*p)[f].get<std::string>());
-    }
-  }
+  });
   return files;
+}
+
+std::set<std::string> PathsMadeByRun(const Json& report) {
+  std::set<std::string> made;
+  if (!report.is_object()) return made;
+  ForEachStepFile(report, true, [&](const std::string& path) { made.insert(fs::path(path).lexically_normal().string()); });
+  return made;
 }
 
 }  // namespace rk::run

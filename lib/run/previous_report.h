@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <map>
+#include <set>
 #include <string>
 
 #include "io/json_util.h"
@@ -38,5 +39,10 @@ struct OutFileState {
 // The state of every file under `out_dir` named by the step records of `report` ("outputs"[].path,
 // "report", "log"), by the path as the report writes it.
 std::map<std::string, OutFileState> ProbeOutFiles(const std::string& out_dir, const io::Json& report);
+
+// Every path under out/ (relative, normalised) that the step records of `report` name as made by rk-run:
+// products, step reports and logs, and the files rk-run generated for a step (stations.json). Empty for a
+// non-report. Anything else in out/ is the user's (KeepUserEntries).
+std::set<std::string> PathsMadeByRun(const io::Json& report);
 
 }  // namespace rk::run

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/mman.h>
 #include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -31,6 +32,18 @@ void OnStopSignal(int sig) { g_stop_signal = sig; }
 // Start times of running children, for their wall time.
 std::map<pid_t, std::chrono::steady_clock::time_point>& StartTimes() {
   static std::map<pid_t, std::chrono::steady_clock::time_point> m;
+  return m;
+}
+
+constexpr std::size_t kCapturedTailBytes = 64 * 1024;  // of a child's output kept in ChildResult::output
+
+// Children whose output goes to a memfd (ChildSpec::capture): pid → the memfd and the log it belongs in.
+struct Captured {
+  int fd = -1;
+  std::string log_path;
+};
+std::map<pid_t, Captured>& CapturedChildren() {
+  static std::map<pid_t, Captured> m;
   return m;
 }
 
@@ -73,14 +86,21 @@ pid_t StartChild(const ChildSpec& spec) {
   for (const auto& x : spec.env) envp.push_back(const_cast<char*>(x.c_str()));
   envp.push_back(nullptr);
   const std::string log = spec.log_path.empty() ? std::string("/dev/null") : spec.log_path;
+  const int memfd = spec.capture ? ::memfd_create("rk-run-step", MFD_CLOEXEC) : -1;
+  if (spec.capture && memfd < 0) {
+    throw IoError(spec.argv[0], std::string("cannot start: memfd_create failed: ") + std::strerror(errno));
+  }
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
-  if (pid < 0) throw IoError(spec.argv[0], std::string("cannot start: fork failed: ") + std::strerror(errno));
+  if (pid < 0) {
+    if (memfd >= 0) ::close(memfd);
+    throw IoError(spec.argv[0], std::string("cannot start: fork failed: ") + std::strerror(errno));
+  }
   if (pid == 0) {
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (::getppid() != parent) ::_exit(126);  // rk-run died before prctl took effect
     const int in = ::open("/dev/null", O_RDONLY);
-    const int out = ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+    const int out = memfd >= 0 ? ::dup(memfd) : ::open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
     if (in < 0 || out < 0) ::_exit(125);
     ::dup2(in, 0);
     ::dup2(out, 1);
@@ -100,7 +120,44 @@ pid_t StartChild(const ChildSpec& spec) {
     ::_exit(127);
   }
   StartTimes()[pid] = std::chrono::steady_clock::now();
+  if (memfd >= 0) CapturedChildren()[pid] = {memfd, spec.log_path};
   return pid;
+}
+
+std::string CollectChildOutput(pid_t pid, std::string* log_error) {
+  auto it = CapturedChildren().find(pid);
+  if (it == CapturedChildren().end()) return "";
+  const Captured c = it->second;
+  CapturedChildren().erase(it);
+  std::string text;
+  char buf[65536];
+  for (off_t at = 0;;) {
+    const ssize_t n = ::pread(c.fd, buf, sizeof buf, at);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    at += n;
+    text.append(buf, static_cast<std::size_t>(n));
+  }
+  ::close(c.fd);
+  std::string why;
+  if (!c.log_path.empty() && !text.empty()) {
+    const int fd = ::open(c.log_path.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
+    std::size_t done = 0;
+    while (fd >= 0 && done < text.size()) {
+      const ssize_t w = ::write(fd, text.data() + done, text.size() - done);
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) {
+        why = std::strerror(w < 0 ? errno : ENOSPC);
+        break;
+      }
+      done += static_cast<std::size_t>(w);
+    }
+    if (fd < 0) why = std::strerror(errno);
+    if (fd >= 0 && ::close(fd) != 0 && why.empty()) why = std::strerror(errno);
+  }
+  if (log_error) *log_error = why.empty() ? "" : c.log_path + ": " + why;
+  if (text.size() > kCapturedTailBytes) text.erase(0, text.size() - kCapturedTailBytes);
+  return text;
 }
 
 bool WaitAnyChild(ChildResult* result) {
@@ -128,6 +185,7 @@ bool WaitAnyChild(ChildResult* result) {
     r.user_s = static_cast<double>(ru.ru_utime.tv_sec) + 1e-6 * static_cast<double>(ru.ru_utime.tv_usec);
     r.sys_s = static_cast<double>(ru.ru_stime.tv_sec) + 1e-6 * static_cast<double>(ru.ru_stime.tv_usec);
     r.max_rss_kb = ru.ru_maxrss;
+    r.output = CollectChildOutput(pid, &r.log_error);
     *result = r;
     return true;
   }

@@ -17,6 +17,10 @@ struct ChildSpec {
   std::string cwd;                // working folder of the child
   std::string log_path;           // stdout and stderr are appended here ("" = /dev/null)
   std::vector<std::string> env;   // "NAME=VALUE" added to (or replacing in) rk-run's environment
+  // Keep the output in memory too: the child writes into an in-memory file (memfd) that is appended to
+  // log_path when it ends and returned in ChildResult::output, so that a tool's last error line is known
+  // even when its log cannot be written (a full disk).
+  bool capture = false;
 };
 
 struct ChildResult {
@@ -25,12 +29,18 @@ struct ChildResult {
   int signal = 0;      // the signal that ended it, 0 if it exited
   double wall_s = 0.0, user_s = 0.0, sys_s = 0.0;
   long max_rss_kb = 0;
+  std::string output;  // ChildSpec::capture: the child's stdout and stderr (its last 64 KiB)
+  std::string log_error;  // ChildSpec::capture: why the output could not be appended to the log ("" = it was)
   std::string Describe() const;  // "exited with code 3", "killed by signal 9 (Killed)"
 };
 
 // Starts the child; throws IoError if fork fails. The exec failure of a missing or non-executable
 // program is reported as exit code 127 (the child writes why into its log).
 pid_t StartChild(const ChildSpec& spec);
+
+// A child reaped elsewhere (waitpid after a stop signal): its captured output, appended to its log, and the
+// memfd released. "" when it was not captured.
+std::string CollectChildOutput(pid_t pid, std::string* log_error = nullptr);
 
 // Waits for any child. Returns false (and leaves *result alone) when interrupted by a stop signal
 // (see InstallStopHandlers) or when there are no children.

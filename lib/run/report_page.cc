@@ -27,8 +27,9 @@ std::string LastLine(const std::string& path) {
 
 }  // namespace
 
-std::string MakeReportPage(const std::string& trial_dir, const std::vector<std::string>& tool_dirs, bool rebuilt) {
-  const fs::path out = fs::path(trial_dir) / kOutDir;
+std::string MakeReportPage(const std::string& trial_dir, const std::string& out_path,
+                           const std::vector<std::string>& tool_dirs, bool rebuilt, bool no_figures) {
+  const fs::path out(out_path);
   const fs::path page = out / kReportPageFile;
   std::error_code ec, ec2;
   const auto page_time = fs::last_write_time(page, ec);
@@ -41,6 +42,7 @@ std::string MakeReportPage(const std::string& trial_dir, const std::vector<std::
   const std::string log = (out / "steps" / "report-page.log").string();
   fs::remove(log, ec);
   ChildSpec spec{{tool, out.string(), "--quiet"}, trial_dir, log, {}};
+  if (no_figures) spec.argv.push_back("--no-figures");
   pid_t pid = -1;
   try {
     pid = StartChild(spec);

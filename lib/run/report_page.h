@@ -14,7 +14,10 @@ inline constexpr const char* kReportPageFile = "report.html";
 // Runs `rk-report OUT --quiet` (found in `tool_dirs`, then on PATH) on TRIAL/out when `rebuilt` (a new out/
 // was just committed) or when out/report.html is missing or older than out/report.json. Its output and
 // errors go to out/steps/report-page.log. Returns "" when the page is made or already current, else the
-// one-line reason it is not (tool missing, its error line, interrupted).
-std::string MakeReportPage(const std::string& trial_dir, const std::vector<std::string>& tool_dirs, bool rebuilt);
+// one-line reason it is not (tool missing, its error line, interrupted). `no_figures`: tables and warnings only
+// (rk-report --no-figures), for a run with --no-plots that replaced an out/ that had a page.
+// `out_path`: TRIAL/out or rk-run --out DIR.
+std::string MakeReportPage(const std::string& trial_dir, const std::string& out_path,
+                           const std::vector<std::string>& tool_dirs, bool rebuilt, bool no_figures = false);
 
 }  // namespace rk::run

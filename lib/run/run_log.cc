@@ -12,6 +12,7 @@
 #include <filesystem>
 
 #include "io/error.h"
+#include "io/file_util.h"
 
 namespace rk::run {
 namespace fs = std::filesystem;
@@ -45,14 +46,14 @@ std::string Fmt(double x, int decimals) {
   return buf;
 }
 
-RunLog::RunLog(const std::string& trial_dir) {
-  const fs::path p = fs::path(trial_dir) / "rk-run.log";
+RunLog::RunLog(const std::string& path) {
+  const fs::path p(path);
+  io::RefuseLink(p.string());  // never appended through a link (threat model)
   std::error_code ec;
   if (fs::exists(p, ec) && fs::file_size(p, ec) > kLogRotateBytes) {
-    fs::rename(p, fs::path(trial_dir) / "rk-run.log.1", ec);
+    fs::rename(p, path + ".1", ec);
   }
-  fd_ = ::open(p.c_str(), O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
-  if (fd_ < 0) throw IoError(p.string(), std::string("cannot open the run log: ") + std::strerror(errno));
+  fd_ = io::OpenOwnFile(p.string(), O_WRONLY | O_CREAT | O_APPEND);
 }
 
 RunLog::~RunLog() {

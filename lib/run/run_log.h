@@ -18,8 +18,9 @@ std::string Fmt(double x, int decimals = 2);
 // TRIAL/rk-run.log: one timestamped line per event, appended (rotated past 1 MiB).
 class RunLog {
  public:
-  // Throws IoError when the log cannot be opened.
-  explicit RunLog(const std::string& trial_dir);
+  // Opens `path` (TRIAL/rk-run.log) for appending, never through a link; past 1 MiB it is first renamed
+  // to PATH.1. Throws IoError when the log cannot be opened.
+  explicit RunLog(const std::string& path);
   ~RunLog();
   RunLog(const RunLog&) = delete;
   RunLog& operator=(const RunLog&) = delete;

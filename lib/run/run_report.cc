@@ -119,9 +119,15 @@ Json TrialRun::StepJson(const StepRun& r, bool full) const {
   j["key"] = r.key;
   j["key_parts"] = r.key_parts;
   if (r.decision == Decision::kSkip && r.previous) {
-    // Carried over from the run that produced it.
+    // Carried over from the run that produced it; a stale plot (--no-plots) keeps the fingerprint it was
+    // drawn with, so that the next run with plots sees it changed.
     for (const char* k : {"outputs", "time", "ran_utc", "exit_code", "quality", "tool_report", "report", "log"}) {
       if (r.previous->contains(k)) j[k] = (*r.previous)[k];
+    }
+    if (r.status == "stale") {
+      for (const char* k : {"key", "key_parts", "inputs", "command_line"}) {
+        if (r.previous->contains(k)) j[k] = (*r.previous)[k];
+      }
     }
     return j;
   }
@@ -162,7 +168,9 @@ Json TrialRun::BuildReport() const {
   rep["tool_cpu_s"] = Round3(s_.tool_cpu_s);
   rep["counts"] = {{"run", s_.steps_run}, {"skipped", s_.steps_skipped}, {"warnings", s_.steps_warned}};
   Json steps = Json::array();
-  for (const auto& r : runs_) steps.push_back(StepJson(r, true));
+  for (const auto& r : runs_) {
+    if (!r.Unlisted()) steps.push_back(StepJson(r, true));
+  }
   rep["steps"] = steps;
   rep["units"] = UnitsJson();
   rep["manifest"] = m_->json;
@@ -191,7 +199,9 @@ Json TrialRun::BuildSummaryJson() const {
   j["counts"] = {{"run", s_.steps_run}, {"skipped", s_.steps_skipped}, {"failed", s_.steps_failed},
                  {"warnings", s_.steps_warned}};
   Json steps = Json::array();
-  for (const auto& r : runs_) steps.push_back(StepJson(r, false));
+  for (const auto& r : runs_) {
+    if (!r.Unlisted()) steps.push_back(StepJson(r, false));
+  }
   j["steps"] = steps;
   if (!units_.empty()) j["units"] = UnitsJson();
   return j;

@@ -1,6 +1,9 @@
 // rk-run's engine, the stages of one trial (see run/trial_run.h for the files of the others).
 #include "run/runner.h"
 
+#include <fcntl.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <exception>
@@ -9,7 +12,10 @@
 #include <sstream>
 
 #include "io/version.h"
+#include "io/file_util.h"
+#include "io/json_positions.h"
 #include "run/previous_report.h"
+#include "run/process.h"
 #include "run/report_page.h"
 #include "run/sha256.h"
 #include "run/trial_dir.h"
@@ -75,13 +81,30 @@ void TrialRun::ResolveTrial() {
   if (!fs::is_regular_file(manifest_file_, ec)) {
     throw IoError(manifest_file_, fs::exists(manifest_file_, ec) ? "is not a file" : "no such trial manifest");
   }
+  const fs::path trial(s_.trial_dir);
+  if (o_.out_dir.empty()) {
+    out_ = (trial / kOutDir).string();
+    lock_file_ = (trial / kLockFile).string();
+    log_file_ = (trial / kRunLogFile).string();
+    last_run_file_ = (trial / kLastRunFile).string();
+  } else {
+    const fs::path out = fs::absolute(o_.out_dir, ec).lexically_normal();
+    const fs::path named = out.has_filename() ? out : out.parent_path();
+    const std::string name = named.filename().string();
+    const fs::path beside = named.parent_path();
+    out_ = named.string();
+    io::MakeDirectories(beside.string());  // the products' folder's parent: DIR itself is made by the swap
+    lock_file_ = (beside / ("." + name + kLockFile)).string();
+    log_file_ = (beside / (name + "." + kRunLogFile)).string();
+    last_run_file_ = (beside / (name + "." + kLastRunFile)).string();
+  }
 }
 
 // Takes the trial lock and opens the run log; false (with the "locked" summary) when another rk-run
 // holds the lock.
 bool TrialRun::Lock(std::unique_ptr<TrialLock>* lock) {
   std::string holder;
-  *lock = TrialLock::Acquire(s_.trial_dir, o_.wait_lock_s, &holder);
+  *lock = TrialLock::Acquire(lock_file_, o_.wait_lock_s, &holder);
   if (!*lock) {
     s_.result = TrialResult::kLocked;
     s_.exit_code = ExitCode::kIo;
@@ -90,7 +113,7 @@ bool TrialRun::Lock(std::unique_ptr<TrialLock>* lock) {
     s_.summary = BuildSummaryJson();
     return false;
   }
-  log_ = std::make_unique<RunLog>(s_.trial_dir);
+  log_ = std::make_unique<RunLog>(log_file_);
   std::string cl;
   for (const auto& a : o_.command_line) cl += (cl.empty() ? "" : " ") + a;
   log_->Line("start: " + cl + " (rk-run " + kVersion + ")");
@@ -101,13 +124,18 @@ void TrialRun::Plan() {
   m_ = std::make_unique<TrialManifest>(LoadManifest(manifest_file_));
   s_.name = m_->name;
   PlanOptions po;
-  po.plots = o_.plots;
+  po.plots = true;  // with --no-plots the plot steps are planned too: Decide keeps those it does not redraw
   plan_ = BuildPlan(*m_, po);
   runs_.reserve(plan_.size());
   for (const auto& step : plan_) runs_.emplace_back(step);
   // Per unit: the steps planned and skipped and why; then a product the manifest asks for and the plan
   // cannot make fails the run (DataError at its place in trial.json, exit 3) before anything runs.
-  units_ = PlanByUnit(*m_, plan_);
+  // The plan lines say what this run may draw: with --no-plots, no plot step.
+  std::vector<Step> shown;
+  for (const Step& st : plan_) {
+    if (o_.plots || st.kind != "plot") shown.push_back(st);
+  }
+  units_ = PlanByUnit(*m_, shown);
   for (const UnitPlan& u : units_) {
     s_.units.push_back(u.Line());
     if (log_) log_->Line("plan: " + u.Line());
@@ -118,7 +146,7 @@ void TrialRun::Plan() {
 // The last good report (trusted only if IsUsableReport), the input digests and the tool identities
 // with the shortcuts it records.
 void TrialRun::LoadRecords() {
-  previous_ = LoadJsonOrNull((fs::path(s_.trial_dir) / kOutDir / kReportFile).string());
+  previous_ = LoadJsonOrNull((fs::path(out_) / kReportFile).string());
   if (!previous_.is_null() && !IsUsableReport(previous_)) {
     if (previous_.is_object() && previous_.value("tool", Json()) == "rk-run") Say("warning: out/report.json is damaged; every step runs again");
     previous_ = Json(nullptr);
@@ -151,10 +179,36 @@ void TrialRun::GatherFacts(std::vector<StepFacts>* facts) {
       if (!f.tool || !runs_[i].reason.empty()) {
         cannot_run.insert(st.id);
       } else {
+        CheckStepOptions(st, *f.tool);
         for (const auto& in : st.inputs) f.input_sha256.push_back(digests_->Digest(in.path).sha256);
       }
     }
     facts->push_back(std::move(f));
+  }
+}
+
+// Every option a manifest's "steps" gives the step must be one of the tool's own long options, by its
+// exact name (Tools::OptionNames, from the tool's --help): no abbreviation a parser might expand, no option
+// the tool does not have. DataError (exit 3) at the option's key in trial.json.
+void TrialRun::CheckStepOptions(const Step& st, const ToolIdentity& tool) {
+  if (st.settings.options.empty()) return;
+  const std::set<std::string>& names = tools_->OptionNames(tool, st.subcommand);
+  if (names.empty()) return;  // no readable --help: the tool's own parser is the check
+  for (const auto& [opt, value] : st.settings.options) {
+    if (names.count(opt)) continue;
+    const io::JsonPositions pos(m_->text);
+    std::string pointer = "/steps";
+    for (const std::string& key : {st.unit + "/" + st.kind, st.kind, std::string(kBadRowsSetting)}) {
+      const Json& steps = m_->steps;
+      if (steps.contains(key) && (key == kBadRowsSetting || (steps.at(key).is_object() && steps.at(key).contains(opt)))) {
+        pointer += "/" + io::PointerToken(key) + (key == kBadRowsSetting ? "" : "/" + io::PointerToken(opt));
+        break;
+      }
+    }
+    trial::FailAt(manifest_file_, pos, pointer,
+                  "'" + opt + "' is not an option of " + st.tool + (st.subcommand.empty() ? "" : " " + st.subcommand) +
+                      " (options are given by their full long name, as its --help lists them)",
+                  pointer != "/steps");
   }
 }
 
@@ -168,7 +222,7 @@ void TrialRun::Decide() {
   } catch (...) {
     stop = std::current_exception();
   }
-  const fs::path out = fs::path(s_.trial_dir) / kOutDir;
+  const fs::path out(out_);
   DecideInput in;
   in.steps = std::span<const Step>(plan_.data(), facts.size());
   in.facts = facts;
@@ -178,6 +232,7 @@ void TrialRun::Decide() {
   in.out_dir_exists = fs::is_directory(out, ec);
   in.manifest_sha256 = Sha256Hex(m_->text);
   in.force = o_.force;
+  in.plots = o_.plots;
   const RunDecision d = run::Decide(in);
   for (std::size_t i = 0; i < d.steps.size(); ++i) {
     StepRun& r = runs_[i];
@@ -212,6 +267,7 @@ void TrialRun::WriteToolCache() {
 void TrialRun::DryRunSummary() {
   s_.result = TrialResult::kPlanned;
   for (const auto& r : runs_) {
+    if (r.Unlisted()) continue;
     std::string st = r.decision == Decision::kRun ? "would run" : r.status;
     s_.steps.push_back({r.step.id, st, r.reason, 0.0});
   }
@@ -225,20 +281,80 @@ void TrialRun::DryRunSummary() {
 
 // out/report.json into the working folder, then the atomic swap into out/.
 void TrialRun::Commit() {
+  std::error_code ec;
+  std::set<std::string> made = PathsMadeByRun(previous_);
+  for (const char* f : {kReportFile, kReportPageFile, "steps/report-page.log"}) made.insert(f);
+  const std::vector<std::string> kept =
+      KeepUserEntries(out_, work_, made, previous_.is_object());
+  if (!kept.empty()) {
+    Say("kept " + std::to_string(kept.size()) + " file(s) in out/ that rk-run did not make (first: out/" +
+        kept.front() + ")");
+  }
+  had_page_ = fs::is_regular_file(fs::path(out_) / kReportPageFile, ec);
   const Json rep = BuildReport();
   const std::string rp = (fs::path(work_) / kReportFile).string();
   io::WriteJson(rp, rep);
   SyncPath(rp);
-  const std::string how = CommitOut(s_.trial_dir, work_);
+  const std::string how = CommitOut(out_, work_);
   work_.clear();
   s_.result = TrialResult::kDone;
   Say("out/ replaced (" + how + ")");
 }
 
+// TRIAL/last-run.json says "running" before anything else is done, so that a run that cannot write its
+// result later (a full disk) never leaves an older "done" behind for a cron script to read.
+void TrialRun::WriteRunning() {
+  Json j = BuildSummaryJson();
+  j["result"] = "running";
+  j["status"] = "running";
+  j["exit_code"] = nullptr;
+  j["pid"] = static_cast<long>(::getpid());
+  io::WriteOwnFileAtomic(last_run_file_, io::JsonText(j));
+}
+
+// The result into TRIAL/last-run.json. When it cannot be written, the file must not keep claiming
+// anything: it is cut down, in place (no new block needed on a full disk), to a "failed" stub, or
+// removed; the run's exit code and error say so.
+void TrialRun::WriteLastRun() {
+  std::string why;
+  try {
+    io::WriteOwnFileAtomic(last_run_file_, io::JsonText(s_.summary));
+    return;
+  } catch (const Error& e) {
+    why = e.what();
+  }
+  const Json stub = {{"tool", "rk-run"}, {"result", "failed"}, {"status", "failed"}, {"exit_code", 4},
+                     {"error", "last-run.json could not be written"}};
+  const std::string text = stub.dump() + "\n";
+  bool stubbed = false;
+  try {
+    const int fd = io::OpenOwnFile(last_run_file_, O_WRONLY);
+    stubbed = ::pwrite(fd, text.data(), text.size(), 0) == static_cast<ssize_t>(text.size()) &&
+              ::ftruncate(fd, static_cast<off_t>(text.size())) == 0 && ::fsync(fd) == 0;
+    ::close(fd);
+  } catch (const Error&) {
+  }
+  std::error_code ec;
+  if (!stubbed) fs::remove(last_run_file_, ec);
+  const std::string done_with_it = std::string(" (") + kLastRunFile + (stubbed ? " cut down to a 'failed' stub)" : " removed)");
+  const std::string msg = "cannot write the run's result: " + why + done_with_it;
+  if (s_.exit_code == ExitCode::kOk) {
+    s_.exit_code = ExitCode::kIo;
+    s_.error = msg;
+    s_.result = TrialResult::kFailed;
+  } else {
+    s_.error += s_.error.find(why) == std::string::npos ? "; " + msg : done_with_it;
+  }
+  s_.summary = BuildSummaryJson();  // what --report gets says it too
+  Say("error: " + msg);
+}
+
 // Everything between the lock and the summary; true when a dry run is complete (s_ is final).
 bool TrialRun::PlanDecideExecute() {
   if (!o_.dry_run) {
-    for (const auto& n : RecoverAndClean(s_.trial_dir)) Say(n);
+    WriteRunning();
+    CheckOutIsFolder(out_);
+    for (const auto& n : RecoverAndClean(out_)) Say(n);
   }
   Plan();
   LoadRecords();
@@ -250,7 +366,8 @@ bool TrialRun::PlanDecideExecute() {
   }
   if (!rebuild_) {
     s_.result = TrialResult::kUpToDate;
-    s_.steps_skipped = static_cast<int>(runs_.size());
+    s_.steps_skipped = static_cast<int>(
+        std::count_if(runs_.begin(), runs_.end(), [](const StepRun& r) { return !r.Unlisted(); }));
     Say("up to date: nothing to run");
     ReportPage(false);
   } else {
@@ -271,6 +388,7 @@ void TrialRun::Finish() {
     if (!work_.empty()) RemoveOutTree(work_);
   }
   for (const auto& r : runs_) {
+    if (r.Unlisted()) continue;
     double w = r.decision == Decision::kRun && r.child.pid > 0 ? r.child.wall_s : 0.0;
     s_.steps.push_back({r.step.id, r.status.empty() ? "?" : r.status, r.reason, w});
   }
@@ -278,11 +396,7 @@ void TrialRun::Finish() {
   s_.summary = BuildSummaryJson();
   if (!page_warning_.empty()) s_.summary["report_page_warning"] = page_warning_;
   if (!o_.dry_run) {
-    try {
-      io::WriteJson((fs::path(s_.trial_dir) / "last-run.json").string(), s_.summary);
-    } catch (const Error& e) {
-      Say(std::string("warning: ") + e.what());
-    }
+    WriteLastRun();
     Say(std::string("result: ") + TrialResultName(s_.result) +
         (s_.error.empty() ? "" : " (exit " + std::to_string(static_cast<int>(s_.exit_code)) + "): " + s_.error) +
         " in " + Fmt(s_.wall_s) + " s");
@@ -291,9 +405,11 @@ void TrialRun::Finish() {
 
 // out/report.html (run/report_page.h) with --plots only: --no-plots makes no figure of any kind. A page that
 // cannot be made is a warning in the log and the summary; the run still succeeds.
+// With --no-plots: an up-to-date out/ keeps the page it has; a new out/ replacing one that had a page gets a
+// page without figures (current tables and warnings: the page is never left describing the old out/).
 void TrialRun::ReportPage(bool rebuilt) {
-  if (!o_.plots) return;
-  page_warning_ = MakeReportPage(s_.trial_dir, o_.tool_dirs, rebuilt);
+  if (!o_.plots && !(rebuilt && had_page_)) return;
+  page_warning_ = MakeReportPage(s_.trial_dir, out_, o_.tool_dirs, rebuilt, !o_.plots);
   if (page_warning_.empty()) return;
   page_warning_ = "report page not made: " + page_warning_;
   Say("warning: " + page_warning_);
@@ -311,6 +427,13 @@ RunSummary TrialRun::Run() {
   } catch (const std::exception& e) {
     Fail(ExitCode::kProcessing, std::string("internal: ") + e.what());
     Say(std::string("error: internal: ") + e.what());
+  }
+  // A stop signal that came after the last step (while committing or making the page) still makes an
+  // interrupted run: exit 1, as docs/rk-run.md says, even though out/ may already be complete.
+  if (!o_.dry_run && StopSignal() != 0 && !failed_) {
+    Fail(ExitCode::kProcessing, "interrupted by signal " + std::to_string(StopSignal()) +
+                                    (s_.result == TrialResult::kDone ? " (after the new out/ was complete)" : ""));
+    Say(std::string("error: ") + s_.error);
   }
   Finish();
   return s_;

@@ -20,6 +20,9 @@ namespace rk::run {
 
 struct RunOptions {
   std::string trial;            // trial.json, or the trial folder
+  // The products' folder instead of TRIAL/out ("" = TRIAL/out), e.g. for a trial on a read-only disk;
+  // rk-run's lock, log and last-run.json then go beside it (docs/rk-run.md "--out").
+  std::string out_dir;
   bool force = false;           // re-run every step
   bool dry_run = false;         // only say what would run and why (no lock, nothing written)
   bool keep_going = false;      // after a failure, still run the steps that do not depend on it

@@ -64,4 +64,43 @@ Json Tools::ToJson() const {
   return j;
 }
 
+std::set<std::string> HelpOptionNames(const std::string& help_text) {
+  std::set<std::string> names;
+  std::size_t pos = 0;
+  while (pos < help_text.size()) {
+    std::size_t end = help_text.find('\n', pos);
+    if (end == std::string::npos) end = help_text.size();
+    std::string line = help_text.substr(pos, end - pos);
+    pos = end + 1;
+    const std::size_t first = line.find_first_not_of(' ');
+    if (first == std::string::npos || line[first] != '-') continue;
+    line = line.substr(first, line.find("  ", first) == std::string::npos ? std::string::npos
+                                                                          : line.find("  ", first) - first);
+    std::size_t p = 0;
+    while (p < line.size()) {
+      std::size_t q = line.find(',', p);
+      if (q == std::string::npos) q = line.size();
+      std::string item = line.substr(p, q - p);
+      p = q + 1;
+      item.erase(0, item.find_first_not_of(' '));
+      item = item.substr(0, item.find_first_of(" =["));
+      if (item.size() > 2 && item.compare(0, 2, "--") == 0) names.insert(item.substr(2));
+    }
+  }
+  return names;
+}
+
+const std::set<std::string>& Tools::OptionNames(const ToolIdentity& tool, const std::string& subcommand) {
+  const std::string key = tool.path + " " + subcommand;
+  auto it = options_.find(key);
+  if (it != options_.end()) return it->second;
+  std::vector<std::string> argv = {tool.path};
+  if (!subcommand.empty()) argv.push_back(subcommand);
+  argv.push_back("--help");
+  std::string text;
+  std::set<std::string> names;
+  if (RunAndCapture(argv, &text) == 0) names = HelpOptionNames(text);
+  return options_.emplace(key, std::move(names)).first->second;
+}
+
 }  // namespace rk::run

@@ -5,6 +5,7 @@
 
 #include <cstdint>
 #include <map>
+#include <set>
 #include <optional>
 #include <string>
 #include <vector>
@@ -23,6 +24,11 @@ struct ToolIdentity {
   }
 };
 
+// The long option names in a --help text, CLI11's ("  -o,--output TEXT  ...") or argparse's
+// ("  -o OUT, --output OUT  ..."): on each line that starts (after blanks) with '-', the names before
+// the first run of two blanks.
+std::set<std::string> HelpOptionNames(const std::string& help_text);
+
 class Tools {
  public:
   // `dirs`: folders searched before PATH. `previous`: the "tools" of the last good report; `shared`:
@@ -34,6 +40,10 @@ class Tools {
 
   // Null when the tool cannot be found; IoError when it exists but will not tell its version.
   const ToolIdentity* Get(const std::string& name);
+  // The long options (without "--") that `tool [subcommand] --help` lists: the tool's real option table,
+  // against which a manifest's step options are checked (exact names only, no abbreviation). Empty when
+  // the tool gives no readable --help. Asked once per tool and subcommand.
+  const std::set<std::string>& OptionNames(const ToolIdentity& tool, const std::string& subcommand);
   // {name: identity} of every tool found so far.
   io::Json ToJson() const;
 
@@ -43,6 +53,7 @@ class Tools {
   bool trust_;
   bool shared_changed_ = false;
   std::map<std::string, std::optional<ToolIdentity>> cache_;
+  std::map<std::string, std::set<std::string>> options_;  // "path subcommand" → OptionNames
 };
 
 }  // namespace rk::run

@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <stdio.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -11,6 +12,7 @@
 #include <cstring>
 #include <ctime>
 #include <filesystem>
+#include <set>
 #include <thread>
 
 #include "io/error.h"
@@ -32,20 +34,15 @@ std::string NowUtc() {
 
 bool StartsWith(const std::string& s, const std::string& p) { return s.compare(0, p.size(), p) == 0; }
 
-// The folder that TRIAL/out stands for: TRIAL/out itself, or the final target when TRIAL/out is a
-// symbolic link (results kept on another disk). The link stays a link: the target is what is
+// The folder that TRIAL/out (or rk-run --out DIR) stands for: the path itself, or the final target when
+// it is a symbolic link (results kept on another disk). The link stays a link: the target is what is
 // swapped, and its working and old folders are made beside it (a rename cannot cross file systems).
-fs::path OutTarget(const std::string& trial_dir) {
-  return fs::path(io::ResolveOutputFolder((fs::path(trial_dir) / kOutDir).string()));
-}
+fs::path OutTarget(const std::string& out_path) { return fs::path(io::ResolveOutputFolder(out_path)); }
 
 }  // namespace
 
-std::unique_ptr<TrialLock> TrialLock::Acquire(const std::string& trial_dir, double wait_s,
-                                              std::string* holder) {
-  const std::string path = (fs::path(trial_dir) / kLockFile).string();
-  const int fd = ::open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (fd < 0) throw IoError(path, std::string("cannot create the lock file: ") + std::strerror(errno));
+std::unique_ptr<TrialLock> TrialLock::Acquire(const std::string& path, double wait_s, std::string* holder) {
+  const int fd = io::OpenOwnFile(path, O_RDWR | O_CREAT);  // never through a link (threat model)
   const auto deadline =
       std::chrono::steady_clock::now() + std::chrono::duration<double>(std::max(0.0, wait_s));
   for (;;) {
@@ -86,16 +83,17 @@ void RemoveOutTree(const std::string& path) {
   fs::remove_all(path, ec);
 }
 
-std::vector<std::string> RecoverAndClean(const std::string& trial_dir) {
+std::vector<std::string> RecoverAndClean(const std::string& out_path) {
   std::vector<std::string> notes;
-  const fs::path out = OutTarget(trial_dir);
+  const fs::path out = OutTarget(out_path);
   const fs::path dir = out.parent_path();
   const std::string stem = out.filename().string();
   std::vector<fs::path> tmps, olds;
   std::error_code ec;
   for (fs::directory_iterator it(dir, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (!it->is_directory(ec)) continue;
+    // A link named like a working folder is not one of ours: never followed, never removed.
+    if (it->is_symlink(ec) || !it->is_directory(ec)) continue;
     if (StartsWith(name, stem + ".tmp.")) tmps.push_back(it->path());
     if (StartsWith(name, stem + ".old.")) olds.push_back(it->path());
   }
@@ -138,14 +136,19 @@ std::vector<std::string> RecoverAndClean(const std::string& trial_dir) {
   return notes;
 }
 
-std::string MakeWorkDir(const std::string& trial_dir) {
-  const fs::path out = OutTarget(trial_dir);
+std::string MakeWorkDir(const std::string& out_path) {
+  const fs::path out = OutTarget(out_path);
   std::string templ = (out.parent_path() / (out.filename().string() + ".tmp.XXXXXX")).string();
   std::vector<char> buf(templ.begin(), templ.end());
   buf.push_back('\0');
   if (!::mkdtemp(buf.data())) {
-    throw IoError(trial_dir, std::string("cannot create a working folder: ") + std::strerror(errno));
+    throw IoError(out.parent_path().string(), std::string("cannot create a working folder: ") + std::strerror(errno));
   }
+  // mkdtemp makes the folder 0700; out/ gets the mode of every other folder (0777 less the umask), so
+  // that a web server or a colleague can open the pages the nightly index links to.
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  ::chmod(buf.data(), 0777 & ~mask);
   return std::string(buf.data());
 }
 
@@ -168,8 +171,51 @@ void SyncPath(const std::string& path) {
   ::close(fd);
 }
 
-std::string CommitOut(const std::string& trial_dir, const std::string& work_dir) {
-  const fs::path out = OutTarget(trial_dir);
+std::vector<std::string> KeepUserEntries(const std::string& out_dir, const std::string& work_dir,
+                                         const std::set<std::string>& made_by_run, bool record_known) {
+  std::vector<std::string> kept;
+  std::error_code ec;
+  const fs::path out(out_dir), work(work_dir);
+  if (!fs::is_directory(out, ec)) return kept;
+  fs::recursive_directory_iterator it(out, fs::directory_options::none, ec), end;
+  for (; !ec && it != end; it.increment(ec)) {
+    const fs::path rel = it->path().lexically_relative(out).lexically_normal();
+    const std::string name = rel.string();
+    const bool link = it->is_symlink(ec);
+    if (!link && it->is_directory(ec)) continue;  // folders are made as their files are kept
+    if (made_by_run.count(name) || (StartsWith(name, "steps/") && rel.extension() == ".progress")) continue;
+    const fs::path dst = work / rel;
+    if (fs::exists(fs::symlink_status(dst, ec))) {
+      if (!record_known) continue;  // no record of what rk-run made: the new product is taken for the old
+      throw IoError((fs::path(kOutDir) / rel).string(),
+                    "was not made by rk-run, and a step now writes the same path: move it out of out/ first "
+                    "(nothing was changed)");
+    }
+    fs::create_directories(dst.parent_path(), ec);
+    if (link) {
+      fs::copy_symlink(it->path(), dst, ec);  // a link stays a link; its target is not touched
+      if (ec) throw IoError(dst.string(), "cannot keep the link " + name + ": " + ec.message());
+    } else {
+      LinkOrCopy(it->path().string(), dst.string());
+    }
+    kept.push_back(name);
+  }
+  if (ec) throw IoError(out_dir, "cannot list: " + ec.message());
+  return kept;
+}
+
+void CheckOutIsFolder(const std::string& out_path) {
+  const fs::path out = OutTarget(out_path);
+  std::error_code ec;
+  const fs::file_status st = fs::status(out, ec);
+  if (fs::exists(st) && !fs::is_directory(st)) {
+    throw IoError(out_path, "exists and is not a folder: rk-run writes its products into the folder out/ and will not "
+                  "replace a file (move it away)");
+  }
+}
+
+std::string CommitOut(const std::string& out_path, const std::string& work_dir) {
+  const fs::path out = OutTarget(out_path);
   SyncPath(work_dir);
   std::error_code ec;
   std::string how;
@@ -188,7 +234,7 @@ std::string CommitOut(const std::string& trial_dir, const std::string& work_dir)
     std::vector<char> buf(old_templ.begin(), old_templ.end());
     buf.push_back('\0');
     if (!::mkdtemp(buf.data()))
-      throw IoError(trial_dir, std::string("cannot create out.old: ") + std::strerror(errno));
+      throw IoError(out.string(), std::string("cannot create its .old folder: ") + std::strerror(errno));
     const std::string old(buf.data());
     // rename(2) onto an empty folder replaces it.
     if (::rename(out.c_str(), old.c_str()) != 0) {

@@ -51,6 +51,9 @@ struct StepRun {
   std::string error;
   std::vector<std::string> log_tail;
   bool started = false, finished = false;
+  // A plot step that --no-plots leaves undrawn with nothing to keep: not listed anywhere (as if not
+  // planned), so that a run with --no-plots reports what it did.
+  bool Unlisted() const { return status == "off" && step.kind == "plot" && reason == "--no-plots"; }
 };
 
 class TrialRun {
@@ -79,11 +82,14 @@ class TrialRun {
   void Plan();
   void LoadRecords();
   void GatherFacts(std::vector<StepFacts>* facts);
+  void CheckStepOptions(const Step& st, const ToolIdentity& tool);
   void Decide();
   void WriteToolCache();
   void DryRunSummary();
   void Commit();
   void ReportPage(bool rebuilt);
+  void WriteRunning();
+  void WriteLastRun();
   void Finish();
   // execute.cc
   void Execute();
@@ -93,6 +99,8 @@ class TrialRun {
   void KillChildren(std::map<pid_t, std::size_t>* running);
   void FinishStep(StepRun* r);
   std::string FailureMessage(const StepRun& r, const std::string& line) const;
+  std::string FinalOutPaths(std::string text) const;
+  bool TooFewSamples(const StepRun& r) const;
   // run_report.cc
   io::Json StepJson(const StepRun& r, bool full) const;
   io::Json StepOutcomeJson(const StepRun& r) const;
@@ -106,6 +114,10 @@ class TrialRun {
   RunSummary s_;
   std::string manifest_file_;
   std::string user_dir_;  // the trial folder as the user named it (for messages)
+  // Where the products and rk-run's own files go (ResolveTrial): TRIAL/out, TRIAL/.rk-run.lock,
+  // TRIAL/rk-run.log, TRIAL/last-run.json; with --out DIR: DIR, and DIR's name with .rk-run.lock (hidden),
+  // .rk-run.log, .last-run.json beside it (a read-only trial folder can be reprocessed).
+  std::string out_, lock_file_, log_file_, last_run_file_;
   std::unique_ptr<RunLog> log_;
   std::unique_ptr<TrialManifest> m_;
   io::Json previous_;  // last good out/report.json (or null)
@@ -119,6 +131,7 @@ class TrialRun {
   bool failed_ = false;
   bool rebuild_ = false;  // a new out/ is needed even if no step runs
   std::string rebuild_reason_;
+  bool had_page_ = false;  // the out/ that Commit replaced had a report page
   std::string page_warning_;  // why out/report.html was not made ("" = made, current or not asked for)
   // The running steps' progress files (o_.step_progress only): step id → (file, start time). Written by
   // the main thread (StartStep, FinishStep), read by the watcher thread (step_progress.cc).

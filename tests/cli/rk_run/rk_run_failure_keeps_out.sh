@@ -20,11 +20,22 @@ grep -q 'FAILED' "$t/rk-run.log"; grep -q '  | rk-locate: error: turret.csv:6:' 
 # --report gets the same summary, also on failure.
 "$expect" 3 - -- rk-run "$t" --no-plots --report "$data/run/fail_report.json"
 test "$(json "$data/run/fail_report.json" 'd["result"]')" = failed
-# Options a tool rejects: exit 3 (the manifest's "steps" are the bad input).
+# An option the tool does not have: exit 3 at its place in trial.json, before any step runs (checked against
+# the tool's --help).
 fresh "$t"
 python3 - "$t/trial.json" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1])); j["steps"] = {"az/locate": {"no-such-option": 1}}
+json.dump(j, open(sys.argv[1], "w"), indent=1)
+PY
+"$expect" 3 "$t/out" "trial.json:[0-9]+:[0-9]+: steps.az/locate.no-such-option: 'no-such-option' is not an option of rk-locate" \
+  -- rk-run "$t" --no-plots
+check_out --allow-missing --no-temporaries "$t"
+# A value the tool rejects: exit 3 (the manifest's "steps" are the bad input).
+fresh "$t"
+python3 - "$t/trial.json" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1])); j["steps"] = {"az/locate": {"sigma-px": "abc"}}
 json.dump(j, open(sys.argv[1], "w"), indent=1)
 PY
 "$expect" 3 "$t/out" "rejected the options of step az/locate" -- rk-run "$t" --no-plots

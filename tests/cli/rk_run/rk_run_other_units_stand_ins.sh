@@ -11,6 +11,8 @@ for tool in rk-extract rk-attitude rk-register; do
 #!/usr/bin/env bash
 me=$(basename "$0")
 if [ "${1:-}" = --version ]; then echo "$me (stand-in) 0"; exit 0; fi
+# --help lists the options rk-run checks the manifest's step options against.
+if [ "${!#}" = --help ]; then printf 'Options:\n  -o,--output TEXT  out\n  --pd FLOAT  detection probability\n'; exit 0; fi
 echo "$me $*" >> "$STANDIN_LOG"
 out=""; rep=""; prev=""
 for a in "$@"; do
@@ -49,7 +51,7 @@ rk-extract features --video att/%06d.png --frames att/frames.csv --target target
 rk-attitude oi --points out/att/points.csv --camera att/camera.json --target target.json --turret turret.csv -o out/att/pose.csv
 rk-extract silhouette --video sil/video.mkv --fps 25 -o out/sil/points.csv
 rk-attitude cylinder --points out/sil/points.csv --theodolite theodolite.csv --camera sil/camera.json --target cylinder.json --video sil/video.mkv -o out/sil/axis.csv
-rk-register bernoulli --plots radar/plots.csv --nav radar/nav.csv -o out/radar/biases.csv --pd 0.9
+rk-register bernoulli --plots radar/plots.csv --nav radar/nav.csv --pd 0.9 -o out/radar/biases.csv
 rk-register batch --plots radar/plots.csv --nav radar/nav.csv -o out/radar/biases_batch.csv
 EOF2
 diff "$data/run/standin.expected" "$data/run/standin.norm"
