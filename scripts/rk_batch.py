@@ -2,17 +2,18 @@
 running it with the kernel's parent-death signal, and the summary (JSON + text table) of many rk-run
 reports. Python 3 standard library only."""
 import datetime
-import json
 import os
 import shutil
 import signal
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
+import rk_html  # noqa: E402
 import rk_output  # noqa: E402
 
 # Results of one trial, as rk-run's --report says them, and how a summary counts them.
 DONE, UP_TO_DATE, LOCKED, FAILED, PLANNED = "done", "up-to-date", "locked", "failed", "planned"
+PAGE_WARNING = "report page not made: "  # how rk-run's report_page_warning starts (lib/run/runner.cc)
 COUNT_KEYS = {DONE: "done", UP_TO_DATE: "up_to_date", LOCKED: "skipped_locked", FAILED: "failed",
               PLANNED: "planned"}
 
@@ -82,11 +83,8 @@ def trial_record(manifest, report_path, exit_code, wall_s, extra_reason=None, ro
            "exit_code": exit_code, "wall_s": round(wall_s, 3) if wall_s is not None else None,
            "result": FAILED, "reason": None, "steps_run": 0, "steps_skipped": 0, "tool_time_s": 0.0,
            "tool_cpu_s": 0.0}
-    rep = None
-    try:
-        with open(report_path) as f:
-            rep = json.load(f)
-    except (OSError, ValueError):
+    rep = rk_html.load_json(report_path) if report_path else None
+    if not isinstance(rep, dict):
         rep = None
     if rep is not None:
         rec["name"] = rep.get("trial") or rec["name"]
@@ -111,6 +109,11 @@ def trial_record(manifest, report_path, exit_code, wall_s, extra_reason=None, ro
             rec["reason"] = "would run %d step(s)" % rec["steps_run"] if rec["steps_run"] else "up to date"
         elif rec.get("warnings"):
             rec["reason"] = "%d warning(s): see the trial's last-run.json" % rec["warnings"]
+        if rep.get("report_page_warning"):  # rk-run's own verdict stays: the products are good, the page is not
+            why = rk_html.one_line(rep["report_page_warning"])
+            rec["page_not_made"] = why[len(PAGE_WARNING):] if why.startswith(PAGE_WARNING) else why
+            if rec["result"] not in (FAILED, LOCKED):
+                rec["reason"] = PAGE_WARNING + rec["page_not_made"]
         if exit_code not in (None, 0) and rec["result"] not in (FAILED, LOCKED):
             rec["result"], rec["reason"] = FAILED, "rk-run exited with code %s" % exit_code
     else:
@@ -144,7 +147,14 @@ def summarize(records, meta):
         s["ideal_wall_s"] = round(tool / cores, 3)
         s["wall_over_ideal"] = round(wall / (tool / cores), 4)
     s["trials"] = records
+    s["pages_not_made"] = [{"trial": r["trial"], "reason": r["page_not_made"]} for r in records
+                           if r.get("page_not_made")]
     return s
+
+
+def add_page_not_made(summary, trial, reason):
+    """A page that could not be made after the summary was: a row of rk-nightly's index, or the index itself."""
+    summary.setdefault("pages_not_made", []).append({"trial": trial, "reason": rk_html.one_line(reason)})
 
 
 def text_table(summary):
@@ -171,11 +181,15 @@ def text_table(summary):
         steps = "%d/%d" % (r.get("steps_run", 0), r.get("steps_skipped", 0))
         reason = (r.get("reason") or "").replace("\n", " ")
         lines.append("%-*s  %-10s %8s %6s  %s" % (w, r["trial"], r["result"], t, steps, reason))
+    for p in summary.get("pages_not_made", []):
+        lines.append("page not made: %s: %s" % (p["trial"], p["reason"]))
     return "\n".join(lines) + "\n"
 
 
 def any_failed(summary):
-    return summary["counts"]["failed"] > 0
+    """Exit code 1 of rk-nightly and rk-slurm: a trial failed, or a page (a trial's report page, rk-nightly's
+    index or a row of it) could not be made."""
+    return summary["counts"]["failed"] > 0 or bool(summary.get("pages_not_made"))
 
 
 class Usage(Exception):

@@ -43,6 +43,12 @@ rk_cli_script(rk_run/rk_run_multistation REQUIRES sim_small)
 # instance exits at once (75).
 rk_cli_script(rk_run/rk_nightly_summary REQUIRES sim_small)
 
+# Issue 27 item 9: one trial's page never costs the others the index. With a stand-in rk-run (--rk-run), four
+# trials: one whose report.json nests 5000 levels deep (listed with its figures), one whose report.json the index
+# cannot read (its row says why), one whose report page rk-run could not make (report_page_warning), one good:
+# index.html lists all four, the summary's pages_not_made names the two, and rk-nightly exits 1.
+rk_cli_script(rk_run/rk_nightly_page_failures)
+
 # Target "kill -9 of a nightly run in the middle": the next run finishes every trial, and no trial's out/
 # is ever half-written. Three trials that already have a good out/ are all forced to rebuild; rk-nightly is
 # killed with SIGKILL while they run (twice, at two moments) (its rk-runs and their tools die with it through PDEATHSIG). Then
