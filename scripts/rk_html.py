@@ -8,6 +8,7 @@ import html
 import json
 import os
 import re
+import urllib.parse
 
 # One style sheet for both pages, inlined in each (no external CSS).
 CSS = """
@@ -196,7 +197,9 @@ def index_row(r, root):
     d = r.get("dir") or os.path.join(root, r.get("trial", ""))
     rep = load_json(os.path.join(d, "out", "report.json"))
     page_path = os.path.join(d, "out", "report.html")
-    link = esc(os.path.relpath(page_path, root))
+    # A relative URL, not a path: a folder named "t#3", "a?b" or "100%" would otherwise end the path at its '#'
+    # or '?', or be decoded; quote() leaves only the '/' between folders as it is.
+    link = esc(urllib.parse.quote(os.path.relpath(page_path, root)))
     result = r.get("result", "failed")
     if os.path.isfile(page_path):
         what = "page" if result not in FAILED_RESULTS else "last good run"

@@ -49,6 +49,11 @@ rk_cli_script(rk_run/rk_nightly_summary REQUIRES sim_small)
 # index.html lists all four, the summary's pages_not_made names the two, and rk-nightly exits 1.
 rk_cli_script(rk_run/rk_nightly_page_failures)
 
+# Issue 27 item 12: index.html links trial folders named with '#', '?', '%' (also '%25'), a space, and one in a
+# subfolder: every link, resolved against the index's file:// URL as a browser does, opens that trial's
+# out/report.html (no fragment, no query). A stand-in rk-run, as above.
+rk_cli_script(rk_run/rk_nightly_index_links)
+
 # Target "kill -9 of a nightly run in the middle": the next run finishes every trial, and no trial's out/
 # is ever half-written. Three trials that already have a good out/ are all forced to rebuild; rk-nightly is
 # killed with SIGKILL while they run (twice, at two moments) (its rk-runs and their tools die with it through PDEATHSIG). Then

@@ -6,17 +6,9 @@ set -eu
 data=$1 expect=$2 src=$3
 . "$src/tests/cli/rk_run/lib.sh"
 d=$data/run/pages; r=$d/root; rm -rf "$d"; mkdir -p "$d/bin"
-# A stand-in rk-run (rk-nightly --rk-run): "done", and for the trial "nopage" rk-run's warning that its report
-# page could not be made; the trials' out/report.json are written below, as a last good run left them.
-cat > "$d/bin/rk-run" <<'SH'
-#!/usr/bin/env bash
-m=$1; shift
-while [ $# -gt 0 ]; do [ "$1" = --report ] && rep=$2; shift; done
-extra=""
-[ "$(basename "$(dirname "$m")")" = nopage ] && extra=', "report_page_warning": "report page not made: stand-in"'
-printf '{"tool": "rk-run", "result": "done", "exit_code": 0, "counts": {"run": 1, "skipped": 0}%s}\n' "$extra" > "$rep"
-SH
-chmod +x "$d/bin/rk-run"
+# A stand-in rk-run (lib.sh): "done", and for the trial "nopage" rk-run's warning that its report page could not
+# be made; the trials' out/report.json are written below, as a last good run left them.
+standin_rk_run "$d/bin/rk-run"
 python3 - "$r" <<'PY'
 import json, os, sys
 root = sys.argv[1]
