@@ -29,7 +29,7 @@ th{background:#eef1f5}
 td.num{text-align:right;font-variant-numeric:tabular-nums}
 td b,.fig .v{white-space:nowrap}
 .ok,.done,.up-to-date{color:#17692f;font-weight:600}.warning{color:#9a6200;font-weight:600}
-.failed,.locked{color:#b3261e;font-weight:600}.muted{color:#6b7580}
+.failed,.locked{color:#b3261e;font-weight:600}.muted{color:#6b7580}.not-started{color:#6b7580;font-weight:600}
 .headline{display:flex;flex-wrap:wrap;gap:10px;margin:6px 0}
 .fig{display:inline-block;background:#fafbfc;border:1px solid #e3e7ec;border-radius:4px;padding:10px 14px;
 min-width:130px}
@@ -223,8 +223,8 @@ def index_html(summary, root):
     [(trial, error)] whose row could not be made (a damaged report.json...): such a row says so, and the other
     trials are listed all the same."""
     trials = list(summary.get("trials", []))
-    order = {"failed": 0, "locked": 1}
-    trials.sort(key=lambda r: (order.get(r.get("result"), 2), r.get("trial", "")))
+    order = {"failed": 0, "locked": 1, "not-started": 2}
+    trials.sort(key=lambda r: (order.get(r.get("result"), 3), r.get("trial", "")))
     counts = summary.get("counts", {})
     rows, not_listed = [], []
     for r in trials:
