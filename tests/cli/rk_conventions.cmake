@@ -6,8 +6,9 @@
 rk_cli_script(rk_conventions/rk_dispatcher)
 
 # A man page per tool and for rk (when help2man is installed), each with a NAME and, for tools with
-# subcommands, a section per subcommand; every docs/ page a man page names exists and each tool's SEE ALSO names
-# one (issue 27); no '§' (help2man writes it as "??") in any --help; a bash completion file per tool that completes options,
+# subcommands, a section per subcommand; every docs/ page a man page names exists and each tool's SEE ALSO
+# names one (issue 27); no '§' (help2man writes it as "??") in any --help; a bash completion file per tool that
+# completes options,
 # subcommands, choice values and file names (driven through bash's completion variables).
 rk_cli_script(rk_conventions/rk_man_and_completion)
 
