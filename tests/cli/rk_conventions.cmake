@@ -19,5 +19,5 @@ rk_cli_script(rk_conventions/rk_progress_only_on_a_terminal REQUIRES sim_small s
 
 # Issue 27: no Python tool takes a prefix of an option (argparse's allow_abbrev): rk-plot given -o and a manifest's
 # --out, rk-report --out, rk-nightly --summ, rk-slurm submit --max-par, long_functions.py and golden_outputs.py
-# --chec exit 2 with one error line and write nothing; the full names still work.
+# --chec exit 2 with one error line and write nothing; the full name still works.
 rk_cli_script(rk_conventions/rk_python_tools_refuse_abbreviations)
