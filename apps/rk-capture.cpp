@@ -142,7 +142,7 @@ int main(int argc, char** argv) {
   rk::cli::AddCommonOptions(app, kTool, &common);
   std::string config;
   rk::capture::CaptureOptions record;
-  app.add_option("--config,-c", config, "Station configuration JSON (SPEC.md §6; paths in it relative to it)");
+  app.add_option("--config,-c", config, "Station configuration JSON (SPEC.md section 6; paths in it relative to it)");
   app.add_option("--out,-o", record.out_dir, "Trial folder to create (refused if it exists and is not empty)");
   rk::cli::AddOptions(&app, &record, rk::capture::CaptureOptions::Table());
   CLI::App* recover = app.add_subcommand(

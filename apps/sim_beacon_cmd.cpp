@@ -135,7 +135,7 @@ Command AddBeaconCommand(CLI::App& parent) {
   beacon->add_option("--width", c.width, "Image width (px), overrides the preset; principal point stays centred")
       ->check(CLI::Range(32, 100000));
   beacon->add_option("--height", c.height, "Image height (px), overrides the preset")->check(CLI::Range(32, 100000));
-  beacon->add_option("--camera", c.camera_path, "Camera model JSON (SPEC.md §3) instead of a preset")
+  beacon->add_option("--camera", c.camera_path, "Camera model JSON (SPEC.md section 3) instead of a preset")
       ->check(CLI::ExistingFile);
   beacon->add_option("--trajectory", c.trajectory, "Target motion: default, straight, turning, overhead, static")
       ->check(CLI::IsMember({"default", "straight", "turning", "overhead", "static"}))

@@ -356,15 +356,16 @@ def nees(args):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 allow_abbrev=False)
     sub = ap.add_subparsers(dest="cmd", required=True)
-    a = sub.add_parser("table1")
+    a = sub.add_parser("table1", allow_abbrev=False)
     a.add_argument("--column", default="yaw_deg")
     a.add_argument("--after", type=float, default=1.0, help="convergence time after the first sample (s)")
     a.add_argument("--json")
     a.add_argument("--failed", type=int, default=0, help="runs on which rk-smooth failed (reported)")
     a.add_argument("runs", nargs="+")
-    b = sub.add_parser("nees")
+    b = sub.add_parser("nees", allow_abbrev=False)
     b.add_argument("--columns", default=POSE_COLUMNS)
     b.add_argument("--after", type=float, default=1.0)
     b.add_argument("--kind", default="estimate", choices=["estimate", "prediction", "smoothed"])

@@ -36,7 +36,7 @@ def stats(v):
 
 
 def main():
-    ap = argparse.ArgumentParser()
+    ap = argparse.ArgumentParser(allow_abbrev=False)
     ap.add_argument("track")
     ap.add_argument("truth")
     ap.add_argument("--lock-px", type=float, default=3.0)

@@ -194,7 +194,8 @@ def plot(path, scenario, rmse_by_method, radar_name):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 allow_abbrev=False)
     ap.add_argument("--runs", type=int, default=100)
     ap.add_argument("--steps", type=int, default=1000)
     ap.add_argument("--scenarios", default="1,2,3")

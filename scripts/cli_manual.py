@@ -27,6 +27,18 @@ OPTION = re.compile(r"^  (-[^\s]+)(?: ([A-Z][A-Z0-9_]*(?::\{[^}]*\})?(?:=\S*)?(?
 SUB = re.compile(r"^  ([a-z][a-z0-9_-]*)\s{2,}")
 # Value types that name a path (complete file names after them).
 PATH_WORDS = ("path", "file", "csv", "json", "dir", "video", "folder", "png", "pattern", "images", "trial", "out")
+DOCS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "docs")
+# Tools documented in another tool's page rather than in docs/<tool>.md.
+DOCUMENTED_IN = {"rk-nightly": ["rk-run"], "rk-slurm": ["rk-run"], "rk-report": ["rk-run"]}
+
+
+def doc_pages(tool, docs=DOCS):
+    """The file names of a tool's pages in docs/: <tool>.md and <tool>-<part>.md (rk-attitude-oi.md,
+    rk-smooth-singer-resample.md), or those of the tool that documents it (DOCUMENTED_IN). The one rule for
+    the man pages' SEE ALSO and for tests/cli/help_matches_docs.py."""
+    stems = DOCUMENTED_IN.get(tool, [tool])
+    return [n for n in sorted(os.listdir(docs))
+            if n.endswith(".md") and any(n == s + ".md" or n.startswith(s + "-") for s in stems)]
 
 
 def help_text(argv):
@@ -146,8 +158,10 @@ def cmd_man(tool, out):
         include += "[SUBCOMMANDS]\n"
         for sub, _ in subs:
             include += ".SS %s %s\n.nf\n%s\n.fi\n" % (name, sub, help_text([tool, sub]).replace("\\", "\\\\"))
-    include += ("[SEE ALSO]\nrk(1); the tool's page in the rangekit docs (docs/%s.md); "
-                "the interface contract SPEC.md.\n" % name)
+    # Only pages that exist (issue 27: rk-nightly, rk-report, rk-slurm and rk-attitude named docs/<tool>.md).
+    pages = ", ".join("docs/" + p for p in doc_pages(name))
+    include += ("[SEE ALSO]\nrk(1)%s; the interface contract, SPEC.md in the project's shared documents.\n"
+                % ("; the tool's pages in the rangekit docs: " + pages if pages else ""))
     with tempfile.NamedTemporaryFile("w", suffix=".h2m", delete=False) as f:
         f.write(include)
         inc = f.name

@@ -178,7 +178,8 @@ def reason_above(lines, first):
 
 
 def main():
-    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter,
+                                 allow_abbrev=False)
     ap.add_argument("paths", nargs="*", default=["lib", "apps"])
     ap.add_argument("--max-lines", type=int, default=120)
     ap.add_argument("--check", action="store_true", help="exit 1 if a long function has no reason above it")

@@ -2,19 +2,24 @@
 running it with the kernel's parent-death signal, and the summary (JSON + text table) of many rk-run
 reports. Python 3 standard library only."""
 import datetime
-import json
 import os
 import shutil
 import signal
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.realpath(__file__)))
+import rk_html  # noqa: E402
 import rk_output  # noqa: E402
 
-# Results of one trial, as rk-run's --report says them, and how a summary counts them.
+# Results of one trial, as rk-run's --report says them (and NOT_STARTED: an interrupted batch never started its
+# rk-run), and how a summary counts them.
 DONE, UP_TO_DATE, LOCKED, FAILED, PLANNED = "done", "up-to-date", "locked", "failed", "planned"
+NOT_STARTED = "not-started"
+PAGE_WARNING = "report page not made: "  # how rk-run's report_page_warning starts (lib/run/runner.cc)
 COUNT_KEYS = {DONE: "done", UP_TO_DATE: "up_to_date", LOCKED: "skipped_locked", FAILED: "failed",
-              PLANNED: "planned"}
+              PLANNED: "planned", NOT_STARTED: "not_started"}
+# Counted only when they occur, so that an ordinary night's counts keep their four keys.
+OPTIONAL_COUNTS = {PLANNED: "planned", NOT_STARTED: "not_started"}
 
 
 def utc_now():
@@ -22,18 +27,58 @@ def utc_now():
 
 
 def find_trials(root):
-    """Every folder under root holding a trial.json, sorted. A trial folder is not searched further,
-    and hidden folders and rk-run's out/, out.tmp.*, out.old.* are skipped."""
-    found = []
-    for dirpath, dirnames, filenames in os.walk(root):
-        if "trial.json" in filenames:
-            found.append(os.path.join(dirpath, "trial.json"))
-            dirnames[:] = []
+    """(trials, not_followed): every folder under root holding a trial.json (its trial.json path), sorted, and
+    [(path relative to root, reason)] of the folders that were not searched although they might hold trials.
+
+    A trial folder is not searched further; hidden folders and rk-run's out/, out.tmp.*, out.old.* are skipped.
+    Symbolic links to folders are followed — a trial kept on another disk and linked under ROOT is one of ROOT's
+    trials — after the folders themselves, and every folder is searched once, by its first path: a link to a
+    folder already searched (a second path to a trial, a link back up the tree) is not followed, nor is a link
+    that leads nowhere or a folder that cannot be read; those are the not_followed, for the caller to say."""
+    found, not_followed, links = [], [], []
+    searched = {os.path.realpath(root): root}  # real path -> the path it was searched by
+
+    def rel(path):
+        r = os.path.relpath(path, root)
+        return "ROOT" if r == "." else r
+
+    def search(top):
+        stack = [top]
+        while stack:
+            folder = stack.pop()
+            try:
+                entries = sorted(os.scandir(folder), key=lambda e: e.name)
+            except OSError as e:
+                not_followed.append((rel(folder), "cannot be read: %s" % e.strerror))
+                continue
+            if any(e.name == "trial.json" for e in entries):
+                found.append(os.path.join(folder, "trial.json"))
+                continue
+            subs = []
+            for e in entries:
+                if e.name.startswith(".") or e.name == "out" or e.name.startswith(("out.tmp.", "out.old.")):
+                    continue
+                if e.is_symlink():
+                    if not os.path.exists(e.path):  # a disk not mounted?
+                        not_followed.append((rel(e.path), "symbolic link to %s, which does not exist"
+                                             % os.readlink(e.path)))
+                    elif e.is_dir():
+                        links.append(e.path)
+                elif e.is_dir(follow_symlinks=False):
+                    searched.setdefault(os.path.realpath(e.path), e.path)
+                    subs.append(e.path)
+            stack.extend(reversed(subs))
+
+    search(root)
+    while links:  # each link once the folders that hold it are searched; links found behind it join the queue
+        link = links.pop(0)
+        real = os.path.realpath(link)
+        if real in searched:
+            not_followed.append((rel(link), "the same folder as %s, searched once" % rel(searched[real])))
             continue
-        dirnames[:] = sorted(d for d in dirnames
-                             if not d.startswith(".") and d != "out" and not d.startswith("out.tmp.")
-                             and not d.startswith("out.old."))
-    return sorted(found)
+        searched[real] = link
+        search(link)
+    return sorted(found), not_followed
 
 
 def find_rk_run(explicit):
@@ -82,11 +127,8 @@ def trial_record(manifest, report_path, exit_code, wall_s, extra_reason=None, ro
            "exit_code": exit_code, "wall_s": round(wall_s, 3) if wall_s is not None else None,
            "result": FAILED, "reason": None, "steps_run": 0, "steps_skipped": 0, "tool_time_s": 0.0,
            "tool_cpu_s": 0.0}
-    rep = None
-    try:
-        with open(report_path) as f:
-            rep = json.load(f)
-    except (OSError, ValueError):
+    rep = rk_html.load_json(report_path) if report_path else None
+    if not isinstance(rep, dict):
         rep = None
     if rep is not None:
         rec["name"] = rep.get("trial") or rec["name"]
@@ -111,6 +153,11 @@ def trial_record(manifest, report_path, exit_code, wall_s, extra_reason=None, ro
             rec["reason"] = "would run %d step(s)" % rec["steps_run"] if rec["steps_run"] else "up to date"
         elif rec.get("warnings"):
             rec["reason"] = "%d warning(s): see the trial's last-run.json" % rec["warnings"]
+        if rep.get("report_page_warning"):  # rk-run's own verdict stays: the products are good, the page is not
+            why = rk_html.one_line(rep["report_page_warning"])
+            rec["page_not_made"] = why[len(PAGE_WARNING):] if why.startswith(PAGE_WARNING) else why
+            if rec["result"] not in (FAILED, LOCKED):
+                rec["reason"] = PAGE_WARNING + rec["page_not_made"]
         if exit_code not in (None, 0) and rec["result"] not in (FAILED, LOCKED):
             rec["result"], rec["reason"] = FAILED, "rk-run exited with code %s" % exit_code
     else:
@@ -127,9 +174,10 @@ def trial_record(manifest, report_path, exit_code, wall_s, extra_reason=None, ro
 def summarize(records, meta):
     """The summary JSON: meta (tool, root, times, cores...) + counts + per-trial rows + timing figures."""
     s = dict(meta)
-    counts = {v: 0 for v in COUNT_KEYS.values() if v != "planned"}
-    if any(r["result"] == PLANNED for r in records):
-        counts["planned"] = 0
+    counts = {v: 0 for k, v in COUNT_KEYS.items() if k not in OPTIONAL_COUNTS}
+    for result, key in OPTIONAL_COUNTS.items():
+        if any(r["result"] == result for r in records):
+            counts[key] = 0
     for r in records:
         counts[COUNT_KEYS.get(r["result"], "failed")] += 1
     s["counts"] = counts
@@ -144,7 +192,14 @@ def summarize(records, meta):
         s["ideal_wall_s"] = round(tool / cores, 3)
         s["wall_over_ideal"] = round(wall / (tool / cores), 4)
     s["trials"] = records
+    s["pages_not_made"] = [{"trial": r["trial"], "reason": r["page_not_made"]} for r in records
+                           if r.get("page_not_made")]
     return s
+
+
+def add_page_not_made(summary, trial, reason):
+    """A page that could not be made after the summary was: a row of rk-nightly's index, or the index itself."""
+    summary.setdefault("pages_not_made", []).append({"trial": trial, "reason": rk_html.one_line(reason)})
 
 
 def text_table(summary):
@@ -153,6 +208,8 @@ def text_table(summary):
     head = "%s %s: %d trials: %d done, %d up to date, %d skipped (locked), %d failed" % (
         summary.get("tool", "rk-batch"), summary.get("root", ""), summary["trials_total"], c["done"],
         c["up_to_date"], c["skipped_locked"], c["failed"])
+    if "not_started" in c:
+        head += ", %d not started" % c["not_started"]
     if "planned" in c:
         head += " (dry run: %d with steps to run; steps column = would run/up to date)" % sum(
             1 for r in summary["trials"] if r["result"] == PLANNED and r.get("steps_run"))
@@ -171,11 +228,17 @@ def text_table(summary):
         steps = "%d/%d" % (r.get("steps_run", 0), r.get("steps_skipped", 0))
         reason = (r.get("reason") or "").replace("\n", " ")
         lines.append("%-*s  %-10s %8s %6s  %s" % (w, r["trial"], r["result"], t, steps, reason))
+    for p in summary.get("pages_not_made", []):
+        lines.append("page not made: %s: %s" % (p["trial"], p["reason"]))
+    for p in summary.get("not_followed", []):
+        lines.append("not searched: %s: %s" % (p["path"], p["reason"]))
     return "\n".join(lines) + "\n"
 
 
 def any_failed(summary):
-    return summary["counts"]["failed"] > 0
+    """Exit code 1 of rk-nightly and rk-slurm: a trial failed, or a page (a trial's report page, rk-nightly's
+    index or a row of it) could not be made."""
+    return summary["counts"]["failed"] > 0 or bool(summary.get("pages_not_made"))
 
 
 class Usage(Exception):

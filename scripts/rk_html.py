@@ -7,6 +7,8 @@ import datetime
 import html
 import json
 import os
+import re
+import urllib.parse
 
 # One style sheet for both pages, inlined in each (no external CSS).
 CSS = """
@@ -27,7 +29,7 @@ th{background:#eef1f5}
 td.num{text-align:right;font-variant-numeric:tabular-nums}
 td b,.fig .v{white-space:nowrap}
 .ok,.done,.up-to-date{color:#17692f;font-weight:600}.warning{color:#9a6200;font-weight:600}
-.failed,.locked{color:#b3261e;font-weight:600}.muted{color:#6b7580}
+.failed,.locked{color:#b3261e;font-weight:600}.muted{color:#6b7580}.not-started{color:#6b7580;font-weight:600}
 .headline{display:flex;flex-wrap:wrap;gap:10px;margin:6px 0}
 .fig{display:inline-block;background:#fafbfc;border:1px solid #e3e7ec;border-radius:4px;padding:10px 14px;
 min-width:130px}
@@ -71,10 +73,55 @@ def percent(fraction):
     return "%.1f %%" % (100.0 * fraction)
 
 
-def load_json(path):
+# How deep the pages read JSON. A manifest may carry extra keys of any depth (SPEC.md §6 keeps them, rk-run copies
+# them into report.json), but Python's json module and the pages' recursive walks (json.dumps, the quality table)
+# recurse once or twice per level, and Python stops at 1000 frames (RecursionError; issue 27 item 9: a 5000-level
+# key cost a trial its page and the night its index). rangekit's own reports nest about 10 deep; deeper values are
+# shown as NESTED_TOO_DEEP.
+MAX_JSON_DEPTH = 100
+NESTED_TOO_DEEP = "(nested deeper than %d levels: not shown)" % MAX_JSON_DEPTH
+# A JSON string (escapes included) or a bracket: what the depth scan below has to tell apart.
+_JSON_TOKEN = re.compile(r'"[^"\\]*(?:\\.[^"\\]*)*"|[\[\]{}]', re.S)
+
+
+def _cut_deep(text, limit):
+    """(text, n): JSON text with every array or object that opens deeper than `limit` replaced by the string
+    NESTED_TOO_DEEP (n of them). One pass over the tokens, no recursion, so any depth is fine."""
+    parts, depth, last, start, n = [], 0, 0, None, 0
+    for m in _JSON_TOKEN.finditer(text):
+        tok = m.group()
+        if tok[0] == '"':
+            continue
+        if tok in "[{":
+            depth += 1
+            if depth == limit + 1:
+                start = m.start()
+        else:
+            if depth == limit + 1 and start is not None:
+                parts += [text[last:start], json.dumps(NESTED_TOO_DEEP)]
+                last, start, n = m.end(), None, n + 1
+            depth -= 1
+    parts.append(text[last:])
+    return "".join(parts), n
+
+
+def loads_bounded(text):
+    """(value, n): json.loads(text), except that values nested deeper than MAX_JSON_DEPTH come back as the
+    string NESTED_TOO_DEEP, n of them (0 for every ordinary file: the cut is made only when Python's parser gives
+    up). ValueError as json.loads for text that is not JSON."""
     try:
-        with open(path) as f:
-            return json.load(f)
+        return json.loads(text), 0
+    except RecursionError:
+        pass
+    cut, n = _cut_deep(text, MAX_JSON_DEPTH)
+    return json.loads(cut), n
+
+
+def load_json(path):
+    """A JSON file read with loads_bounded, or None when it cannot be read or is not JSON."""
+    try:
+        with open(path, encoding="utf-8") as f:
+            return loads_bounded(f.read())[0]
     except (OSError, ValueError):
         return None
 
@@ -145,34 +192,49 @@ def one_line(text, width=200):
     return line if len(line) <= width else line[:width - 1] + "…"
 
 
+def index_row(r, root):
+    """One trial's row of the index: result, reason, headline figures of TRIAL/out/report.json, page link."""
+    d = r.get("dir") or os.path.join(root, r.get("trial", ""))
+    rep = load_json(os.path.join(d, "out", "report.json"))
+    page_path = os.path.join(d, "out", "report.html")
+    # A relative URL, not a path: a folder named "t#3", "a?b" or "100%" would otherwise end the path at its '#'
+    # or '?', or be decoded; quote() leaves only the '/' between folders as it is.
+    link = esc(urllib.parse.quote(os.path.relpath(page_path, root)))
+    result = r.get("result", "failed")
+    if os.path.isfile(page_path):
+        what = "page" if result not in FAILED_RESULTS else "last good run"
+        cell = '<a href="%s">%s</a>' % (link, what)
+    else:
+        cell = '<span class="muted">no page</span>'
+    figs = headline_figures(rep) if isinstance(rep, dict) else []
+    figs_html = "<br>".join("%s: <b>%s</b>" % (esc(k), esc(v)) for k, v, _ in figs) or \
+        '<span class="muted">—</span>'
+    if figs and result in FAILED_RESULTS:
+        figs_html = '<span class="muted">last good run:</span><br>' + figs_html
+    return ("<tr><td>%s</td><td class=\"%s\">%s</td><td>%s</td><td>%s</td><td class=\"num\">%s</td>"
+            "<td class=\"num\">%s / %s</td><td>%s</td></tr>"
+            % (esc(r.get("trial")), esc(result), esc(result), esc(one_line(r.get("reason"))), figs_html,
+               esc(num(r.get("wall_s"))), esc(r.get("steps_run", 0)), esc(r.get("steps_skipped", 0)), cell))
+
+
 def index_html(summary, root):
-    """rk-nightly's ROOT/index.html: every trial, failures first, with its result, a one-line reason, its
-    headline figures (from TRIAL/out/report.json) and a link to TRIAL/out/report.html."""
+    """(page, not_listed): rk-nightly's ROOT/index.html — every trial, failures first, with its result, a one-line
+    reason, its headline figures (from TRIAL/out/report.json) and a link to TRIAL/out/report.html — and the
+    [(trial, error)] whose row could not be made (a damaged report.json...): such a row says so, and the other
+    trials are listed all the same."""
     trials = list(summary.get("trials", []))
-    order = {"failed": 0, "locked": 1}
-    trials.sort(key=lambda r: (order.get(r.get("result"), 2), r.get("trial", "")))
+    order = {"failed": 0, "locked": 1, "not-started": 2}
+    trials.sort(key=lambda r: (order.get(r.get("result"), 3), r.get("trial", "")))
     counts = summary.get("counts", {})
-    rows = []
+    rows, not_listed = [], []
     for r in trials:
-        d = r.get("dir") or os.path.join(root, r.get("trial", ""))
-        rep = load_json(os.path.join(d, "out", "report.json"))
-        page_path = os.path.join(d, "out", "report.html")
-        link = esc(os.path.relpath(page_path, root))
-        result = r.get("result", "failed")
-        if os.path.isfile(page_path):
-            what = "page" if result not in FAILED_RESULTS else "last good run"
-            cell = '<a href="%s">%s</a>' % (link, what)
-        else:
-            cell = '<span class="muted">no page</span>'
-        figs = headline_figures(rep) if isinstance(rep, dict) else []
-        figs_html = "<br>".join("%s: <b>%s</b>" % (esc(k), esc(v)) for k, v, _ in figs) or \
-            '<span class="muted">—</span>'
-        if figs and result in FAILED_RESULTS:
-            figs_html = '<span class="muted">last good run:</span><br>' + figs_html
-        rows.append("<tr><td>%s</td><td class=\"%s\">%s</td><td>%s</td><td>%s</td><td class=\"num\">%s</td>"
-                    "<td class=\"num\">%s / %s</td><td>%s</td></tr>"
-                    % (esc(r.get("trial")), esc(result), esc(result), esc(one_line(r.get("reason"))), figs_html,
-                       esc(num(r.get("wall_s"))), esc(r.get("steps_run", 0)), esc(r.get("steps_skipped", 0)), cell))
+        try:
+            rows.append(index_row(r, root))
+        except Exception as e:  # noqa: BLE001 - one trial's row never costs the others theirs
+            why = "%s: %s" % (type(e).__name__, e)
+            not_listed.append((r.get("trial"), why))
+            rows.append("<tr><td>%s</td><td class=\"failed\">row not made</td><td colspan=\"6\">%s</td></tr>"
+                        % (esc(r.get("trial")), esc(one_line(why))))
     head = ("<h1>Nightly run: %s</h1><div class=\"sub\">%d trials — %s; started %s, wall %s s; page made %s</div>"
             % (esc(summary.get("root", root)), len(trials),
                esc(", ".join("%s %s" % (v, k.replace("_", " ")) for k, v in counts.items())),
@@ -180,4 +242,4 @@ def index_html(summary, root):
     body = ("<section id=\"trials\"><h2>Trials (failures first)</h2><table><tr><th>trial</th><th>result</th>"
             "<th>reason</th><th>headline figures</th><th>wall s</th><th>steps run / skipped</th><th>report</th></tr>"
             + "\n".join(rows) + "</table></section>")
-    return page("rk-nightly: " + os.path.basename(root.rstrip("/")), head, [], body)
+    return page("rk-nightly: " + os.path.basename(root.rstrip("/")), head, [], body), not_listed

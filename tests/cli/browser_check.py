@@ -136,7 +136,7 @@ def problems_of(events, page_url):
 
 
 def main(argv):
-    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0], allow_abbrev=False)
     ap.add_argument("page")
     ap.add_argument("--expect", action="append", default=[])
     ap.add_argument("--screenshot")

@@ -201,7 +201,7 @@ def check_frames(trial, manifest, source_md5):
 
 
 def main():
-    ap = argparse.ArgumentParser()
+    ap = argparse.ArgumentParser(allow_abbrev=False)
     ap.add_argument("trial")
     ap.add_argument("--dls-truth", required=True)
     ap.add_argument("--ptu-truth", required=True)

@@ -27,7 +27,8 @@ def blocks(path):
                 cur.append(line.rstrip())
 
 
-PAGES = {"rk-nightly": ["rk-run"], "rk-slurm": ["rk-run"], "rk-report": ["rk-run"]}
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "scripts"))
+from cli_manual import doc_pages  # noqa: E402 - a tool's pages: the man pages' SEE ALSO uses the same rule
 
 
 def help_options(cmd):
@@ -48,9 +49,7 @@ def undocumented_options(docs, bindir):
                    if n.startswith("rk-") and "." not in n and os.access(os.path.join(bindir, n), os.X_OK)
                    and os.path.isfile(os.path.join(bindir, n)))
     for tool in tools:
-        stems = PAGES.get(tool, [tool])
-        pages = [os.path.join(docs, n) for n in sorted(os.listdir(docs))
-                 if n.endswith(".md") and any(n == s + ".md" or n.startswith(s + "-") for s in stems)]
+        pages = [os.path.join(docs, n) for n in doc_pages(tool, docs)]
         if not pages:
             print("%s: no page in %s" % (tool, docs))
             missing += 1

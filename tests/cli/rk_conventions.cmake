@@ -6,7 +6,9 @@
 rk_cli_script(rk_conventions/rk_dispatcher)
 
 # A man page per tool and for rk (when help2man is installed), each with a NAME and, for tools with
-# subcommands, a section per subcommand; a bash completion file per tool that completes options,
+# subcommands, a section per subcommand; every docs/ page a man page names exists and each tool's SEE ALSO
+# names one (issue 27); no '§' (help2man writes it as "??") in any --help; a bash completion file per tool that
+# completes options,
 # subcommands, choice values and file names (driven through bash's completion variables).
 rk_cli_script(rk_conventions/rk_man_and_completion)
 
@@ -14,3 +16,8 @@ rk_cli_script(rk_conventions/rk_man_and_completion)
 # line with done/total, rate and ETA, then the closing summary line; nothing with --quiet.
 # rk-extract, rk-register kf and batch (both stages), rk-calibrate pointing.
 rk_cli_script(rk_conventions/rk_progress_only_on_a_terminal REQUIRES sim_small sim_radar_data pointing_data)
+
+# Issue 27: no Python tool takes a prefix of an option (argparse's allow_abbrev): rk-plot given -o and a manifest's
+# --out, rk-report --out, rk-nightly --summ, rk-slurm submit --max-par, long_functions.py and golden_outputs.py
+# --chec exit 2 with one error line and write nothing; the full name still works.
+rk_cli_script(rk_conventions/rk_python_tools_refuse_abbreviations)

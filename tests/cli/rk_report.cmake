@@ -13,3 +13,8 @@ rk_cli_script(rk_report/rk_report_page REQUIRES sim_small SETUP report_pages)
 # (scripts/setup.sh --browser).
 rk_cli_script(rk_report/rk_report_pages_in_chromium REQUIRES sim_small report_pages)
 set_tests_properties(rk_report_pages_in_chromium PROPERTIES SKIP_RETURN_CODE 77)
+
+# Issue 27 item 9: a manifest with an extra key 5000 levels deep (legal: SPEC.md §6 keeps extra keys) still gets
+# its page: rk-report reads report.json with the depth cut at 100 levels (scripts/rk_html.py loads_bounded),
+# shows the cut in the manifest and as a warning, and the rest of the page is that of the same trial without it.
+rk_cli_script(rk_report/rk_report_deep_manifest REQUIRES report_pages)

@@ -43,6 +43,26 @@ rk_cli_script(rk_run/rk_run_multistation REQUIRES sim_small)
 # instance exits at once (75).
 rk_cli_script(rk_run/rk_nightly_summary REQUIRES sim_small)
 
+# Issue 27 item 9: one trial's page never costs the others the index. With a stand-in rk-run (--rk-run), four
+# trials: one whose report.json nests 5000 levels deep (listed with its figures), one whose report.json the index
+# cannot read (its row says why), one whose report page rk-run could not make (report_page_warning), one good:
+# index.html lists all four, the summary's pages_not_made names the two, and rk-nightly exits 1.
+rk_cli_script(rk_run/rk_nightly_page_failures)
+
+# Issue 27 item 12: index.html links trial folders named with '#', '?', '%' (also '%25'), a space, and one in a
+# subfolder: every link, resolved against the index's file:// URL as a browser does, opens that trial's
+# out/report.html (no fragment, no query). A stand-in rk-run, as above.
+rk_cli_script(rk_run/rk_nightly_index_links)
+
+# Issue 27 item 14: trial folders reached through symbolic links are found (a link to a trial outside ROOT is
+# run), each folder once; a second path to a trial, a link back up to ROOT and a link to nothing are not followed
+# and said so (stderr, summary "not_followed", the text table). A stand-in rk-run, as above.
+rk_cli_script(rk_run/rk_nightly_symlinks)
+
+# Issue 27 item 14: SIGTERM while the first of three trials runs (-j 1): the running one is failed (stopped),
+# the two never started are counted "not_started" (result "not-started"), not failed; exit 1. A stand-in rk-run.
+rk_cli_script(rk_run/rk_nightly_interrupted)
+
 # Target "kill -9 of a nightly run in the middle": the next run finishes every trial, and no trial's out/
 # is ever half-written. Three trials that already have a good out/ are all forced to rebuild; rk-nightly is
 # killed with SIGKILL while they run (twice, at two moments) (its rk-runs and their tools die with it through PDEATHSIG). Then

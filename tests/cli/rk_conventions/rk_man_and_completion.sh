@@ -32,6 +32,24 @@ if command -v help2man >/dev/null; then
   grep -q '^\.SS rk-slurm submit' "$man/rk-slurm.1"
   grep -A1 '^\.SH NAME' "$man/rk-report.1" | grep -q '^rk-report \\- the trial report page'
   grep -q 'max\\-points' "$man/rk-report.1"
+  # Every page of docs/ a man page names exists (issue 27: the SEE ALSO of rk-nightly, rk-report, rk-slurm and
+  # rk-attitude named docs/<tool>.md, which do not), and each tool's SEE ALSO names at least one.
+  for t in "${tools[@]}"; do
+    if ! sed -n '/^\.SH "SEE ALSO"/,/^\.SH/p' "$man/$t.1" | grep -q 'docs/'; then
+      echo "FAIL: $t.1: SEE ALSO names no page"; exit 1
+    fi
+  done
+  # No '§' in any --help (every subcommand's is in its tool's page): help2man wrote it as "??" ("SPEC.md ??6").
+  if grep -l -e '§' -e '??' "$man"/*.1; then
+    echo "FAIL: '§' or '??' in the man pages above (write 'section 6')"; exit 1
+  fi
+  named=$(cat "$man"/*.1 | grep -o 'docs/[A-Za-z0-9._\\-]*\.md' | tr -d '\\' | sort -u)
+  [ -n "$named" ]
+  for p in $named; do
+    if [ ! -f "$src/$p" ]; then
+      echo "FAIL: a man page names $p, which does not exist:"; grep -lF -e "$p" -e "${p//-/\\-}" "$man"/*.1; exit 1
+    fi
+  done
 else
   echo "help2man not installed: man pages not checked"
 fi

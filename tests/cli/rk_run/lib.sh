@@ -22,3 +22,19 @@ other_unit() {
   rk-run "$t" --no-plots | grep -q up-to-date
   echo ok
 }
+# standin_rk_run FILE: writes a stand-in rk-run for rk-nightly --rk-run: it writes a --report saying "done" (one
+# step run) and nothing else, so that rk-nightly's own work (summary, index) is tested on trials made by hand;
+# for a trial folder named "nopage" the report carries rk-run's warning that the report page was not made; in
+# one named "slow" it creates the file "started" and then only sleeps (until it is stopped).
+standin_rk_run() {
+  cat > "$1" <<'SH'
+#!/usr/bin/env bash
+m=$1; shift
+while [ $# -gt 0 ]; do [ "$1" = --report ] && rep=$2; shift; done
+[ "$(basename "$(dirname "$m")")" = slow ] && { touch "$(dirname "$m")/started"; exec sleep 60; }
+extra=""
+[ "$(basename "$(dirname "$m")")" = nopage ] && extra=', "report_page_warning": "report page not made: stand-in"'
+printf '{"tool": "rk-run", "result": "done", "exit_code": 0, "counts": {"run": 1, "skipped": 0}%s}\n' "$extra" > "$rep"
+SH
+  chmod +x "$1"
+}
