@@ -2,8 +2,10 @@
 #include "extract/frame_loop.h"
 
 #include <chrono>
+#include <cmath>
 
 #include "io/error.h"
+#include "io/run_record.h"
 #include "video/frame_source.h"
 
 namespace rk::extract {
@@ -19,7 +21,12 @@ VideoRunStats ForEachFrame(const std::vector<std::string>& videos, const FrameCl
   std::int64_t k = 0;
   while (source.Read(&frame)) {
     const double t_s = clock.TimeOf(k);
-    if (k == 0) {
+    if (std::isnan(t_s)) {  // a hole in the frames file (its row skipped): no time, not measured
+      ++st.frames_without_time;
+      ++k;
+      continue;
+    }
+    if (st.width_px == 0) {
       st.width_px = frame.cols;
       st.height_px = frame.rows;
       st.bit_depth = frame.depth() == CV_16U ? 16 : 8;
@@ -31,6 +38,10 @@ VideoRunStats ForEachFrame(const std::vector<std::string>& videos, const FrameCl
     if (progress && progress_every > 0 && k % progress_every == 0) progress(k);
   }
   st.wall_s = SecondsSince(t_start);
+  if (st.frames_without_time > 0) {
+    io::EmitWarning(clock.path() + ": " + std::to_string(st.frames_without_time) +
+                    " frames have no time (their rows were skipped) and were not measured");
+  }
   st.frames = k;
   if (clock.from_file() && clock.size() > k) {
     throw DataError(videos.back(), 0, 0,

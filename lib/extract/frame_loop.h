@@ -16,6 +16,7 @@ namespace rk::extract {
 // What every extraction run reports about the video it read.
 struct VideoRunStats {
   std::int64_t frames = 0;
+  std::int64_t frames_without_time = 0;            // holes in the frames file (--bad-rows skip): not measured
   int width_px = 0, height_px = 0, bit_depth = 8;  // of the first frame
   double wall_s = 0.0;                             // decode + extraction
   double extract_s = 0.0;                          // time spent in `process` only
@@ -27,7 +28,8 @@ inline double SecondsSince(std::chrono::steady_clock::time_point t0) {
 }
 
 // Calls process(frame, k, t_s) for every frame k of `videos` (read in the order given) with
-// t_s = clock.TimeOf(k), and progress(k) every `progress_every` frames when set. Throws DataError
+// t_s = clock.TimeOf(k) (a frame without a time, a hole of a frames file read with --bad-rows skip, is
+// decoded but not processed; one warning counts them), and progress(k) every `progress_every` frames when set. Throws DataError
 // naming the frames file if it lists fewer times than the video has frames (FrameClock::TimeOf), and
 // naming the last video if that has fewer frames than the frames file lists (truncated).
 VideoRunStats ForEachFrame(const std::vector<std::string>& videos, const FrameClock& clock,

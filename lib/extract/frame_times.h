@@ -17,7 +17,8 @@ class FrameClock {
   // for a non-numeric or non-finite cell, time going backwards, or frame numbers
   // that do not count 0, 1, 2, ...; IoError if unreadable.
   // `bad_rows`: io::BadRows::kSkip drops rows without an integer frame and a time, or whose time
-  // goes backwards (the frame numbers of the rows kept must still count 0, 1, 2, ...).
+  // goes backwards; the frame numbers of the rows kept must still count 0, 1, 2, ..., except that a
+  // skipped row's frame number is a hole (no time): after n skipped rows the count may jump by n.
   static FrameClock FromCsv(const std::string& path, io::BadRows bad_rows = io::BadRows::kError);
   // t = t0 + frame / fps; throws UsageError unless fps > 0 and both finite.
   static FrameClock FromRate(double fps_hz, double t0_s);
@@ -26,13 +27,15 @@ class FrameClock {
   const std::string& path() const { return path_; }
   // Number of frame times in the file (from_file() only).
   std::int64_t size() const { return static_cast<std::int64_t>(t_s_.size()); }
-  // Time of a frame; throws DataError naming the file if it lists fewer frames.
+  // Time of a frame; NaN for a hole (a frame whose row was skipped); throws DataError naming the file
+  // if it lists fewer frames.
   double TimeOf(std::int64_t frame) const;
 
  private:
   bool from_file_ = false;
   std::string path_;
-  std::vector<double> t_s_;
+  std::vector<double> t_s_;        // NaN: a hole
+  std::int64_t trailing_holes_ = 0;  // rows skipped after the last one kept: frames that may follow
   double fps_hz_ = 0.0;
   double t0_s_ = 0.0;
 };

@@ -23,18 +23,27 @@ BoresightSource BoresightSource::FromLog(const TurretLog& log, track::InterpMeth
   BoresightSource b;
   b.fixed_ = false;
   b.source_ = log.source;
-  std::vector<double> t_az = log.t_s, t_el = log.t_s;
-  auto az = track::UnwrapAngles(log.az_rad);
-  auto el = log.el_rad;
-  b.duplicates_ = track::MergeDuplicateTimes(&t_az, &az);
-  track::MergeDuplicateTimes(&t_el, &el);
   track::InterpOptions o;
   o.method = method;
   o.max_gap_s = max_gap_s;
-  o.angle = true;
-  b.az_.emplace(t_az, az, o);
-  o.angle = false;
-  b.el_.emplace(t_el, el, o);
+  // One axis at a time, its copies of the log gone before the next (a long log's peak memory).
+  {
+    std::vector<double> t_az = log.t_s;
+    auto az = track::UnwrapAngles(log.az_rad);
+    b.duplicates_ = track::MergeDuplicateTimes(&t_az, &az);
+    o.angle = true;
+    b.az_.emplace(std::move(t_az), az, o);
+  }
+  {
+    std::vector<double> t_el = log.t_s;
+    std::vector<std::optional<double>> merged;  // only when the log repeats a time (the same times as az)
+    if (b.duplicates_ > 0) {
+      merged = log.el_rad;
+      track::MergeDuplicateTimes(&t_el, &merged);
+    }
+    o.angle = false;
+    b.el_.emplace(std::move(t_el), b.duplicates_ > 0 ? merged : log.el_rad, o);
+  }
   return b;
 }
 

@@ -60,6 +60,9 @@ TurretLog ReadTurretLog(const io::CsvTable& table) {
   const int c_az = table.RequireColumn("az_deg");
   const int c_el = table.RequireColumn("el_deg");
   table.RequireNonDecreasing(c_t);
+  log.t_s.reserve(table.rows());
+  log.az_rad.reserve(table.rows());
+  log.el_rad.reserve(table.rows());
   for (std::size_t r = 0; r < table.rows(); ++r) {
     log.t_s.push_back(table.Double(r, c_t));
     const auto az = table.OptionalDouble(r, c_az);

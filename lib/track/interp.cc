@@ -84,6 +84,8 @@ std::vector<std::optional<double>> UnwrapAngles(const std::vector<std::optional<
 
 std::size_t MergeDuplicateTimes(std::vector<double>* t_s, std::vector<std::optional<double>>* values) {
   if (t_s->size() != values->size()) throw std::invalid_argument("MergeDuplicateTimes: sizes differ");
+  // Nothing to merge (the usual log): no copy of a long log.
+  if (std::adjacent_find(t_s->begin(), t_s->end()) == t_s->end()) return 0;
   std::vector<double> t_out;
   std::vector<std::optional<double>> v_out;
   std::size_t i = 0;
@@ -124,7 +126,16 @@ TimeSeriesInterpolator::TimeSeriesInterpolator(std::vector<double> t_s,
                                   std::to_string(i));
     }
   }
-  const std::vector<std::optional<double>> v = opt_.angle ? UnwrapAngles(values) : values;
+  // Unwrapped angles are a new vector; other values are read where they are (no copy of a long log).
+  std::vector<std::optional<double>> unwrapped;
+  if (opt_.angle) unwrapped = UnwrapAngles(values);
+  const std::vector<std::optional<double>>& v = opt_.angle ? unwrapped : values;
+  std::size_t usable = 0;
+  for (const std::optional<double>& x : v) usable += x && std::isfinite(*x) ? 1 : 0;
+  t_.reserve(usable);
+  v_.reserve(usable);
+  link_.reserve(usable);
+  segment_of_.reserve(usable);
   bool unusable_between = false;
   for (std::size_t i = 0; i < t_s.size(); ++i) {
     if (!v[i] || !std::isfinite(*v[i])) {

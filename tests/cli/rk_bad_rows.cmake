@@ -9,6 +9,12 @@ rk_cli_script(rk_bad_rows/rk_bad_rows_locate REQUIRES locate_data)
 
 rk_cli_script(rk_bad_rows/rk_bad_rows_extract REQUIRES extract_inputs)
 
+# Issue 27 items 13 and 14 on rk-extract's frames.csv: under skip, a skipped row's frame number is a hole (not
+# measured, one warning) while a frame number wrong for another reason stays an error; pandas-style frame
+# numbers (+0, 1.0, 2e0), a UTF-8 byte-order mark and quoted fields (a newline inside one) read as the clean
+# file, with the file's own line numbers; UTF-16 is named as such (exit 3).
+rk_cli_script(rk_bad_rows/rk_bad_rows_frames_forms REQUIRES extract_inputs)
+
 rk_cli_script(rk_bad_rows/rk_bad_rows_extract_features REQUIRES sim_attitude_small)
 
 rk_cli_script(rk_bad_rows/rk_bad_rows_extract_silhouette REQUIRES sim_theodolite_trial)
