@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "geo/angles.h"
@@ -83,17 +84,27 @@ std::string BoresightSource::CoverageText() const {
   if (fixed_) return "is a fixed boresight";
   if (az_->usable_samples() == 0) return "has no usable sample";
   std::ostringstream s;
-  s.precision(9);
-  s << "covers t_s " << az_->first_time() << " .. " << az_->last_time();
+  s << std::fixed << std::setprecision(3) << "covers t_s " << az_->first_time() << " .. " << az_->last_time();
   return s.str();
 }
 
 void BoresightSource::ThrowNoFrameCovered(const std::string& kind, const std::string& frames_source, double t_first,
                                           double t_last, const std::string& gap_option) const {
+  // Fixed-point seconds: in the default notation a log stamped in seconds since 1970 read "1.7643e+09 ..
+  // 1.7643e+09" at both ends. When the log and the frames do not overlap at all, say by how much: the usual
+  // cause is two clocks (a log in UTC seconds, frames in seconds since the trial epoch).
   std::ostringstream s;
-  s.precision(9);
-  s << kind << " log " << CoverageText() << " but no frame time of " << frames_source << " (t_s " << t_first << " .. "
-    << t_last << ") is covered within the " << gap_option << " limit";
+  s << std::fixed << std::setprecision(3) << kind << " log " << CoverageText() << " but no frame time of "
+    << frames_source << " (t_s " << t_first << " .. " << t_last << ") is covered within the " << gap_option
+    << " limit";
+  if (!fixed_ && az_->usable_samples() > 0) {
+    if (az_->first_time() > t_last) {
+      s << "; the log starts " << az_->first_time() - t_last << " s after the last frame";
+    } else if (az_->last_time() < t_first) {
+      s << "; the log ends " << t_first - az_->last_time() << " s before the first frame";
+    }
+    if (az_->first_time() > t_last || az_->last_time() < t_first) s << " (are both t_s on the trial's clock?)";
+  }
   throw DataError(source_, 0, 0, s.str());
 }
 
