@@ -25,27 +25,26 @@ fill() {
   dd if=/dev/zero of="$d/mnt/fill" bs=4096 status=none 2> /dev/null || true
   rm -f "$d/mnt/pad"
 }
-# Item 6: the disk is full from the start. The run fails with exit 4, and last-run.json no longer claims
-# the earlier "done" (cut down in place to a 'failed' stub, or removed).
+# full_run ERRFILE: rk-run --force on the full disk must exit 4, and last-run.json (if still there) must say
+# failed, never an earlier "done".
+full_run() {
+  set +e; rk-run "$t" --no-plots --force 2> "$1"; rc=$?; set -e
+  cat "$1"
+  [ $rc = 4 ] || { echo "FAIL: exit $rc, expected 4"; exit 1; }
+  if [ -e "$t/last-run.json" ]; then
+    r=$(json "$t/last-run.json" 'd["result"]')
+    [ "$r" = failed ] || { echo "FAIL: last-run.json says '$r' after a failed run"; exit 1; }
+  fi
+}
+# Item 6: the disk is full from the start: last-run.json is cut down in place to a 'failed' stub (or removed).
 fill 0
-set +e; rk-run "$t" --no-plots --force 2> "$d/full.err"; rc=$?; set -e
-cat "$d/full.err"
-[ $rc = 4 ] || { echo "FAIL: exit $rc, expected 4"; exit 1; }
+full_run "$d/full.err"
 grep -q 'last-run.json' "$d/full.err" || { echo "FAIL: stderr does not say last-run.json was not written"; exit 1; }
-if [ -e "$t/last-run.json" ]; then
-  r=$(json "$t/last-run.json" 'd["result"]')
-  [ "$r" = failed ] || { echo "FAIL: last-run.json says '$r' after a failed run"; exit 1; }
-fi
 # Item 11: room for rk-run's own small files but not for a step's product. The error names the tool's own
 # last error line (No space left on device), although its log could not be written.
 fill 3
-set +e; rk-run "$t" --no-plots --force 2> "$d/step.err"; rc=$?; set -e
-cat "$d/step.err"
-[ $rc = 4 ] || { echo "FAIL: exit $rc, expected 4"; exit 1; }
+full_run "$d/step.err"
 grep -q 'rk-[a-z]*: error: .*No space left on device' "$d/step.err" || { echo "FAIL: the tool's own error line is not reported"; exit 1; }
-if [ -e "$t/last-run.json" ]; then
-  [ "$(json "$t/last-run.json" 'd["result"]')" = failed ] || { echo "FAIL: last-run.json does not say failed"; exit 1; }
-fi
 # With room again, the next run finds the out/ that the failed runs left as it was.
 rm -f "$d/mnt/fill"
 rk-run "$t" --no-plots -q
