@@ -73,12 +73,13 @@ int main(int argc, char** argv) {
     const rk::camera::CameraModel camera = rk::camera::LoadCameraModel(camera_path);
     opt.camera_source = camera_path;
     if (!pointing_path.empty()) opt.pointing = rk::camera::LoadPointingModel(pointing_path);
-    const rk::locate::TurretLog turret = rk::locate::ReadTurretLog(rk::io::CsvTable::Read(turret_path, {bad_rows, rk::locate::TurretLogRowRule()}));
+    rk::locate::TurretLog turret = rk::locate::ReadTurretLog(rk::io::CsvTable::Read(turret_path, {bad_rows, rk::locate::TurretLogRowRule()}));
+    const std::size_t turret_empty_samples = turret.empty_samples;
     std::optional<rk::locate::RangeLog> range;
     if (!range_path.empty()) range = rk::locate::ReadRangeLog(rk::io::CsvTable::Read(range_path, {bad_rows, rk::locate::RangeLogRowRule()}));
 
     const rk::locate::LocateResult result =
-        rk::locate::Locate(track, camera, turret, range ? &*range : nullptr, opt);
+        rk::locate::Locate(track, camera, std::move(turret), range ? &*range : nullptr, opt);  // a long log: no copy
     if (result.rows_turret_not_covered > 0) {
       rk::cli::Warn(kTool, common,
                     std::to_string(result.rows_turret_not_covered) + " of " +
@@ -125,7 +126,7 @@ int main(int argc, char** argv) {
                           {"rows_turret_not_covered", result.rows_turret_not_covered},
                           {"measured_rows_turret_not_covered", result.measured_rows_turret_not_covered},
                           {"turret_duplicate_times", result.turret_duplicate_times},
-                          {"turret_empty_samples", turret.empty_samples},
+                          {"turret_empty_samples", turret_empty_samples},
                           {"range_duplicate_times", result.range_duplicate_times},
                           {"range_device_errors", result.range_device_errors}};
       report["range_coverage"] = std::isfinite(coverage) ? rk::io::Json(coverage) : rk::io::Json(nullptr);

@@ -19,7 +19,7 @@ BoresightSource BoresightSource::Fixed(double az_rad, double el_rad) {
   return b;
 }
 
-BoresightSource BoresightSource::FromLog(const TurretLog& log, track::InterpMethod method, double max_gap_s) {
+BoresightSource BoresightSource::FromLog(TurretLog log, track::InterpMethod method, double max_gap_s) {
   if (!(max_gap_s > 0.0)) throw UsageError("--turret-max-gap must be > 0 s");
   BoresightSource b;
   b.fixed_ = false;
@@ -27,24 +27,15 @@ BoresightSource BoresightSource::FromLog(const TurretLog& log, track::InterpMeth
   track::InterpOptions o;
   o.method = method;
   o.max_gap_s = max_gap_s;
-  // One axis at a time, its copies of the log gone before the next (a long log's peak memory).
-  {
-    std::vector<double> t_az = log.t_s;
-    auto az = track::UnwrapAngles(log.az_rad);
-    b.duplicates_ = track::MergeDuplicateTimes(&t_az, &az);
-    o.angle = true;
-    b.az_.emplace(std::move(t_az), az, o);
-  }
-  {
-    std::vector<double> t_el = log.t_s;
-    std::vector<std::optional<double>> merged;  // only when the log repeats a time (the same times as az)
-    if (b.duplicates_ > 0) {
-      merged = log.el_rad;
-      track::MergeDuplicateTimes(&t_el, &merged);
-    }
-    o.angle = false;
-    b.el_.emplace(std::move(t_el), b.duplicates_ > 0 ? merged : log.el_rad, o);
-  }
+  // In place: azimuth unwrapped (so that merged repeated times average across north), repeated times merged
+  // in both columns at once, then the columns handed to the interpolators, which share the times.
+  track::UnwrapAnglesInPlace(&log.az_rad);
+  b.duplicates_ = track::MergeDuplicateTimes(&log.t_s, {&log.az_rad, &log.el_rad});
+  const auto times = std::make_shared<const std::vector<double>>(std::move(log.t_s));
+  o.angle = true;
+  b.az_.emplace(times, std::move(log.az_rad), o);
+  o.angle = false;
+  b.el_.emplace(times, std::move(log.el_rad), o);
   return b;
 }
 

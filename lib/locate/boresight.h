@@ -23,8 +23,9 @@ namespace rk::locate {
 class BoresightSource {
  public:
   static BoresightSource Fixed(double az_rad, double el_rad);
-  // Throws UsageError if max_gap_s is not > 0.
-  static BoresightSource FromLog(const TurretLog& log, track::InterpMethod method, double max_gap_s);
+  // Takes the log's columns over (pass an rvalue for a long log: no copy; the times are shared by both
+  // axes when neither has an empty sample). Throws UsageError if max_gap_s is not > 0.
+  static BoresightSource FromLog(TurretLog log, track::InterpMethod method, double max_gap_s);
 
   // Boresight at t, or nullopt (with the reason in *status when given).
   std::optional<geo::AzEl> At(double t_s, track::InterpStatus* status = nullptr) const;

@@ -1,6 +1,8 @@
 // Input readers of rk-locate; formats in inputs.h.
 #include "locate/inputs.h"
 
+#include <cmath>
+
 #include "geo/angles.h"
 #include "io/error.h"
 
@@ -70,8 +72,8 @@ TurretLog ReadTurretLog(const io::CsvTable& table) {
     if (el && (*el < -90.0 || *el > 90.0))
       throw table.CellError(r, c_el, "elevation outside [-90, 90] degrees");
     if (!az || !el) ++log.empty_samples;
-    log.az_rad.push_back(az ? std::optional<double>(geo::DegToRad(*az)) : std::nullopt);
-    log.el_rad.push_back(el ? std::optional<double>(geo::DegToRad(*el)) : std::nullopt);
+    log.az_rad.push_back(az ? geo::DegToRad(*az) : std::nan(""));
+    log.el_rad.push_back(el ? geo::DegToRad(*el) : std::nan(""));
   }
   return log;
 }

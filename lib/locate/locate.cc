@@ -101,10 +101,10 @@ double Rate(double t_s, const At& at) {
 // The stages of Locate (locate.h steps 0–6), one track row at a time.
 class LocateRun {
  public:
-  LocateRun(const Track& track, const camera::CameraModel& camera, const TurretLog& turret, const RangeLog* range,
+  LocateRun(const Track& track, const camera::CameraModel& camera, TurretLog turret, const RangeLog* range,
             const LocateOptions& options)
       : camera_(camera), options_(options),
-        boresight_(BoresightSource::FromLog(turret, options.turret_method, options.turret_max_gap_s)) {
+        boresight_(BoresightSource::FromLog(std::move(turret), options.turret_method, options.turret_max_gap_s)) {
     result_.has_frame = track.has_frame;
     result_.has_station = options.station.has_value();
     result_.time_offset_s = camera.time_offset_s;
@@ -231,11 +231,11 @@ class LocateRun {
 
 }  // namespace
 
-LocateResult Locate(const Track& track, const camera::CameraModel& camera, const TurretLog& turret,
+LocateResult Locate(const Track& track, const camera::CameraModel& camera, TurretLog turret,
                     const RangeLog* range, const LocateOptions& options) {
   std::string why;
   if (!options.Check(&why)) throw UsageError(why);
-  LocateRun run(track, camera, turret, range, options);
+  LocateRun run(track, camera, std::move(turret), range, options);
   for (const TrackRow& in : track.rows) run.Row(in);
   return run.Finish(track);
 }

@@ -117,7 +117,8 @@ struct LocateResult {
 
 // Throws rk::Error: DataError naming the turret log if it covers no frame
 // time at all, or the camera for a malformed calibration.sigma; UsageError if options fail Check().
-LocateResult Locate(const Track& track, const camera::CameraModel& camera, const TurretLog& turret,
+// The turret log's columns are taken over (std::move a long log: BoresightSource::FromLog).
+LocateResult Locate(const Track& track, const camera::CameraModel& camera, TurretLog turret,
                     const RangeLog* range, const LocateOptions& options);
 
 // Located-target CSV (SPEC.md §2.1) with extra columns:

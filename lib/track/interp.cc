@@ -69,106 +69,170 @@ bool InterpOptions::Check(std::string* why) const {
   return true;
 }
 
-std::vector<std::optional<double>> UnwrapAngles(const std::vector<std::optional<double>>& values_rad) {
-  std::vector<std::optional<double>> out(values_rad.size());
-  std::optional<double> prev;
-  for (std::size_t i = 0; i < values_rad.size(); ++i) {
-    if (!values_rad[i] || !std::isfinite(*values_rad[i])) continue;
-    double v = *values_rad[i];
-    if (prev) v = *prev + geo::WrapPi(v - *prev);
-    out[i] = v;
-    prev = v;
+namespace {
+
+std::vector<double> NanForMissing(const std::vector<std::optional<double>>& values) {
+  std::vector<double> out(values.size(), std::nan(""));
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (values[i]) out[i] = *values[i];
   }
   return out;
 }
 
-std::size_t MergeDuplicateTimes(std::vector<double>* t_s, std::vector<std::optional<double>>* values) {
-  if (t_s->size() != values->size()) throw std::invalid_argument("MergeDuplicateTimes: sizes differ");
-  // Nothing to merge (the usual log): no copy of a long log.
+std::vector<std::optional<double>> MissingForNan(const std::vector<double>& values) {
+  std::vector<std::optional<double>> out(values.size());
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (std::isfinite(values[i])) out[i] = values[i];
+  }
+  return out;
+}
+
+}  // namespace
+
+void UnwrapAnglesInPlace(std::vector<double>* values_rad) {
+  std::optional<double> prev;
+  for (double& x : *values_rad) {
+    if (!std::isfinite(x)) continue;
+    if (prev) x = *prev + geo::WrapPi(x - *prev);
+    prev = x;
+  }
+}
+
+std::vector<std::optional<double>> UnwrapAngles(const std::vector<std::optional<double>>& values_rad) {
+  std::vector<double> v = NanForMissing(values_rad);
+  UnwrapAnglesInPlace(&v);
+  return MissingForNan(v);
+}
+
+std::size_t MergeDuplicateTimes(std::vector<double>* t_s, const std::vector<std::vector<double>*>& columns) {
+  for (const std::vector<double>* c : columns) {
+    if (c->size() != t_s->size()) throw std::invalid_argument("MergeDuplicateTimes: sizes differ");
+  }
+  // Nothing to merge (the usual log): nothing moved.
   if (std::adjacent_find(t_s->begin(), t_s->end()) == t_s->end()) return 0;
-  std::vector<double> t_out;
-  std::vector<std::optional<double>> v_out;
-  std::size_t i = 0;
-  while (i < t_s->size()) {
+  std::vector<double>& t = *t_s;
+  std::size_t out = 0, i = 0;
+  while (i < t.size()) {
     std::size_t j = i;
-    double sum = 0.0;
-    int n = 0;
-    while (j < t_s->size() && (*t_s)[j] == (*t_s)[i]) {
-      if ((*values)[j] && std::isfinite(*(*values)[j])) {
-        sum += *(*values)[j];
-        ++n;
+    while (j < t.size() && t[j] == t[i]) ++j;
+    for (std::vector<double>* c : columns) {
+      double sum = 0.0;
+      int n = 0;
+      for (std::size_t k = i; k < j; ++k) {
+        if (std::isfinite((*c)[k])) {
+          sum += (*c)[k];
+          ++n;
+        }
       }
-      ++j;
+      (*c)[out] = n > 0 ? sum / n : std::nan("");
     }
-    t_out.push_back((*t_s)[i]);
-    v_out.push_back(n > 0 ? std::optional<double>(sum / n) : std::nullopt);
+    t[out] = t[i];
+    ++out;
     i = j;
   }
-  std::size_t removed = t_s->size() - t_out.size();
-  *t_s = std::move(t_out);
-  *values = std::move(v_out);
+  const std::size_t removed = t.size() - out;
+  t.resize(out);
+  t.shrink_to_fit();
+  for (std::vector<double>* c : columns) {
+    c->resize(out);
+    c->shrink_to_fit();
+  }
+  return removed;
+}
+
+std::size_t MergeDuplicateTimes(std::vector<double>* t_s, std::vector<std::optional<double>>* values) {
+  if (t_s->size() != values->size()) throw std::invalid_argument("MergeDuplicateTimes: sizes differ");
+  if (std::adjacent_find(t_s->begin(), t_s->end()) == t_s->end()) return 0;
+  std::vector<double> v = NanForMissing(*values);
+  const std::size_t removed = MergeDuplicateTimes(t_s, std::vector<std::vector<double>*>{&v});
+  *values = MissingForNan(v);
   return removed;
 }
 
 TimeSeriesInterpolator::TimeSeriesInterpolator(std::vector<double> t_s,
                                                const std::vector<std::optional<double>>& values,
                                                const InterpOptions& options)
-    : opt_(options), n_samples_(t_s.size()) {
+    : TimeSeriesInterpolator(std::make_shared<const std::vector<double>>(std::move(t_s)),
+                             NanForMissing(values),  // a length that differs is refused below
+                             options) {}
+
+TimeSeriesInterpolator::TimeSeriesInterpolator(std::shared_ptr<const std::vector<double>> t_s,
+                                               std::vector<double> values, const InterpOptions& options)
+    : opt_(options), n_samples_(t_s->size()) {
   std::string why;
   if (!opt_.Check(&why)) throw std::invalid_argument("interpolation options: " + why);
-  if (values.size() != t_s.size())
-    throw std::invalid_argument("interpolation: times and values differ in length");
-  for (std::size_t i = 0; i < t_s.size(); ++i) {
-    if (!std::isfinite(t_s[i]))
-      throw std::invalid_argument("interpolation: time " + std::to_string(i) + " not finite");
-    if (i > 0 && !(t_s[i] > t_s[i - 1])) {
-      throw std::invalid_argument("interpolation: times not strictly increasing at sample " +
-                                  std::to_string(i));
+  const std::vector<double>& t = *t_s;
+  if (values.size() != t.size()) throw std::invalid_argument("interpolation: times and values differ in length");
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    if (!std::isfinite(t[i])) throw std::invalid_argument("interpolation: time " + std::to_string(i) + " not finite");
+    if (i > 0 && !(t[i] > t[i - 1])) {
+      throw std::invalid_argument("interpolation: times not strictly increasing at sample " + std::to_string(i));
     }
   }
-  // Unwrapped angles are a new vector; other values are read where they are (no copy of a long log).
-  std::vector<std::optional<double>> unwrapped;
-  if (opt_.angle) unwrapped = UnwrapAngles(values);
-  const std::vector<std::optional<double>>& v = opt_.angle ? unwrapped : values;
+  if (opt_.angle) UnwrapAnglesInPlace(&values);
   std::size_t usable = 0;
-  for (const std::optional<double>& x : v) usable += x && std::isfinite(*x) ? 1 : 0;
-  t_.reserve(usable);
-  v_.reserve(usable);
-  link_.reserve(usable);
-  segment_of_.reserve(usable);
+  for (const double x : values) usable += std::isfinite(x) ? 1 : 0;
+  if (usable == values.size()) {
+    times_ = std::move(t_s);  // every sample usable: the times as they are, shared
+    v_ = std::move(values);
+  } else {
+    auto kept = std::make_shared<std::vector<double>>();
+    kept->reserve(usable);
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      if (!std::isfinite(values[i])) continue;
+      kept->push_back(t[i]);
+      values[n++] = values[i];
+    }
+    values.resize(n);
+    values.shrink_to_fit();
+    v_ = std::move(values);
+    times_ = std::move(kept);
+  }
+  // Segments, from the original sequence: a break where an unusable sample lies between two usable ones,
+  // or where they are further apart than max_gap_s.
+  const std::vector<double>& tu = *times_;
+  if (tu.empty()) return;
+  segment_begin_.push_back(0);
   bool unusable_between = false;
-  for (std::size_t i = 0; i < t_s.size(); ++i) {
-    if (!v[i] || !std::isfinite(*v[i])) {
+  std::size_t k = 0;  // index of the next usable sample
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    const bool is_usable = usable == t.size() || (k < tu.size() && tu[k] == t[i] && std::isfinite(v_[k]));
+    if (!is_usable) {
       unusable_between = true;
       continue;
     }
-    if (!t_.empty()) {
+    if (k > 0) {
       InterpStatus link = InterpStatus::kOk;
       if (unusable_between) {
         link = InterpStatus::kUnusable;
-      } else if (t_s[i] - t_.back() > opt_.max_gap_s * (1.0 + kGapSlack)) {
+      } else if (tu[k] - tu[k - 1] > opt_.max_gap_s * (1.0 + kGapSlack)) {
         link = InterpStatus::kGap;
       }
-      link_.push_back(link);
       if (link != InterpStatus::kOk) {
-        segment_end_.push_back(t_.size() - 1);
-        segment_begin_.push_back(t_.size());
+        segment_end_.push_back(k - 1);
+        segment_break_.push_back(link);
+        segment_begin_.push_back(k);
       }
-    } else {
-      segment_begin_.push_back(0);
     }
-    segment_of_.push_back(segment_begin_.size() - 1);
-    t_.push_back(t_s[i]);
-    v_.push_back(*v[i]);
     unusable_between = false;
+    ++k;
   }
-  if (!t_.empty()) segment_end_.push_back(t_.size() - 1);
+  segment_end_.push_back(tu.size() - 1);
+  segment_break_.push_back(InterpStatus::kOutside);  // after the last segment: nothing follows
 }
 
-double TimeSeriesInterpolator::first_time() const { return t_.empty() ? std::nan("") : t_.front(); }
-double TimeSeriesInterpolator::last_time() const { return t_.empty() ? std::nan("") : t_.back(); }
+std::size_t TimeSeriesInterpolator::HeldBytes() const {
+  return (times_ ? times_->capacity() * sizeof(double) : 0) + v_.capacity() * sizeof(double) +
+         (segment_begin_.capacity() + segment_end_.capacity()) * sizeof(std::size_t) + segment_break_.capacity();
+}
+
+double TimeSeriesInterpolator::first_time() const { return v_.empty() ? std::nan("") : times_->front(); }
+double TimeSeriesInterpolator::last_time() const { return v_.empty() ? std::nan("") : times_->back(); }
 
 std::optional<std::pair<double, double>> TimeSeriesInterpolator::Bracket(double t) const {
+  if (v_.empty()) return std::nullopt;
+  const std::vector<double>& t_ = *times_;
   if (t_.size() < 2 || !std::isfinite(t) || t < t_.front() || t > t_.back()) return std::nullopt;
   std::size_t k = static_cast<std::size_t>(std::upper_bound(t_.begin(), t_.end(), t) - t_.begin()) - 1;
   if (k + 1 >= t_.size()) k = t_.size() - 2;
@@ -177,10 +241,13 @@ std::optional<std::pair<double, double>> TimeSeriesInterpolator::Bracket(double 
 
 InterpValue TimeSeriesInterpolator::At(double t) const {
   InterpValue out;
+  if (v_.empty()) return out;  // kOutside
+  const std::vector<double>& t_ = *times_;
   if (t_.empty() || !std::isfinite(t) || t < t_.front() || t > t_.back()) return out;  // kOutside
   // k: last usable sample with t_k <= t.
   std::size_t k = static_cast<std::size_t>(std::upper_bound(t_.begin(), t_.end(), t) - t_.begin()) - 1;
-  const std::size_t seg = segment_of_[k];
+  const std::size_t seg =
+      static_cast<std::size_t>(std::upper_bound(segment_begin_.begin(), segment_begin_.end(), k) - segment_begin_.begin()) - 1;
   const std::size_t s0 = segment_begin_[seg], s1 = segment_end_[seg];
   if (t == t_[k]) {
     if (s0 == s1) {  // an isolated sample answers only its own time
@@ -189,8 +256,8 @@ InterpValue TimeSeriesInterpolator::At(double t) const {
       return out;
     }
     if (k == s1) k = s1 - 1;  // evaluate on the segment's last interval
-  } else if (link_[k] != InterpStatus::kOk) {
-    out.status = link_[k];
+  } else if (k == s1) {  // t lies between this segment's last sample and the next segment
+    out.status = segment_break_[seg];
     return out;
   }
   out.status = InterpStatus::kOk;
@@ -212,6 +279,7 @@ InterpValue TimeSeriesInterpolator::At(double t) const {
 }
 
 double TimeSeriesInterpolator::Linear(std::size_t k, double t) const {
+  const std::vector<double>& t_ = *times_;
   const double u = (t - t_[k]) / (t_[k + 1] - t_[k]);
   return v_[k] + (v_[k + 1] - v_[k]) * u;
 }
@@ -233,6 +301,7 @@ static void ClampWindow(std::ptrdiff_t want_lo, std::ptrdiff_t want_hi, std::siz
 }
 
 double TimeSeriesInterpolator::Lagrange(std::size_t s0, std::size_t s1, std::size_t k, double t) const {
+  const std::vector<double>& t_ = *times_;
   std::size_t lo = 0, hi = 0;
   ClampWindow(static_cast<std::ptrdiff_t>(k) - 1, static_cast<std::ptrdiff_t>(k) + 2, s0, s1, &lo, &hi);
   double sum = 0.0;
@@ -248,6 +317,7 @@ double TimeSeriesInterpolator::Lagrange(std::size_t s0, std::size_t s1, std::siz
 
 double TimeSeriesInterpolator::LocalPolynomial(std::size_t s0, std::size_t s1, std::size_t k, double t,
                                                int max_degree) const {
+  const std::vector<double>& t_ = *times_;
   std::size_t lo = 0, hi = 0;
   const auto w = static_cast<std::ptrdiff_t>(opt_.window);
   ClampWindow(static_cast<std::ptrdiff_t>(k) + 1 - w, static_cast<std::ptrdiff_t>(k) + w, s0, s1, &lo, &hi);

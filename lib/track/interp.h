@@ -36,7 +36,9 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -65,7 +67,7 @@ struct InterpOptions {
   bool Check(std::string* why) const;
 };
 
-enum class InterpStatus {
+enum class InterpStatus : std::uint8_t {
   kOk,        // value available
   kOutside,   // t before the first or after the last usable sample
   kGap,       // neighbouring usable samples further apart than max_gap_s
@@ -86,6 +88,12 @@ class TimeSeriesInterpolator {
   // nullopt (or a non-finite value) = unusable sample.
   TimeSeriesInterpolator(std::vector<double> t_s, const std::vector<std::optional<double>>& values,
                          const InterpOptions& options);
+  // The same with NaN (or any non-finite value) for an unusable sample, taking the values over. The times
+  // are shared, not copied, when every value is usable: two axes of one long log (a turret's azimuth and
+  // elevation) then hold one vector of times between them (memory: 8 bytes a sample for the times plus 8
+  // a sample for each axis's values).
+  TimeSeriesInterpolator(std::shared_ptr<const std::vector<double>> t_s, std::vector<double> values,
+                         const InterpOptions& options);
 
   InterpValue At(double t_s) const;
   // The usable samples' times t_k <= t_s <= t_k+1 around t_s (the interval At interpolates on), or nullopt
@@ -93,12 +101,14 @@ class TimeSeriesInterpolator {
   std::optional<std::pair<double, double>> Bracket(double t_s) const;
 
   std::size_t samples() const { return n_samples_; }
-  std::size_t usable_samples() const { return t_.size(); }
+  std::size_t usable_samples() const { return v_.size(); }
   std::size_t segments() const { return segment_begin_.size(); }
   // Time span of the usable samples (NaN when there are none).
   double first_time() const;
   double last_time() const;
   const InterpOptions& options() const { return opt_; }
+  // Bytes held for the samples (times counted in full even when shared).
+  std::size_t HeldBytes() const;
 
  private:
   // Interpolates inside segment [s0, s1] (indices into t_/v_), t in [t_[k], t_[k+1]].
@@ -108,21 +118,28 @@ class TimeSeriesInterpolator {
 
   InterpOptions opt_;
   std::size_t n_samples_ = 0;
-  std::vector<double> t_, v_;                             // usable samples only
-  std::vector<InterpStatus> link_;                        // link_[k]: status of interval (t_[k], t_[k+1])
-  std::vector<std::size_t> segment_of_;                   // segment index of each usable sample
-  std::vector<std::size_t> segment_begin_, segment_end_;  // inclusive index range per segment
+  std::shared_ptr<const std::vector<double>> times_;  // times of the usable samples (maybe shared)
+  std::vector<double> v_;                             // values of the usable samples
+  // Segments: inclusive index ranges of usable samples, and why segment s ends (kGap or kUnusable: the
+  // status of the interval from its last sample to the next segment's first).
+  std::vector<std::size_t> segment_begin_, segment_end_;
+  std::vector<InterpStatus> segment_break_;
 };
 
 // Unwraps an angle sequence (radians) over its usable values: each usable
 // value is shifted by a multiple of 2π so that it differs from the previous
 // usable value by at most π. Missing values stay missing.
 std::vector<std::optional<double>> UnwrapAngles(const std::vector<std::optional<double>>& values_rad);
+// The same in place, NaN (any non-finite value) = missing.
+void UnwrapAnglesInPlace(std::vector<double>* values_rad);
 
 // Merges samples with identical times (a log may repeat a time stamp): the
 // usable values at one time are averaged (angles: on the unwrapped sequence;
 // call UnwrapAngles first), a time with no usable value stays unusable.
 // t_s must be non-decreasing. Returns the number of samples removed.
 std::size_t MergeDuplicateTimes(std::vector<double>* t_s, std::vector<std::optional<double>>* values);
+// The same for several value columns of one log at once, in place (no copy of a long log), NaN (any
+// non-finite value) = unusable; each column's usable values at a time are averaged, NaN if there are none.
+std::size_t MergeDuplicateTimes(std::vector<double>* t_s, const std::vector<std::vector<double>*>& columns);
 
 }  // namespace rk::track

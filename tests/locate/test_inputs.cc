@@ -61,7 +61,7 @@ TEST(LocateInputs, TurretLogElevationRange) {
   const auto t = io::CsvTable::Parse("t_s,az_deg,el_deg\n0,10,95\n", "tu.csv");
   EXPECT_THROW(ReadTurretLog(t), Error);
   const auto ok = io::CsvTable::Parse("t_s,az_deg,el_deg\n0,370,45\n", "tu.csv");
-  EXPECT_NEAR(*ReadTurretLog(ok).az_rad[0], geo::DegToRad(370.0), 1e-15);
+  EXPECT_NEAR(ReadTurretLog(ok).az_rad[0], geo::DegToRad(370.0), 1e-15);
 }
 
 }  // namespace

@@ -263,7 +263,7 @@ TEST(LocateTurret, PartialCoverageMarksMeasuredRowsInvalid) {
   }
   // A turret gap longer than the limit makes the frames inside it invalid.
   TurretLog holed = s.turret;
-  for (std::size_t i = 100; i < 110; ++i) holed.az_rad[i] = std::nullopt;
+  for (std::size_t i = 100; i < 110; ++i) holed.az_rad[i] = std::nan("");  // empty samples
   const LocateResult rh = Locate(s.track, cam, holed, nullptr, LocateOptions{});
   EXPECT_EQ(rh.rows[41].status, TrackStatus::kInvalid);  // t = 2.05 s
   EXPECT_EQ(rh.rows[30].status, TrackStatus::kOk);

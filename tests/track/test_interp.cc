@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <memory>
 #include <stdexcept>
 
 #include "geo/angles.h"
@@ -143,7 +144,7 @@ TEST(Interp, NoExtrapolation) {
     EXPECT_TRUE(interp.At(3.0).ok());
     EXPECT_NEAR(interp.At(3.0).value, 3.0, kExactTolerance);
   }
-  const TimeSeriesInterpolator empty({}, {}, InterpOptions{});
+  const TimeSeriesInterpolator empty(std::vector<double>{}, std::vector<std::optional<double>>{}, InterpOptions{});
   EXPECT_EQ(empty.At(0.0).status, InterpStatus::kOutside);
 }
 
@@ -174,6 +175,78 @@ TEST(Interp, MergeDuplicateTimes) {
   ASSERT_EQ(t.size(), 3u);
   EXPECT_EQ(*v[1], 3.0);
   EXPECT_FALSE(v[2].has_value());
+}
+
+TEST(Interp, MergeDuplicateTimesOfSeveralColumnsInPlace) {
+  std::vector<double> t = {0.0, 1.0, 1.0, 2.0, 2.0, 2.0, 3.0};
+  std::vector<double> a = {1.0, 2.0, 4.0, NAN, NAN, NAN, 7.0};
+  std::vector<double> b = {5.0, NAN, 6.0, 1.0, 2.0, 6.0, NAN};
+  EXPECT_EQ(MergeDuplicateTimes(&t, {&a, &b}), 3u);
+  EXPECT_EQ(t, (std::vector<double>{0.0, 1.0, 2.0, 3.0}));
+  ASSERT_EQ(a.size(), 4u);
+  ASSERT_EQ(b.size(), 4u);
+  EXPECT_EQ(a[1], 3.0);
+  EXPECT_TRUE(std::isnan(a[2]));  // no usable value at t = 2
+  EXPECT_EQ(a[3], 7.0);
+  EXPECT_EQ(b[1], 6.0);           // the one usable value at t = 1
+  EXPECT_EQ(b[2], 3.0);
+  EXPECT_TRUE(std::isnan(b[3]));
+  std::vector<double> short_col = {1.0};
+  EXPECT_THROW(MergeDuplicateTimes(&t, {&short_col}), std::invalid_argument);
+}
+
+// The NaN form (a long log's columns taken over) answers exactly as the optional form, for every method,
+// status and query, across an unusable sample, a gap, an isolated sample and a wrap through north.
+TEST(Interp, NanFormAnswersAsOptionalForm) {
+  std::vector<double> t;
+  std::vector<std::optional<double>> v;
+  for (int i = 0; i < 60; ++i) {
+    const double ti = 0.1 * i + (i > 30 ? 0.7 : 0.0) + 0.003 * std::sin(i);  // a 0.8 s hole after sample 30
+    t.push_back(ti);
+    v.push_back(geo::WrapTwoPi(6.2 + 0.05 * i));  // through 0/2π
+  }
+  v[12] = std::nullopt;
+  v[44] = std::nullopt;
+  v[46] = std::nullopt;  // sample 45 is isolated
+  std::vector<double> nan_v;
+  for (const auto& x : v) nan_v.push_back(x ? *x : NAN);
+  for (InterpMethod m : {InterpMethod::kLinear, InterpMethod::kCubic, InterpMethod::kLocalQuadratic,
+                         InterpMethod::kLocalCubic}) {
+    for (bool angle : {false, true}) {
+      InterpOptions opt;
+      opt.method = m;
+      opt.angle = angle;
+      opt.max_gap_s = 0.5;
+      const TimeSeriesInterpolator a(t, v, opt);
+      const TimeSeriesInterpolator b(std::make_shared<const std::vector<double>>(t), nan_v, opt);
+      EXPECT_EQ(a.usable_samples(), b.usable_samples());
+      EXPECT_EQ(a.segments(), b.segments());
+      ASSERT_EQ(a.segments(), 5u);  // 0-11, 13-30, 31-43 (the hole), 45 alone, 47-59
+      for (double q = -0.05; q < 7.0; q += 0.00731) {
+        const InterpValue x = a.At(q), y = b.At(q);
+        ASSERT_EQ(x.status, y.status) << q;
+        if (x.ok()) {
+          EXPECT_EQ(x.value, y.value) << InterpMethodName(m) << " t=" << q;
+        }
+      }
+      for (double q : t) {
+        EXPECT_EQ(a.At(q).status, b.At(q).status) << q;
+        EXPECT_EQ(a.At(q).value, b.At(q).value) << q;
+      }
+    }
+  }
+}
+
+TEST(Interp, AxesOfOneLogShareTheirTimes) {
+  const auto times = std::make_shared<const std::vector<double>>(std::vector<double>{0.0, 1.0, 2.0, 3.0});
+  const TimeSeriesInterpolator az(times, {0.1, 0.2, 0.3, 0.4}, InterpOptions{});
+  const TimeSeriesInterpolator el(times, {1.0, 2.0, 3.0, 4.0}, InterpOptions{});
+  EXPECT_EQ(times.use_count(), 3);  // no copy of the times while every value is usable
+  const TimeSeriesInterpolator holed(times, {1.0, NAN, 3.0, 4.0}, InterpOptions{});
+  EXPECT_EQ(times.use_count(), 3);  // an axis with an empty sample keeps its own usable times
+  EXPECT_EQ(holed.usable_samples(), 3u);
+  EXPECT_EQ(holed.At(0.5).status, InterpStatus::kUnusable);
+  EXPECT_EQ(holed.At(2.5).value, 3.5);
 }
 
 TEST(Interp, ParseMethodNames) {
