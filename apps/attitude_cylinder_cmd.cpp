@@ -49,7 +49,7 @@ int RunCylinderCmd(const CylinderArgs& a, const Context& ctx) {
   const target::CylinderShape target = target::LoadCylinderShape(a.target_path);
   const attitude::CylinderPointsFile points = attitude::ReadCylinderPoints(
       io::CsvTable::Read(a.points_path, {a.bad_rows, attitude::CylinderPointsRowRule()}));
-  const locate::TurretLog theo = locate::ReadTurretLog(io::CsvTable::Read(a.theodolite_path, {a.bad_rows, locate::TurretLogRowRule()}));
+  locate::TurretLog theo = locate::ReadTurretLog(io::CsvTable::Read(a.theodolite_path, {a.bad_rows, locate::TurretLogRowRule()}));
   // Frames for the image fit, read forward in decode order (rows come in frame order).
   std::unique_ptr<video::FrameSource> source;
   cv::Mat image;
@@ -81,7 +81,7 @@ int RunCylinderCmd(const CylinderArgs& a, const Context& ctx) {
   };
   if (!a.videos.empty()) source = std::make_unique<video::FrameSource>(a.videos);
   const attitude::CylinderRunResult res =
-      attitude::RunCylinder(points, theo, cam, target, opt, a.videos.empty() ? nullptr : &reader);
+      attitude::RunCylinder(points, std::move(theo), cam, target, opt, a.videos.empty() ? nullptr : &reader);
   meter.Finish();
   attitude::CylinderCsv(res).Write(a.out_path);
 

@@ -83,7 +83,7 @@ int RunOi(const OiArgs& a, const Context& ctx) {
   if (!a.turret.empty()) turret_log = locate::ReadTurretLog(io::CsvTable::Read(a.turret, {a.bad_rows, locate::TurretLogRowRule()}));
   const locate::BoresightSource boresight =
       fixed ? locate::BoresightSource::Fixed(fixed->az_rad, fixed->el_rad)
-            : locate::BoresightSource::FromLog(*turret_log, opt.turret_method, opt.turret_max_gap_s);
+            : locate::BoresightSource::FromLog(std::move(*turret_log), opt.turret_method, opt.turret_max_gap_s);
 
   const pose::AttitudeOiResult res = pose::RunAttitudeOi(points, model, camera, boresight, opt);
   const std::size_t n = res.rows.size();

@@ -114,11 +114,11 @@ int RunPointing(const PointingCli& c, const Context& ctx) {
   }
 
   const calibrate::ImagePoints points = calibrate::ReadImagePoints(io::CsvTable::Read(c.observations, {c.bad_rows, {}}));
-  const locate::TurretLog log = locate::ReadTurretLog(io::CsvTable::Read(c.turret, {c.bad_rows, locate::TurretLogRowRule()}));
+  locate::TurretLog log = locate::ReadTurretLog(io::CsvTable::Read(c.turret, {c.bad_rows, locate::TurretLogRowRule()}));
   const camera::CameraModel cam = camera::LoadCameraModel(c.camera);
   const calibrate::TargetCatalogue targets = ReadTargets(c);
   const locate::BoresightSource turret =
-      locate::BoresightSource::FromLog(log, track::InterpMethod::kLinear, c.o.turret_max_gap_s);
+      locate::BoresightSource::FromLog(std::move(log), track::InterpMethod::kLinear, c.o.turret_max_gap_s);
   const auto build = [&](double tau) {
     return calibrate::BuildObservations(points, targets, turret, c.o.encoder_step_rad(), c.o.pixel_sigma_px, tau);
   };

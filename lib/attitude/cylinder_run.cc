@@ -490,7 +490,7 @@ class CylinderRowSolver {
 
 }  // namespace
 
-CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::TurretLog& theodolite,
+CylinderRunResult RunCylinder(const CylinderPointsFile& points, locate::TurretLog theodolite,
                               const camera::CameraModel& cam, const target::CylinderShape& target,
                               const CylinderRunOptions& options, const CylinderFrameReader* frames) {
   std::string why;
@@ -504,7 +504,7 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::Tu
 
   // Theodolite: merge repeated times, azimuth on its unwrapped sequence (locate/boresight.h, as rk-locate).
   const locate::BoresightSource theo =
-      locate::BoresightSource::FromLog(theodolite, options.theodolite_method, options.theodolite_max_gap_s);
+      locate::BoresightSource::FromLog(std::move(theodolite), options.theodolite_method, options.theodolite_max_gap_s);
   result.theodolite_duplicate_times = theo.duplicate_times();
 
   CylinderRowSolver solver(cam, target, options, frames, &result);

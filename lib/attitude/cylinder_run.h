@@ -172,7 +172,7 @@ using CylinderFrameReader = std::function<const cv::Mat&(std::int64_t frame)>;
 // Throws DataError naming the theodolite log if it covers no frame time, ProcessingError if no frame has
 // the three points, UsageError if the options fail Check() or frames are given for a points file without
 // the `frame` column.
-CylinderRunResult RunCylinder(const CylinderPointsFile& points, const locate::TurretLog& theodolite,
+CylinderRunResult RunCylinder(const CylinderPointsFile& points, locate::TurretLog theodolite,
                               const camera::CameraModel& camera, const target::CylinderShape& target,
                               const CylinderRunOptions& options, const CylinderFrameReader* frames = nullptr);
 
