@@ -161,15 +161,24 @@ io::CsvWriter ResampleCsv(const filter::Series& series, const ResampleTargets& t
   return w;
 }
 
+// The input series (status-masked unless --ignore-status) and the number of rows masked; the table (its
+// row index) is released on return.
+filter::Series ReadResampleInput(const ResampleArgs& args, const std::vector<std::string>& columns,
+                                 std::size_t* masked) {
+  const io::CsvTable table = io::CsvTable::Read(args.input, {args.bad_rows, filter::SeriesRowRule(columns)});
+  filter::Series series = filter::ReadSeries(table, columns, 3);
+  *masked = args.ignore_status ? 0 : filter::MaskByStatus(table, &series, 3);
+  return series;
+}
+
 int RunResample(const ResampleArgs& args, const CLI::App& sub, const Context& ctx) {
   const bool have_at = args.at_opt->count() > 0, have_rate = args.rate_opt->count() > 0;
   CheckResampleArgs(args, ctx, have_at, have_rate);
   filter::ResampleOptions opt = ResampleOptionsOf(args, sub.count("--max-gap") > 0);
 
   const std::vector<std::string> columns = io::SplitList(args.columns);
-  const io::CsvTable table = io::CsvTable::Read(args.input, {args.bad_rows, filter::SeriesRowRule(columns)});
-  filter::Series series = filter::ReadSeries(table, columns, 3);
-  const std::size_t masked = args.ignore_status ? 0 : filter::MaskByStatus(table, &series, 3);
+  std::size_t masked = 0;
+  filter::Series series = ReadResampleInput(args, columns, &masked);
   opt.singer.accel_sigma = filter::ColumnUnitsToInternal(opt.singer.accel_sigma, series, "--accel-sigma");
   opt.singer.meas_sigma = filter::ColumnUnitsToInternal(opt.singer.meas_sigma, series, "--meas-sigma");
 

@@ -70,20 +70,22 @@ std::vector<std::string> SingerHeader(const std::vector<std::string>& columns, c
   return header;
 }
 
-// The smoothed (or filtered) series, one row per input row, in column units.
-io::CsvWriter SingerCsv(const filter::Series& series, const filter::SingerSeriesResult& res, const SingerArgs& args) {
+// The smoothed (or filtered) series, one row per input row, in column units, written block by block
+// (filter::SingerSmoother) into `out`: neither the estimates nor the text of the whole series are held.
+void WriteSingerCsv(const filter::Series& series, const filter::SingerSmoother& smoother, const SingerArgs& args,
+                    io::OutputFile* out) {
   const std::size_t nc = series.columns.size();
   const std::vector<bool> is360 = filter::AngleColumnsIn360(series);
   io::CsvWriter w(SingerHeader(series.columns, args));
-  const std::string kind = res.smoothed ? "smoothed" : "estimate";
+  const std::string kind = smoother.summary().smoothed ? "smoothed" : "estimate";
   std::vector<Eigen::Vector3d> x(nc);
   std::vector<Eigen::Matrix3d> P(nc);
   std::vector<bool> have(nc);
   const auto unit = [&](std::size_t c) { return series.is_angle[c] ? geo::RadToDeg(1.0) : 1.0; };
-  for (std::size_t r = 0; r < series.rows(); ++r) {
+  const auto row = [&](const filter::SingerBlock& block, std::size_t r) {
     w.Add(series.t_s[r], kDecimals).Add(kind);
     for (std::size_t c = 0; c < nc; ++c) {
-      have[c] = res.At(c, r, &x[c], &P[c]);
+      have[c] = block.At(c, r, &x[c], &P[c]);
       if (!have[c]) {
         w.AddEmpty();
       } else if (series.is_angle[c]) {
@@ -93,7 +95,7 @@ io::CsvWriter SingerCsv(const filter::Series& series, const filter::SingerSeries
         w.Add(x[c](0), kDecimals);
       }
     }
-    w.Add(filter::SingerRowStatusName(res.status[r]));
+    w.Add(filter::SingerRowStatusName(smoother.RowStatus(r)));
     if (args.derivatives) {
       for (std::size_t c = 0; c < nc; ++c) {
         if (!have[c]) {
@@ -115,8 +117,21 @@ io::CsvWriter SingerCsv(const filter::Series& series, const filter::SingerSeries
       }
     }
     w.EndRow();
-  }
-  return w;
+  };
+  smoother.ForEachBlock([&](const filter::SingerBlock& block) {
+    for (std::size_t r = block.begin(); r < block.end(); ++r) row(block, r);
+    out->Write(w.TakeText());
+  });
+  out->Write(w.TakeText());  // the header alone when there are no rows
+}
+
+// The input series (status-masked unless --ignore-status) and the number of rows masked; the table (its
+// row index) is released on return.
+filter::Series ReadSingerInput(const SingerArgs& args, const std::vector<std::string>& columns, std::size_t* masked) {
+  const io::CsvTable table = io::CsvTable::Read(args.input, {args.bad_rows, filter::SeriesRowRule(columns)});
+  filter::Series series = filter::ReadSeries(table, columns, 3);
+  *masked = args.ignore_status ? 0 : filter::MaskByStatus(table, &series, 3);
+  return series;
 }
 
 int RunSinger(const SingerArgs& args, const Context& ctx) {
@@ -124,25 +139,25 @@ int RunSinger(const SingerArgs& args, const Context& ctx) {
   const std::vector<std::string> columns = io::SplitList(args.columns);
   filter::SingerSeriesOptions opt = SingerOptionsOf(args);
 
-  const io::CsvTable table = io::CsvTable::Read(args.input, {args.bad_rows, filter::SeriesRowRule(columns)});
-  filter::Series series = filter::ReadSeries(table, columns, 3);
-  const std::size_t masked = args.ignore_status ? 0 : filter::MaskByStatus(table, &series, 3);
+  std::size_t masked = 0;
+  const filter::Series series = ReadSingerInput(args, columns, &masked);
   opt.accel_sigma = filter::ColumnUnitsToInternal(opt.accel_sigma, series, "--accel-sigma");
   opt.meas_sigma = filter::ColumnUnitsToInternal(opt.meas_sigma, series, "--meas-sigma");
-  const filter::SingerSeriesResult res = filter::RunSingerSeries(series, opt);
-  const io::CsvWriter w = SingerCsv(series, res, args);
+  const filter::SingerSmoother smoother(series, opt);
 
   io::Json report;
   if (!ctx.common.report_path.empty()) {
     report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     cli::AddReportInput(&report, "input", args.input);
-    const io::Json body = res.ToJson(series, opt.maneuver_time_s);
+    const io::Json body = smoother.summary().ToJson(series, opt.maneuver_time_s);
     for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
     report["subcommand"] = "singer";
     report["rows_masked_by_status"] = masked;
     report["options"] = opt.ToJson();
   }
-  w.Write(args.output);
+  io::OutputFile out(args.output);
+  WriteSingerCsv(series, smoother, args, &out);
+  out.Commit();
   if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
   return 0;
 }

@@ -139,7 +139,6 @@ rk::filter::Series MakeLog(const std::function<double(double)>& truth, std::mt19
   for (std::size_t i = 0; i < s.t_s.size(); ++i) {
     s.values(static_cast<Eigen::Index>(i), 0) = truth(s.t_s[i]) + noise(rng);
   }
-  s.line.assign(s.t_s.size(), 0);
   return s;
 }
 

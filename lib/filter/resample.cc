@@ -18,6 +18,117 @@ namespace {
 constexpr double kNoValue = std::numeric_limits<double>::quiet_NaN();
 constexpr double kGapSlack = 1e-9;  // relative, as in track/interp.cc (decimal time stamps)
 
+// What one column gives a target time: nothing (outside: beyond margin_s of its usable samples; gap: between
+// two usable samples further apart than max_gap_s), a value between or at its samples, or an extrapolated one.
+enum class TargetUse : unsigned char { kOutside, kGap, kInside, kExtrapolated };
+
+// TargetUse of every target time (non-decreasing) for column c, in one walk over the rows: no copy of the
+// column's samples.
+std::vector<TargetUse> ClassifyTargets(const Series& series, std::size_t c, const std::vector<double>& targets,
+                                       double max_gap_s, double margin_s) {
+  const std::size_t n = series.rows();
+  const auto col = static_cast<Eigen::Index>(c);
+  const auto usable = [&](std::size_t r) { return std::isfinite(series.values(static_cast<Eigen::Index>(r), col)); };
+  std::vector<TargetUse> use(targets.size(), TargetUse::kOutside);
+  std::size_t first = 0;
+  while (first < n && !usable(first)) ++first;
+  if (first == n) return use;
+  std::size_t last = n - 1;
+  while (!usable(last)) --last;
+  const std::vector<double>& ts = series.t_s;
+  // next: the first usable row with t_s ≥ t (t inside [ts[first], ts[last]]); prev: the usable row before it.
+  std::size_t next = first, prev = n;
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const double t = targets[i];
+    const bool before = t < ts[first], after = t > ts[last];
+    if (before || after) {
+      const double dist = before ? ts[first] - t : t - ts[last];
+      use[i] = dist > margin_s ? TargetUse::kOutside : TargetUse::kExtrapolated;
+      continue;
+    }
+    while (ts[next] < t) {
+      prev = next;
+      do ++next;
+      while (!usable(next));
+    }
+    // t equal to a sample is always inside; otherwise next > first, so prev is a usable row.
+    const bool on_sample = ts[next] == t;
+    use[i] = !on_sample && ts[next] - ts[prev] > max_gap_s * (1.0 + kGapSlack) ? TargetUse::kGap
+                                                                              : TargetUse::kInside;
+  }
+  return use;
+}
+
+bool Evaluated(TargetUse u) { return u == TargetUse::kInside || u == TargetUse::kExtrapolated; }
+
+// kalman: the Singer smoother (block by block, SingerSmoother) evaluated at the targets each column gives a
+// value; values and 1σ into res, its summary into res->singer.
+void ResampleKalman(const Series& series, const std::vector<double>& targets,
+                    const std::vector<std::vector<TargetUse>>& use, const SingerSeriesOptions& options,
+                    ResampleResult* res) {
+  const SingerSmoother smoother(series, options);
+  res->singer = smoother.summary();
+  const std::size_t nc = series.columns.size();
+  std::vector<std::size_t> next(nc, 0);  // per column: the next target to evaluate
+  const auto skip = [&](std::size_t c) {
+    while (next[c] < targets.size() && !Evaluated(use[c][next[c]])) ++next[c];
+  };
+  smoother.ForEachBlock([&](const SingerBlock& block) {
+    for (std::size_t c = 0; c < nc; ++c) {
+      // Targets are non-decreasing, and so is the row each needs.
+      for (skip(c); next[c] < targets.size() && smoother.EvaluationRow(c, targets[next[c]]) < block.end(); skip(c)) {
+        const std::size_t i = next[c]++;
+        Eigen::Vector3d x;
+        Eigen::Matrix3d P;
+        smoother.Evaluate(block, c, targets[i], &x, &P);
+        res->values[c][i] = x(0);
+        res->sigmas[c][i] = std::sqrt(std::max(P(0, 0), 0.0));
+      }
+    }
+  });
+  for (std::size_t c = 0; c < nc; ++c) RK_CHECK(next[c] == targets.size(), "kalman resampling left targets");
+}
+
+// linear / cubic of column c at the targets it gives a value (track::TimeSeriesInterpolator on its usable
+// samples, angles unwrapped; beyond the ends the straight line through the two outermost samples).
+void ResampleInterpolated(const Series& series, std::size_t c, const std::vector<double>& targets,
+                          const std::vector<TargetUse>& use, const ResampleOptions& options, ResampleResult* res) {
+  const bool angle = series.is_angle[c];
+  std::vector<double> tu, vu;
+  for (std::size_t r = 0; r < series.rows(); ++r) {
+    double v = series.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
+    if (!std::isfinite(v)) continue;
+    if (angle && !vu.empty()) v = vu.back() + geo::WrapPi(v - vu.back());
+    tu.push_back(series.t_s[r]);
+    vu.push_back(v);
+  }
+  if (tu.empty()) return;
+  track::InterpOptions io;
+  io.method = options.method == ResampleMethod::kLinear ? track::InterpMethod::kLinear : track::InterpMethod::kCubic;
+  io.max_gap_s = res->max_gap_s;
+  io.angle = false;  // already unwrapped above
+  const track::TimeSeriesInterpolator interp(tu, std::vector<std::optional<double>>(vu.begin(), vu.end()), io);
+  for (std::size_t i = 0; i < targets.size(); ++i) {
+    const double t = targets[i];
+    double value = kNoValue;
+    if (use[i] == TargetUse::kExtrapolated) {
+      if (tu.size() == 1) {
+        value = vu[0];
+      } else {
+        const std::size_t j = t < tu.front() ? 0 : tu.size() - 2;
+        value = vu[j] + (vu[j + 1] - vu[j]) * (t - tu[j]) / (tu[j + 1] - tu[j]);
+      }
+    } else if (use[i] == TargetUse::kInside) {
+      const track::InterpValue v = interp.At(t);
+      RK_CHECK(v.ok(), "interpolator refused a time inside a segment");
+      value = v.value;
+    } else {
+      continue;
+    }
+    res->values[c][i] = value;
+  }
+}
+
 }  // namespace
 
 bool ParseResampleMethod(const std::string& name, ResampleMethod* method) {
@@ -93,6 +204,7 @@ ResampleResult Resample(const Series& series, const std::vector<double>& targets
   res.rows = targets.size();
   {
     std::vector<double> dt;
+    dt.reserve(n);
     for (std::size_t r = 1; r < n; ++r) dt.push_back(series.t_s[r] - series.t_s[r - 1]);
     res.median_interval_s = dt.empty() ? kNoValue : numeric::UpperMedianInPlace(dt);
   }
@@ -101,83 +213,22 @@ ResampleResult Resample(const Series& series, const std::vector<double>& targets
   res.sigmas.assign(nc, std::vector<double>(targets.size(), kNoValue));
   res.reason.assign(targets.size(), ResampleReason::kNone);
 
-  if (options.method == ResampleMethod::kKalman) res.singer = RunSingerSeries(series, options.singer);
-
+  std::vector<std::vector<TargetUse>> use(nc);
   std::vector<std::size_t> extrapolated(targets.size(), 0);
   for (std::size_t c = 0; c < nc; ++c) {
-    const bool angle = series.is_angle[c];
-    // Usable samples of this column (angles unwrapped).
-    std::vector<double> tu, vu;
-    for (std::size_t r = 0; r < n; ++r) {
-      double v = series.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
-      if (!std::isfinite(v)) continue;
-      if (angle && !vu.empty()) v = vu.back() + geo::WrapPi(v - vu.back());
-      tu.push_back(series.t_s[r]);
-      vu.push_back(v);
-    }
-    std::vector<ResampleReason> col_reason(targets.size(), ResampleReason::kNone);
-    if (tu.empty()) {
-      std::fill(col_reason.begin(), col_reason.end(), ResampleReason::kOutside);
-    } else {
-      std::optional<track::TimeSeriesInterpolator> interp;
-      if (options.method != ResampleMethod::kKalman) {
-        track::InterpOptions io;
-        io.method = options.method == ResampleMethod::kLinear ? track::InterpMethod::kLinear
-                                                               : track::InterpMethod::kCubic;
-        io.max_gap_s = res.max_gap_s;
-        io.angle = false;  // already unwrapped above
-        interp.emplace(tu, std::vector<std::optional<double>>(vu.begin(), vu.end()), io);
-      }
-      for (std::size_t i = 0; i < targets.size(); ++i) {
-        const double t = targets[i];
-        double value = kNoValue, sigma = kNoValue;
-        const bool before = t < tu.front(), after = t > tu.back();
-        if (before || after) {
-          const double dist = before ? tu.front() - t : t - tu.back();
-          if (dist > options.margin_s) {
-            col_reason[i] = ResampleReason::kOutside;
-            continue;
-          }
-          extrapolated[i] = 1;
-          if (options.method == ResampleMethod::kKalman) {
-            Eigen::Vector3d x;
-            Eigen::Matrix3d P;
-            EvaluateSinger(res.singer, series, c, t, &x, &P);
-            value = x(0);
-            sigma = std::sqrt(std::max(P(0, 0), 0.0));
-          } else if (tu.size() == 1) {
-            value = vu[0];
-          } else {
-            const std::size_t j = before ? 0 : tu.size() - 2;
-            value = vu[j] + (vu[j + 1] - vu[j]) * (t - tu[j]) / (tu[j + 1] - tu[j]);
-          }
-        } else {
-          // Interval [tu[j], tu[j+1]] containing t (t equal to a sample is always inside).
-          const std::size_t j1 = static_cast<std::size_t>(std::lower_bound(tu.begin(), tu.end(), t) - tu.begin());
-          const bool on_sample = tu[j1] == t;
-          if (!on_sample && tu[j1] - tu[j1 - 1] > res.max_gap_s * (1.0 + kGapSlack)) {
-            col_reason[i] = ResampleReason::kGap;
-            continue;
-          }
-          if (options.method == ResampleMethod::kKalman) {
-            Eigen::Vector3d x;
-            Eigen::Matrix3d P;
-            EvaluateSinger(res.singer, series, c, t, &x, &P);
-            value = x(0);
-            sigma = std::sqrt(std::max(P(0, 0), 0.0));
-          } else {
-            const track::InterpValue v = interp->At(t);
-            RK_CHECK(v.ok(), "interpolator refused a time inside a segment");
-            value = v.value;
-          }
-        }
-        res.values[c][i] = value;
-        res.sigmas[c][i] = sigma;
-      }
-    }
+    use[c] = ClassifyTargets(series, c, targets, res.max_gap_s, options.margin_s);
     for (std::size_t i = 0; i < targets.size(); ++i) {
-      if (res.reason[i] == ResampleReason::kNone) res.reason[i] = col_reason[i];
+      // Row reason: that of the first column without a value.
+      if (use[c][i] == TargetUse::kExtrapolated) extrapolated[i] = 1;
+      if (res.reason[i] != ResampleReason::kNone) continue;
+      if (use[c][i] == TargetUse::kOutside) res.reason[i] = ResampleReason::kOutside;
+      if (use[c][i] == TargetUse::kGap) res.reason[i] = ResampleReason::kGap;
     }
+  }
+  if (options.method == ResampleMethod::kKalman) {
+    ResampleKalman(series, targets, use, options.singer, &res);
+  } else {
+    for (std::size_t c = 0; c < nc; ++c) ResampleInterpolated(series, c, targets, use[c], options, &res);
   }
   for (std::size_t i = 0; i < targets.size(); ++i) {
     switch (res.reason[i]) {

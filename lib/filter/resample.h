@@ -8,7 +8,8 @@
 //           through every sample, so it keeps all of the measurement noise.
 //   kalman  the Singer-model RTS smoother of singer_series.h run over the input and
 //           evaluated at the target times as inserted no-measurement steps (the optimal
-//           interpolating smoother under the model; it averages the noise).
+//           interpolating smoother under the model; it averages the noise). Block by block
+//           (SingerSmoother): memory independent of the input's length, besides the Series.
 // Angles (`_deg` columns) are interpolated on the unwrapped sequence and wrapped on output.
 // Gap limit: a target time between two usable samples further apart than max_gap_s gets no
 // value (status lost, reason gap). Default max_gap_s = kDefaultGapFactor × the median
@@ -61,7 +62,7 @@ struct ResampleResult {
   double max_gap_s = 0.0;                 // used
   double median_interval_s = 0.0;         // of the input rows
   std::size_t rows = 0, rows_ok = 0, rows_gap = 0, rows_outside = 0, rows_extrapolated = 0;
-  SingerSeriesResult singer;              // kalman only: the smoother run (noise figures, NIS)
+  SingerSeriesSummary singer;             // kalman only: the smoother run (noise figures, NIS)
 
   // rk-smooth resample's report body (docs/rk-smooth-singer-resample.md "Report"): method, max_gap_s,
   // margin_s, median_interval_s, input_rows, the row counts, with kalman maneuver_time_s and columns, and

@@ -31,7 +31,6 @@ Series ReadSeries(const io::CsvTable& table, const std::vector<std::string>& col
   }
   const std::size_t n = table.rows();
   s.t_s.resize(n);
-  s.line.resize(n);
   s.values.resize(static_cast<Eigen::Index>(n), static_cast<Eigen::Index>(columns.size()));
   std::size_t with_value = 0;
   for (std::size_t r = 0; r < n; ++r) {
@@ -43,7 +42,6 @@ Series ReadSeries(const io::CsvTable& table, const std::vector<std::string>& col
                                                     std::string(table.Cell(r - 1, c_t)) + ")");
     }
     s.t_s[r] = t;
-    s.line[r] = table.Line(r);
     bool any = false;
     for (std::size_t k = 0; k < idx.size(); ++k) {
       auto v = table.OptionalDouble(r, idx[k]);

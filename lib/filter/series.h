@@ -16,8 +16,7 @@ struct Series {
   std::vector<std::string> columns;  // as named in the file
   std::vector<bool> is_angle;        // column ends with "_deg": radians inside, wrap-safe
   std::vector<double> t_s;           // strictly increasing
-  Eigen::MatrixXd values;            // rows = samples, cols = columns; NaN = missing
-  std::vector<std::size_t> line;     // file line of each sample, for messages
+  Eigen::MatrixXd values;            // rows = samples, cols = columns (a column is contiguous); NaN = missing
   std::size_t rows() const { return t_s.size(); }
 };
 

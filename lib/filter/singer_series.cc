@@ -32,86 +32,270 @@ T PerColumn(const std::vector<T>& v, std::size_t c) {
   return v.size() == 1 ? v[0] : v[c];
 }
 
-struct ForwardInput {
-  const std::vector<double>* t_s;
-  const std::vector<double>* z;  // NaN = no measurement
-  bool angle;
-  double a, R, vel_sigma;
-  const std::vector<track::SingerStep>* steps;  // [r]: the step from row r − 1 to r (shared by all passes)
+// Counts of a column's forward pass.
+struct ForwardCounts {
+  double nis_sum = 0.0, nll = 0.0;  // Σ ν²/S, Σ (ln S + ν²/S) / 2 over the updates after the first
+  std::size_t nis_count = 0, updates = 0, missing = 0, first_row = 0;
 };
 
-// Kalman forward pass of one column; fills `tr` (x/P pred/filt) and `st` (counts, NIS) when
-// given. Returns the negative log-likelihood of the innovations after the first update,
-// Σ (ln S + ν²/S) / 2.
-double ForwardPass(const ForwardInput& in, double accel_sigma, SingerTrack* tr, SingerColumnStats* st) {
-  const std::vector<double>& z = *in.z;
-  const std::size_t n = z.size();
-  const double q = 2.0 * in.a * accel_sigma * accel_sigma;
+// One row r of a column's forward pass, from the state after row r − 1 (`step`: Ψ and Q's factors from
+// row r − 1 to r; unused at the column's first value): the start at the first value, else the prediction,
+// then the update with z (NaN = no measurement). Stores the predicted state in x_pred/P_pred and counts in
+// `counts` when given. Returns false while the column has no estimate (before its first value). The one copy
+// of the forward arithmetic: RunSingerSeries and every block SingerSmoother recomputes run it.
+bool ForwardRow(const SingerColumnModel& m, double z, const track::SingerStep& step, std::size_t r, SingerState* s,
+                ForwardCounts* counts, Eigen::Vector3d* x_pred, Eigen::Matrix3d* P_pred) {
+  const bool have = std::isfinite(z);
+  bool first = false;
+  if (!s->started) {
+    if (!have) return false;
+    s->started = true;
+    first = true;
+    s->x << z, 0.0, 0.0;
+    s->P.setZero();
+    s->P(0, 0) = m.R;
+    s->P(1, 1) = m.vel_sigma * m.vel_sigma;
+    s->P(2, 2) = m.accel_sigma * m.accel_sigma;
+    if (counts) {
+      counts->first_row = r;
+      ++counts->updates;
+    }
+  } else {
+    const Eigen::Matrix3d& Phi = step.transition();
+    s->x = Phi * s->x;
+    s->P = Phi * s->P * Phi.transpose() + step.ProcessNoise(m.q);
+    s->P = 0.5 * (s->P + s->P.transpose()).eval();
+  }
+  if (x_pred) {
+    *x_pred = s->x;
+    *P_pred = s->P;
+  }
+  if (first) return true;
+  if (have) {
+    const double nu = m.angle ? geo::WrapPi(z - s->x(0)) : z - s->x(0);
+    const double S = s->P(0, 0) + m.R;
+    const Eigen::Vector3d K = s->P.col(0) / S;
+    s->x += K * nu;
+    Eigen::Matrix3d IKH = Eigen::Matrix3d::Identity();
+    IKH.col(0) -= K;
+    s->P = IKH * s->P * IKH.transpose() + (K * K.transpose()) * m.R;
+    s->P = 0.5 * (s->P + s->P.transpose()).eval();
+    if (counts) {
+      counts->nis_sum += nu * nu / S;
+      counts->nll += 0.5 * (std::log(S) + nu * nu / S);
+      ++counts->nis_count;
+      ++counts->updates;
+    }
+  } else if (counts) {
+    ++counts->missing;
+  }
+  return true;
+}
+
+void FillStats(const ForwardCounts& c, SingerColumnStats* st) {
+  st->updates = c.updates;
+  st->missing = c.missing;
+  st->first_row = c.first_row;
+  st->nis_count = c.nis_count;
+  st->nis_mean = c.nis_count ? c.nis_sum / static_cast<double>(c.nis_count) : kNaN;
+}
+
+// One RTS step of `tr` at index i from index i + 1 (Φ: the transition from row i to row i + 1):
+//   C = P_f Φᵀ P_p⁻¹  ⇔  Cᵀ = P_p⁻¹ Φ P_f (P symmetric). The one copy of the backward arithmetic.
+void RtsStep(const Eigen::Matrix3d& Phi, std::size_t i, SingerTrack* tr) {
+  const Eigen::Matrix3d Ct = tr->P_pred[i + 1].ldlt().solve(Phi * tr->P_filt[i]);
+  const Eigen::Matrix3d C = Ct.transpose();
+  tr->x_smooth[i] = tr->x_filt[i] + C * (tr->x_smooth[i + 1] - tr->x_pred[i + 1]);
+  Eigen::Matrix3d Ps = tr->P_filt[i] + C * (tr->P_smooth[i + 1] - tr->P_pred[i + 1]) * Ct;
+  tr->P_smooth[i] = 0.5 * (Ps + Ps.transpose());
+}
+
+// Kalman forward pass of one column over all rows (values z, steps[r] from row r − 1 to r); fills `tr`
+// (x/P pred/filt) and `st` (counts, NIS) when given. Returns the negative log-likelihood of the innovations
+// after the first update, Σ (ln S + ν²/S) / 2.
+double ForwardPass(const SingerColumnModel& m, const double* z, std::size_t n,
+                   const std::vector<track::SingerStep>& steps, SingerTrack* tr, SingerColumnStats* st) {
   if (tr) {
     tr->x_pred.assign(n, Eigen::Vector3d::Zero());
     tr->x_filt.assign(n, Eigen::Vector3d::Zero());
     tr->P_pred.assign(n, Eigen::Matrix3d::Zero());
     tr->P_filt.assign(n, Eigen::Matrix3d::Zero());
   }
-  bool started = false;
-  double nis_sum = 0.0, nll = 0.0;
-  std::size_t nis_count = 0, updates = 0, missing = 0, first_row = 0;
-  Eigen::Vector3d x = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+  SingerState s;
+  ForwardCounts counts;
   for (std::size_t r = 0; r < n; ++r) {
-    const bool have = std::isfinite(z[r]);
-    if (!started) {
-      if (!have) continue;
-      started = true;
-      first_row = r;
-      x << z[r], 0.0, 0.0;
-      P.setZero();
-      P(0, 0) = in.R;
-      P(1, 1) = in.vel_sigma * in.vel_sigma;
-      P(2, 2) = accel_sigma * accel_sigma;
-      ++updates;
-    } else {
-      const track::SingerStep& step = (*in.steps)[r];
-      const Eigen::Matrix3d& Phi = step.transition();
+    if (!ForwardRow(m, z[r], steps[r], r, &s, &counts, tr ? &tr->x_pred[r] : nullptr,
+                    tr ? &tr->P_pred[r] : nullptr)) {
+      continue;
+    }
+    if (tr) {
+      tr->x_filt[r] = s.x;
+      tr->P_filt[r] = s.P;
+    }
+  }
+  if (st) FillStats(counts, st);
+  return counts.nll;
+}
+
+// options.Check and the lengths of the per-column lists; UsageError.
+void CheckRun(const Series& series, const SingerSeriesOptions& options) {
+  std::string why;
+  if (!options.Check(&why)) throw UsageError(why);
+  const std::size_t nc = series.columns.size();
+  auto check_len = [&](std::size_t len, const char* what) {
+    if (len > 1 && len != nc) {
+      throw UsageError(std::string(what) + ": give one value or one per column (" + std::to_string(nc) +
+                       "), got " + std::to_string(len));
+    }
+  };
+  check_len(options.accel_sigma.size(), "--accel-sigma");
+  check_len(options.meas_sigma.size(), "--meas-sigma");
+}
+
+// The σ_m a column tries: one (given, or the unit default) or the maximum-likelihood grid, each as a
+// model; `fallback` is the one kept when no candidate's likelihood is below +∞ (the unit default).
+struct Candidates {
+  std::vector<SingerColumnModel> models;
+  std::size_t fallback = 0;
+};
+
+// Column c's model: σ_z (given, or estimated from the data; into st), the velocity prior and the σ_m
+// candidates. Throws UsageError for a unit without a default σ_m and no --accel-sigma.
+Candidates PrepareColumn(const Series& series, std::size_t c, const SingerSeriesOptions& options, double a,
+                         SingerColumnStats* st) {
+  const std::size_t n = series.rows();
+  const bool angle = series.is_angle[c];
+  const std::span<const double> z(series.values.col(static_cast<Eigen::Index>(c)).data(), n);
+  double accel_sigma = options.accel_sigma.empty() ? DefaultAccelSigma(series.columns[c])
+                                                   : PerColumn(options.accel_sigma, c);
+  if (!std::isfinite(accel_sigma)) {
+    throw UsageError("--accel-sigma is needed for column '" + series.columns[c] +
+                     "' (no default for its unit; defaults exist for _m, _deg and _px)");
+  }
+  // Scale of the data: for the σ_z floor and the velocity prior.
+  double max_rate = 0.0, scale = 0.0;
+  std::size_t prev = n;
+  for (std::size_t r = 0; r < n; ++r) {
+    if (!std::isfinite(z[r])) continue;
+    scale = std::max(scale, std::abs(z[r]));
+    if (prev < n) {
+      const double dz = angle ? geo::WrapPi(z[r] - z[prev]) : z[r] - z[prev];
+      max_rate = std::max(max_rate, std::abs(dz) / (series.t_s[r] - series.t_s[prev]));
+    }
+    prev = r;
+  }
+  if (options.meas_sigma.empty()) {
+    double s = EstimateNoiseSigma(z, angle);
+    if (!std::isfinite(s)) s = 0.0;
+    st->meas_sigma = std::max(s, kMeasSigmaFloorRel * scale + kMeasSigmaFloorAbs);
+    st->meas_sigma_estimated = true;
+  } else {
+    st->meas_sigma = PerColumn(options.meas_sigma, c);
+  }
+  SingerColumnModel m;
+  m.angle = angle;
+  m.a = a;
+  m.R = st->meas_sigma * st->meas_sigma;
+  m.vel_sigma = std::max(2.0 * max_rate, 10.0 * st->meas_sigma);
+  Candidates out;
+  auto add = [&](double sigma) {
+    m.accel_sigma = sigma;
+    m.q = 2.0 * a * sigma * sigma;
+    out.models.push_back(m);
+  };
+  if (options.accel_sigma.empty() && options.auto_accel_sigma) {
+    // σ_m chosen by maximum likelihood over a grid around the unit default.
+    const double center = accel_sigma;
+    for (int k = kAutoAccelGridLow; k <= kAutoAccelGridHigh; ++k) add(center * std::pow(2.0, 0.5 * k));
+    out.fallback = static_cast<std::size_t>(-kAutoAccelGridLow);  // k = 0: the default itself
+    st->accel_sigma_selected = true;
+  } else {
+    add(accel_sigma);
+  }
+  return out;
+}
+
+// The candidate of least negative log-likelihood (the first of equals), else the fallback.
+std::size_t ChooseCandidate(const std::vector<double>& nll, std::size_t fallback) {
+  if (nll.size() == 1) return 0;
+  double best = std::numeric_limits<double>::infinity();
+  std::size_t chosen = fallback;
+  for (std::size_t i = 0; i < nll.size(); ++i) {
+    if (nll[i] < best) {
+      best = nll[i];
+      chosen = i;
+    }
+  }
+  return chosen;
+}
+
+// Rows [offset, ...) of one column's stored estimates: a whole run's (offset 0) or one block's.
+struct TrackView {
+  const SingerTrack& tr;
+  std::size_t offset;
+  const SingerColumnStats& st;
+  bool smoothed;
+
+  bool At(std::size_t row, Eigen::Vector3d* x, Eigen::Matrix3d* P) const {
+    if (st.updates == 0 || row < st.first_row) return false;
+    const std::size_t i = row - offset;
+    *x = smoothed ? tr.x_smooth[i] : tr.x_filt[i];
+    *P = smoothed ? tr.P_smooth[i] : tr.P_filt[i];
+    return true;
+  }
+};
+
+// The row an estimate at t starts from: the first row with a value when t is at or before it, else the
+// last row k with t_k ≤ t.
+std::size_t EvaluationRowOf(const std::vector<double>& ts, std::size_t first, double t) {
+  if (t <= ts[first]) return first;
+  return static_cast<std::size_t>(std::upper_bound(ts.begin(), ts.end(), t) - ts.begin()) - 1;
+}
+
+// EvaluateSinger on the rows `v` holds (row k of EvaluationRowOf, and k + 1 between rows when smoothed).
+void EvaluateOn(const TrackView& v, const std::vector<double>& ts, double t, Eigen::Vector3d* x_out,
+                Eigen::Matrix3d* P_out) {
+  RK_CHECK(v.st.updates > 0, "EvaluateSinger on a column without measurements");
+  const double a = v.tr.a_per_s;
+  const std::size_t first = v.st.first_row;
+  const std::size_t n = ts.size();
+  Eigen::Vector3d x;
+  Eigen::Matrix3d P;
+  const auto at = [&](std::size_t row) { RK_CHECK(v.At(row, &x, &P), "no estimate at a row after the first"); };
+  if (t <= ts[first]) {
+    at(first);
+    const double tau = ts[first] - t;
+    if (tau > 0.0) {  // backward prediction
+      const Eigen::Matrix3d Phi_inv = track::SingerTransition(tau, a).inverse();
+      x = Phi_inv * x;
+      P = Phi_inv * P * Phi_inv.transpose() + track::SingerProcessNoise(tau, a, v.tr.q);
+    }
+  } else {
+    const std::size_t k = EvaluationRowOf(ts, first, t);
+    const double tau = t - ts[k];
+    if (tau == 0.0) {
+      at(k);
+    } else if (k + 1 >= n || !v.smoothed) {
+      // After the last row (or filter only): predict forward from row k.
+      at(k);
+      const Eigen::Matrix3d Phi = track::SingerTransition(tau, a);
       x = Phi * x;
-      P = Phi * P * Phi.transpose() + step.ProcessNoise(q);
-      P = 0.5 * (P + P.transpose()).eval();
-    }
-    if (tr) {
-      tr->x_pred[r] = x;
-      tr->P_pred[r] = P;
-    }
-    if (r != first_row) {
-      if (have) {
-        const double nu = in.angle ? geo::WrapPi(z[r] - x(0)) : z[r] - x(0);
-        const double S = P(0, 0) + in.R;
-        const Eigen::Vector3d K = P.col(0) / S;
-        x += K * nu;
-        Eigen::Matrix3d IKH = Eigen::Matrix3d::Identity();
-        IKH.col(0) -= K;
-        P = IKH * P * IKH.transpose() + (K * K.transpose()) * in.R;
-        P = 0.5 * (P + P.transpose()).eval();
-        nis_sum += nu * nu / S;
-        nll += 0.5 * (std::log(S) + nu * nu / S);
-        ++nis_count;
-        ++updates;
-      } else {
-        ++missing;
-      }
-    }
-    if (tr) {
-      tr->x_filt[r] = x;
-      tr->P_filt[r] = P;
+      P = Phi * P * Phi.transpose() + track::SingerProcessNoise(tau, a, v.tr.q);
+    } else {
+      // Inserted step at t between rows k and k+1, then one RTS step from k+1.
+      const std::size_t i = k - v.offset;
+      const Eigen::Matrix3d Phi1 = track::SingerTransition(tau, a);
+      const Eigen::Matrix3d Phi2 = track::SingerTransition(ts[k + 1] - t, a);
+      const Eigen::Vector3d xp = Phi1 * v.tr.x_filt[i];
+      Eigen::Matrix3d Pp = Phi1 * v.tr.P_filt[i] * Phi1.transpose() + track::SingerProcessNoise(tau, a, v.tr.q);
+      Pp = 0.5 * (Pp + Pp.transpose()).eval();
+      const Eigen::Matrix3d Ct = v.tr.P_pred[i + 1].ldlt().solve(Phi2 * Pp);
+      x = xp + Ct.transpose() * (v.tr.x_smooth[i + 1] - v.tr.x_pred[i + 1]);
+      P = Pp + Ct.transpose() * (v.tr.P_smooth[i + 1] - v.tr.P_pred[i + 1]) * Ct;
     }
   }
-  if (st) {
-    st->updates = updates;
-    st->missing = missing;
-    st->first_row = first_row;
-    st->nis_count = nis_count;
-    st->nis_mean = nis_count ? nis_sum / static_cast<double>(nis_count) : kNaN;
-  }
-  return nll;
+  *x_out = x;
+  *P_out = 0.5 * (P + P.transpose());
 }
 
 }  // namespace
@@ -157,19 +341,21 @@ std::string SingerRowStatusName(SingerRowStatus s) {
 }
 
 bool SingerSeriesResult::At(std::size_t column, std::size_t row, Eigen::Vector3d* x, Eigen::Matrix3d* P) const {
-  const SingerTrack& tr = tracks[column];
-  if (stats[column].updates == 0 || row < stats[column].first_row) return false;
-  if (smoothed) {
-    *x = tr.x_smooth[row];
-    *P = tr.P_smooth[row];
-  } else {
-    *x = tr.x_filt[row];
-    *P = tr.P_filt[row];
-  }
-  return true;
+  return TrackView{tracks[column], 0, stats[column], smoothed}.At(row, x, P);
 }
 
-double EstimateNoiseSigma(const std::vector<double>& values, bool angle, int order) {
+SingerRowStatus SingerRowStatusAt(const Series& series, const std::vector<SingerColumnStats>& stats,
+                                  std::size_t row) {
+  bool measured = false, estimated = false;
+  for (std::size_t c = 0; c < stats.size(); ++c) {
+    if (std::isfinite(series.values(static_cast<Eigen::Index>(row), static_cast<Eigen::Index>(c)))) measured = true;
+    if (stats[c].updates > 0 && row >= stats[c].first_row) estimated = true;
+  }
+  if (measured) return SingerRowStatus::kOk;
+  return estimated ? SingerRowStatus::kPredicted : SingerRowStatus::kLost;
+}
+
+double EstimateNoiseSigma(std::span<const double> values, bool angle, int order) {
   std::vector<double> v;
   for (double x : values) {
     if (!std::isfinite(x)) continue;
@@ -222,19 +408,9 @@ double NoiseSigmaFromDifferences(const std::vector<double>& values, bool angle, 
 }
 
 SingerSeriesResult RunSingerSeries(const Series& series, const SingerSeriesOptions& options) {
-  std::string why;
-  if (!options.Check(&why)) throw UsageError(why);
+  CheckRun(series, options);
   const std::size_t nc = series.columns.size();
   const std::size_t n = series.rows();
-  auto check_len = [&](std::size_t len, const char* what) {
-    if (len > 1 && len != nc) {
-      throw UsageError(std::string(what) + ": give one value or one per column (" + std::to_string(nc) +
-                       "), got " + std::to_string(len));
-    }
-  };
-  check_len(options.accel_sigma.size(), "--accel-sigma");
-  check_len(options.meas_sigma.size(), "--meas-sigma");
-
   SingerSeriesResult res;
   res.rows = n;
   res.smoothed = options.smooth;
@@ -246,96 +422,36 @@ SingerSeriesResult RunSingerSeries(const Series& series, const SingerSeriesOptio
   for (std::size_t r = 1; r < n; ++r) steps[r] = track::SingerStep(series.t_s[r] - series.t_s[r - 1], a);
 
   for (std::size_t c = 0; c < nc; ++c) {
-    const auto col = static_cast<Eigen::Index>(c);
-    const bool angle = series.is_angle[c];
     SingerColumnStats& st = res.stats[c];
     SingerTrack& tr = res.tracks[c];
-    std::vector<double> z(n);
-    for (std::size_t r = 0; r < n; ++r) z[r] = series.values(static_cast<Eigen::Index>(r), col);
-
-    double accel_sigma = options.accel_sigma.empty() ? DefaultAccelSigma(series.columns[c])
-                                                     : PerColumn(options.accel_sigma, c);
-    if (!std::isfinite(accel_sigma)) {
-      throw UsageError("--accel-sigma is needed for column '" + series.columns[c] +
-                       "' (no default for its unit; defaults exist for _m, _deg and _px)");
-    }
-    // Scale of the data: for the σ_z floor and the velocity prior.
-    double max_rate = 0.0, scale = 0.0;
-    {
-      std::size_t prev = n;
-      for (std::size_t r = 0; r < n; ++r) {
-        if (!std::isfinite(z[r])) continue;
-        scale = std::max(scale, std::abs(z[r]));
-        if (prev < n) {
-          const double dz = angle ? geo::WrapPi(z[r] - z[prev]) : z[r] - z[prev];
-          max_rate = std::max(max_rate, std::abs(dz) / (series.t_s[r] - series.t_s[prev]));
-        }
-        prev = r;
-      }
-    }
-    if (options.meas_sigma.empty()) {
-      double s = EstimateNoiseSigma(z, angle);
-      if (!std::isfinite(s)) s = 0.0;
-      st.meas_sigma = std::max(s, kMeasSigmaFloorRel * scale + kMeasSigmaFloorAbs);
-      st.meas_sigma_estimated = true;
+    const double* z = series.values.col(static_cast<Eigen::Index>(c)).data();
+    const Candidates cand = PrepareColumn(series, c, options, a, &st);
+    std::vector<double> nll;
+    if (cand.models.size() > 1) {
+      for (const SingerColumnModel& m : cand.models) nll.push_back(ForwardPass(m, z, n, steps, nullptr, nullptr));
     } else {
-      st.meas_sigma = PerColumn(options.meas_sigma, c);
+      nll.push_back(0.0);
     }
-    const double R = st.meas_sigma * st.meas_sigma;
+    const SingerColumnModel& m = cand.models[ChooseCandidate(nll, cand.fallback)];
+    st.accel_sigma = m.accel_sigma;
     tr.a_per_s = a;
-    const double vel_sigma = std::max(2.0 * max_rate, 10.0 * st.meas_sigma);
-
-    // σ_m: given, or chosen by maximum likelihood over a grid around the unit default.
-    const ForwardInput in{&series.t_s, &z, angle, a, R, vel_sigma, &steps};
-    if (options.accel_sigma.empty() && options.auto_accel_sigma) {
-      double best = std::numeric_limits<double>::infinity();
-      const double center = accel_sigma;
-      for (int k = kAutoAccelGridLow; k <= kAutoAccelGridHigh; ++k) {
-        const double cand = center * std::pow(2.0, 0.5 * k);
-        const double nll = ForwardPass(in, cand, nullptr, nullptr);
-        if (nll < best) {
-          best = nll;
-          accel_sigma = cand;
-        }
-      }
-      st.accel_sigma_selected = true;
-    }
-    st.accel_sigma = accel_sigma;
-    tr.q = 2.0 * a * accel_sigma * accel_sigma;
-    ForwardPass(in, accel_sigma, &tr, &st);
-    const bool started = st.updates > 0;
-
+    tr.q = m.q;
+    ForwardPass(m, z, n, steps, &tr, &st);
     // Backward pass.
-    if (options.smooth && started) {
+    if (options.smooth && st.updates > 0) {
       tr.x_smooth = tr.x_filt;
       tr.P_smooth = tr.P_filt;
-      for (std::size_t r = n - 1; r-- > st.first_row;) {
-        const Eigen::Matrix3d& Phi = steps[r + 1].transition();
-        // C = P_f Φᵀ P_p⁻¹  ⇔  Cᵀ = P_p⁻¹ Φ P_f (P symmetric).
-        const Eigen::Matrix3d Ct = tr.P_pred[r + 1].ldlt().solve(Phi * tr.P_filt[r]);
-        const Eigen::Matrix3d C = Ct.transpose();
-        tr.x_smooth[r] = tr.x_filt[r] + C * (tr.x_smooth[r + 1] - tr.x_pred[r + 1]);
-        Eigen::Matrix3d Ps = tr.P_filt[r] + C * (tr.P_smooth[r + 1] - tr.P_pred[r + 1]) * Ct;
-        tr.P_smooth[r] = 0.5 * (Ps + Ps.transpose());
-      }
+      for (std::size_t r = n - 1; r-- > st.first_row;) RtsStep(steps[r + 1].transition(), r, &tr);
     }
   }
 
   res.status.resize(n, SingerRowStatus::kLost);
   for (std::size_t r = 0; r < n; ++r) {
-    bool measured = false, estimated = false;
-    for (std::size_t c = 0; c < nc; ++c) {
-      if (std::isfinite(series.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)))) measured = true;
-      if (res.stats[c].updates > 0 && r >= res.stats[c].first_row) estimated = true;
-    }
-    if (measured) {
-      res.status[r] = SingerRowStatus::kOk;
-      ++res.rows_ok;
-    } else if (estimated) {
-      res.status[r] = SingerRowStatus::kPredicted;
-      ++res.rows_predicted;
-    } else {
-      ++res.rows_lost;
+    res.status[r] = SingerRowStatusAt(series, res.stats, r);
+    switch (res.status[r]) {
+      case SingerRowStatus::kOk: ++res.rows_ok; break;
+      case SingerRowStatus::kPredicted: ++res.rows_predicted; break;
+      case SingerRowStatus::kLost: ++res.rows_lost; break;
     }
   }
   return res;
@@ -343,50 +459,212 @@ SingerSeriesResult RunSingerSeries(const Series& series, const SingerSeriesOptio
 
 void EvaluateSinger(const SingerSeriesResult& result, const Series& series, std::size_t column, double t,
                     Eigen::Vector3d* x_out, Eigen::Matrix3d* P_out) {
-  const SingerTrack& tr = result.tracks[column];
-  const SingerColumnStats& st = result.stats[column];
-  RK_CHECK(st.updates > 0, "EvaluateSinger on a column without measurements");
-  const double a = tr.a_per_s;
-  const auto& ts = series.t_s;
-  const std::size_t first = st.first_row;
-  const std::size_t n = ts.size();
-  Eigen::Vector3d x;
-  Eigen::Matrix3d P;
-  if (t <= ts[first]) {
-    result.At(column, first, &x, &P);
-    const double tau = ts[first] - t;
-    if (tau > 0.0) {  // backward prediction
-      const Eigen::Matrix3d Phi_inv = track::SingerTransition(tau, a).inverse();
-      x = Phi_inv * x;
-      P = Phi_inv * P * Phi_inv.transpose() + track::SingerProcessNoise(tau, a, tr.q);
-    }
-  } else {
-    // Last row k with t_k ≤ t.
-    const std::size_t k =
-        static_cast<std::size_t>(std::upper_bound(ts.begin(), ts.end(), t) - ts.begin()) - 1;
-    const double tau = t - ts[k];
-    if (tau == 0.0) {
-      result.At(column, k, &x, &P);
-    } else if (k + 1 >= n || !result.smoothed) {
-      // After the last row (or filter only): predict forward from row k.
-      result.At(column, k, &x, &P);
-      const Eigen::Matrix3d Phi = track::SingerTransition(tau, a);
-      x = Phi * x;
-      P = Phi * P * Phi.transpose() + track::SingerProcessNoise(tau, a, tr.q);
-    } else {
-      // Inserted step at t between rows k and k+1, then one RTS step from k+1.
-      const Eigen::Matrix3d Phi1 = track::SingerTransition(tau, a);
-      const Eigen::Matrix3d Phi2 = track::SingerTransition(ts[k + 1] - t, a);
-      const Eigen::Vector3d xp = Phi1 * tr.x_filt[k];
-      Eigen::Matrix3d Pp = Phi1 * tr.P_filt[k] * Phi1.transpose() + track::SingerProcessNoise(tau, a, tr.q);
-      Pp = 0.5 * (Pp + Pp.transpose()).eval();
-      const Eigen::Matrix3d Ct = tr.P_pred[k + 1].ldlt().solve(Phi2 * Pp);
-      x = xp + Ct.transpose() * (tr.x_smooth[k + 1] - tr.x_pred[k + 1]);
-      P = Pp + Ct.transpose() * (tr.P_smooth[k + 1] - tr.P_pred[k + 1]) * Ct;
+  EvaluateOn(TrackView{result.tracks[column], 0, result.stats[column], result.smoothed}, series.t_s, t, x_out,
+             P_out);
+}
+
+// ---- SingerSmoother ----
+
+SingerSmoother::SingerSmoother(const Series& series, const SingerSeriesOptions& options, std::size_t block_rows)
+    : series_(series), block_rows_(block_rows) {
+  RK_CHECK(block_rows >= 1, "SingerSmoother needs blocks of at least one row");
+  CheckRun(series, options);
+  const std::size_t nc = series.columns.size();
+  const std::size_t n = series.rows();
+  summary_.rows = n;
+  summary_.smoothed = options.smooth;
+  summary_.stats.resize(nc);
+  columns_.resize(nc);
+  const double a = 1.0 / options.maneuver_time_s;
+  std::vector<std::vector<SingerColumnModel>> candidates(nc);
+  std::vector<std::size_t> fallback(nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    Candidates cand = PrepareColumn(series, c, options, a, &summary_.stats[c]);
+    candidates[c] = std::move(cand.models);
+    fallback[c] = cand.fallback;
+  }
+  Forward(candidates, fallback);
+  for (std::size_t r = 0; r < n; ++r) {
+    switch (RowStatus(r)) {
+      case SingerRowStatus::kOk: ++summary_.rows_ok; break;
+      case SingerRowStatus::kPredicted: ++summary_.rows_predicted; break;
+      case SingerRowStatus::kLost: ++summary_.rows_lost; break;
     }
   }
-  *x_out = x;
-  *P_out = 0.5 * (P + P.transpose());
+  if (options.smooth) SmoothBlockEnds();
+}
+
+// Every candidate σ_m of every column in one pass over the rows (each candidate's arithmetic is that of its
+// own ForwardPass, row by row); Ψ and Q's factors computed once a row for all of them. Keeps each candidate's
+// state at every block start, then the chosen candidate's counts and block starts.
+void SingerSmoother::Forward(const std::vector<std::vector<SingerColumnModel>>& candidates,
+                             const std::vector<std::size_t>& fallback) {
+  struct Run {
+    SingerState s;
+    ForwardCounts counts;
+    std::vector<SingerState> start;
+  };
+  const std::size_t n = series_.rows(), nc = columns_.size(), nb = blocks();
+  std::vector<std::vector<Run>> runs(nc);
+  for (std::size_t c = 0; c < nc; ++c) {
+    runs[c].resize(candidates[c].size());
+    for (Run& run : runs[c]) run.start.resize(nb);
+  }
+  const double a = candidates.empty() || candidates[0].empty() ? 1.0 : candidates[0][0].a;
+  track::SingerStep step;
+  for (std::size_t r = 0; r < n; ++r) {
+    if (r > 0) step = track::SingerStep(series_.t_s[r] - series_.t_s[r - 1], a);
+    const bool block_start = r % block_rows_ == 0;
+    for (std::size_t c = 0; c < nc; ++c) {
+      const double z = series_.values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c));
+      for (std::size_t k = 0; k < runs[c].size(); ++k) {
+        Run& run = runs[c][k];
+        if (block_start) run.start[r / block_rows_] = run.s;
+        ForwardRow(candidates[c][k], z, step, r, &run.s, &run.counts, nullptr, nullptr);
+      }
+    }
+  }
+  for (std::size_t c = 0; c < nc; ++c) {
+    std::vector<double> nll;
+    for (const Run& run : runs[c]) nll.push_back(run.counts.nll);
+    const std::size_t k = ChooseCandidate(nll, fallback[c]);
+    columns_[c].model = candidates[c][k];
+    columns_[c].start = std::move(runs[c][k].start);
+    FillStats(runs[c][k].counts, &summary_.stats[c]);
+    summary_.stats[c].accel_sigma = candidates[c][k].accel_sigma;
+    runs[c].clear();
+  }
+}
+
+SingerBlock SingerSmoother::NewBlock() const {
+  SingerBlock block;
+  block.smoothed_ = summary_.smoothed;
+  block.stats_ = &summary_.stats;
+  block.tracks_.resize(columns_.size());
+  for (std::size_t c = 0; c < columns_.size(); ++c) {
+    SingerTrack& tr = block.tracks_[c];
+    const std::size_t m = block_rows_ + 1;
+    tr.x_pred.assign(m, Eigen::Vector3d::Zero());
+    tr.x_filt.assign(m, Eigen::Vector3d::Zero());
+    tr.P_pred.assign(m, Eigen::Matrix3d::Zero());
+    tr.P_filt.assign(m, Eigen::Matrix3d::Zero());
+    if (summary_.smoothed) {
+      tr.x_smooth.assign(m, Eigen::Vector3d::Zero());
+      tr.P_smooth.assign(m, Eigen::Matrix3d::Zero());
+    }
+    tr.a_per_s = columns_[c].model.a;
+    tr.q = columns_[c].model.q;
+  }
+  return block;
+}
+
+// steps[i]: Ψ and Q's factors from row begin + i − 1 to begin + i, for i = 0 .. end − begin (row end when
+// end < rows); the default (unused) step for row 0.
+void SingerSmoother::BlockSteps(std::size_t b, std::vector<track::SingerStep>* steps) const {
+  const std::size_t n = series_.rows(), begin = b * block_rows_, end = std::min(n, begin + block_rows_);
+  const double a = columns_.empty() ? 1.0 : columns_[0].model.a;
+  const std::size_t last = std::min(end, n - 1);
+  steps->resize(last - begin + 1);
+  for (std::size_t r = begin; r <= last; ++r) {
+    (*steps)[r - begin] = r == 0 ? track::SingerStep() : track::SingerStep(series_.t_s[r] - series_.t_s[r - 1], a);
+  }
+}
+
+// The forward pass over block b again from its checkpoint, into block->tracks_[column], with row end's
+// prediction. False when the column has no estimate in the block (nothing recomputed).
+bool SingerSmoother::Recompute(std::size_t b, std::size_t column, const std::vector<track::SingerStep>& steps,
+                               SingerBlock* block) const {
+  const std::size_t n = series_.rows(), begin = b * block_rows_, end = std::min(n, begin + block_rows_);
+  const SingerColumnStats& st = summary_.stats[column];
+  if (st.updates == 0 || end <= st.first_row) return false;
+  const Column& col = columns_[column];
+  SingerTrack& tr = block->tracks_[column];
+  const double* z = series_.values.col(static_cast<Eigen::Index>(column)).data();
+  SingerState s = b > 0 ? col.start[b] : SingerState{};
+  for (std::size_t r = begin; r < end; ++r) {
+    const std::size_t i = r - begin;
+    if (!ForwardRow(col.model, z[r], steps[i], r, &s, nullptr, &tr.x_pred[i], &tr.P_pred[i])) continue;
+    tr.x_filt[i] = s.x;
+    tr.P_filt[i] = s.P;
+  }
+  if (end < n) {  // the prediction into row end: the time update alone (no measurement given)
+    const std::size_t i = end - begin;
+    ForwardRow(col.model, kNaN, steps[i], end, &s, nullptr, &tr.x_pred[i], &tr.P_pred[i]);
+  }
+  return true;
+}
+
+// The RTS pass over block b of a recomputed column, from the smoothed state of row end (the first sweep's,
+// or at the last row the filtered state) down to the block's first row or the column's first row.
+void SingerSmoother::Smooth(std::size_t b, std::size_t column, const std::vector<track::SingerStep>& steps,
+                            SingerBlock* block) const {
+  const std::size_t n = series_.rows(), begin = b * block_rows_, end = std::min(n, begin + block_rows_);
+  SingerTrack& tr = block->tracks_[column];
+  const std::size_t top = end == n ? n - 1 : end;
+  if (end == n) {
+    tr.x_smooth[top - begin] = tr.x_filt[top - begin];
+    tr.P_smooth[top - begin] = tr.P_filt[top - begin];
+  } else {
+    const SingerState& e = columns_[column].smooth_end[b];
+    RK_CHECK(e.started, "smoothed state of a block's end missing");
+    tr.x_smooth[top - begin] = e.x;
+    tr.P_smooth[top - begin] = e.P;
+  }
+  const std::size_t lo = std::max(begin, summary_.stats[column].first_row);
+  for (std::size_t r = top; r-- > lo;) RtsStep(steps[r + 1 - begin].transition(), r - begin, &tr);
+}
+
+void SingerSmoother::SmoothBlockEnds() {
+  const std::size_t nb = blocks();
+  for (Column& col : columns_) col.smooth_end.assign(nb, SingerState{});
+  SingerBlock block = NewBlock();
+  std::vector<track::SingerStep> steps;
+  for (std::size_t b = nb; b-- > 1;) {
+    BlockSteps(b, &steps);
+    const std::size_t begin = b * block_rows_;
+    for (std::size_t c = 0; c < columns_.size(); ++c) {
+      if (!Recompute(b, c, steps, &block)) continue;
+      Smooth(b, c, steps, &block);
+      if (begin < summary_.stats[c].first_row) continue;  // no estimate at the block's first row
+      SingerState& e = columns_[c].smooth_end[b - 1];
+      e.x = block.tracks_[c].x_smooth[0];
+      e.P = block.tracks_[c].P_smooth[0];
+      e.started = true;
+    }
+  }
+}
+
+void SingerSmoother::ForEachBlock(const std::function<void(const SingerBlock&)>& visit) const {
+  const std::size_t n = series_.rows(), nb = blocks();
+  SingerBlock block = NewBlock();
+  std::vector<track::SingerStep> steps;
+  for (std::size_t b = 0; b < nb; ++b) {
+    block.begin_ = b * block_rows_;
+    block.end_ = std::min(n, block.begin_ + block_rows_);
+    BlockSteps(b, &steps);
+    for (std::size_t c = 0; c < columns_.size(); ++c) {
+      if (Recompute(b, c, steps, &block) && summary_.smoothed) Smooth(b, c, steps, &block);
+    }
+    visit(block);
+  }
+}
+
+std::size_t SingerSmoother::EvaluationRow(std::size_t column, double t_s) const {
+  RK_CHECK(summary_.stats[column].updates > 0, "EvaluateSinger on a column without measurements");
+  return EvaluationRowOf(series_.t_s, summary_.stats[column].first_row, t_s);
+}
+
+void SingerSmoother::Evaluate(const SingerBlock& block, std::size_t column, double t_s, Eigen::Vector3d* x,
+                              Eigen::Matrix3d* P) const {
+  const std::size_t row = EvaluationRow(column, t_s);
+  RK_CHECK(row >= block.begin() && row < block.end(), "SingerSmoother::Evaluate outside its block");
+  EvaluateOn(TrackView{block.tracks_[column], block.begin(), summary_.stats[column], summary_.smoothed},
+             series_.t_s, t_s, x, P);
+}
+
+bool SingerBlock::At(std::size_t column, std::size_t row, Eigen::Vector3d* x, Eigen::Matrix3d* P) const {
+  RK_CHECK(row >= begin_ && row < end_, "SingerBlock::At outside its block");
+  return TrackView{tracks_[column], begin_, (*stats_)[column], smoothed_}.At(row, x, P);
 }
 
 std::size_t MaskByStatus(const io::CsvTable& table, Series* series, std::size_t min_samples) {
@@ -451,7 +729,7 @@ std::vector<double> ColumnUnitsToInternal(const std::vector<double>& values, con
   return out;
 }
 
-bool AngleColumnIs360(const std::string& column, const std::vector<double>& values_rad) {
+bool AngleColumnIs360(const std::string& column, std::span<const double> values_rad) {
   if (column.rfind("az", 0) == 0 || column.rfind("yaw", 0) == 0) return true;
   bool negative = false, above = false;
   for (double v : values_rad) {
@@ -467,13 +745,13 @@ std::vector<bool> AngleColumnsIn360(const Series& series) {
   for (std::size_t c = 0; c < series.columns.size(); ++c) {
     if (!series.is_angle[c]) continue;
     const Eigen::Index col = static_cast<Eigen::Index>(c);
-    const std::vector<double> v(series.values.col(col).data(), series.values.col(col).data() + series.values.rows());
-    is360[c] = AngleColumnIs360(series.columns[c], v);
+    is360[c] = AngleColumnIs360(series.columns[c], std::span<const double>(series.values.col(col).data(),
+                                                                           series.rows()));
   }
   return is360;
 }
 
-nlohmann::json SingerSeriesResult::ColumnsJson(const Series& series, bool counts) const {
+nlohmann::json SingerSeriesSummary::ColumnsJson(const Series& series, bool counts) const {
   io::Json j = io::Json::object();
   for (std::size_t c = 0; c < stats.size(); ++c) {
     const SingerColumnStats& st = stats[c];
@@ -492,14 +770,14 @@ nlohmann::json SingerSeriesResult::ColumnsJson(const Series& series, bool counts
   return j;
 }
 
-nlohmann::json SingerSeriesResult::SummaryJson(const Series& series) const {
+nlohmann::json SingerSeriesSummary::SummaryJson(const Series& series) const {
   const io::Json columns = ColumnsJson(series, false);
   io::Json nis = io::Json::object();
   for (const auto& [name, col] : columns.items()) nis[name] = col["nis_mean"];
   return {{"nis_mean", nis}, {"rows_lost", rows_lost}};
 }
 
-nlohmann::json SingerSeriesResult::ToJson(const Series& series, double maneuver_time_s) const {
+nlohmann::json SingerSeriesSummary::ToJson(const Series& series, double maneuver_time_s) const {
   io::Json j;
   j["smoothed"] = smoothed;
   j["maneuver_time_s"] = maneuver_time_s;

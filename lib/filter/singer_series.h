@@ -30,17 +30,22 @@
 // noise at the sample interval: see docs/rk-smooth-singer-resample.md for the measurement).
 // Assumptions: columns are uncorrelated; white Gaussian measurement noise; near-uniform
 // sampling for the σ_z estimate. Angles: radians inside, state kept unwrapped.
+// Memory: RunSingerSeries keeps every row's estimates (short series); SingerSmoother gives the same
+// numbers block by block from checkpoints, in memory independent of the length (long logs, issue 27).
 #pragma once
 
 #include <Eigen/Core>
 #include <cstddef>
+#include <functional>
 #include <nlohmann/json_fwd.hpp>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "filter/series.h"
 #include "io/csv.h"
 #include "io/options.h"
+#include "track/singer.h"
 
 namespace rk::filter {
 
@@ -95,21 +100,18 @@ struct SingerColumnStats {
 enum class SingerRowStatus { kOk, kPredicted, kLost };
 std::string SingerRowStatusName(SingerRowStatus s);  // "ok", "predicted", "lost"
 
-struct SingerTrack {  // one column; vectors indexed by row, rows < first_row unused
+// One column's estimates; vectors indexed by row (by row − begin in a SingerBlock), rows < first_row unused.
+struct SingerTrack {
   std::vector<Eigen::Vector3d> x_pred, x_filt, x_smooth;
   std::vector<Eigen::Matrix3d> P_pred, P_filt, P_smooth;
   double a_per_s = 0.0, q = 0.0;  // Singer a and white-noise intensity q = 2 a σ_m²
 };
 
-struct SingerSeriesResult {
-  bool smoothed = false;                 // x_smooth/P_smooth filled
-  std::vector<SingerTrack> tracks;       // per column
+// What the reports need of a run: per-column figures and row counts.
+struct SingerSeriesSummary {
+  bool smoothed = false;                 // the RTS backward pass was run
   std::vector<SingerColumnStats> stats;  // per column
-  std::vector<SingerRowStatus> status;   // per row: ok = some column measured, predicted = none but
-                                         // some column has an estimate, lost = no estimate at all
   std::size_t rows = 0, rows_ok = 0, rows_predicted = 0, rows_lost = 0;
-  // Best estimate at a row (smoothed if available, else filtered); false before first_row.
-  bool At(std::size_t column, std::size_t row, Eigen::Vector3d* x, Eigen::Matrix3d* P) const;
 
   // Reports, in column units (degrees for _deg columns; docs/rk-smooth-singer-resample.md "Report").
   // {column: {updates, meas_sigma, meas_sigma_estimated, accel_sigma, nis_mean}}; `counts` adds missing
@@ -122,9 +124,115 @@ struct SingerSeriesResult {
   nlohmann::json ToJson(const Series& series, double maneuver_time_s) const;
 };
 
+// A whole run kept in memory: x and P predicted, filtered and smoothed of every row and column, 288 bytes a
+// row and column (RunSingerSeries; for short series: rk-intersect --smooth, tests). Long series go through
+// SingerSmoother, which gives the same numbers block by block.
+struct SingerSeriesResult : SingerSeriesSummary {
+  std::vector<SingerTrack> tracks;       // per column
+  std::vector<SingerRowStatus> status;   // per row: ok = some column measured, predicted = none but
+                                         // some column has an estimate, lost = no estimate at all
+  // Best estimate at a row (smoothed if available, else filtered); false before first_row.
+  bool At(std::size_t column, std::size_t row, Eigen::Vector3d* x, Eigen::Matrix3d* P) const;
+};
+
+// Status of row `row` of `series` given each column's stats (first_row, updates): see SingerSeriesResult::status.
+SingerRowStatus SingerRowStatusAt(const Series& series, const std::vector<SingerColumnStats>& stats, std::size_t row);
+
+// A column's filter state after a row: x, P and whether the column has started (had its first value).
+struct SingerState {
+  Eigen::Vector3d x = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d P = Eigen::Matrix3d::Zero();
+  bool started = false;
+};
+
+// A column's model once σ_z and σ_m are fixed.
+struct SingerColumnModel {
+  bool angle = false;    // innovations wrapped to (−π, π]
+  double a = 0.0;        // 1/τ_m (1/s)
+  double R = 0.0;        // σ_z² (internal units²)
+  double vel_sigma = 0.0, accel_sigma = 0.0;  // prior σ of p' at the first value; σ_m
+  double q = 0.0;        // 2 a σ_m²
+};
+
+// Rows per block of SingerSmoother: 4096 rows × (x, P predicted, filtered, smoothed) = 1.2 MB a column,
+// against 288 bytes a row and column for the whole series in SingerSeriesResult.
+inline constexpr std::size_t kSingerBlockRows = 4096;
+
+// The estimates of every column over one block of rows [begin, end), while SingerSmoother::ForEachBlock
+// visits it: tracks (indexed by row − begin) hold x/P predicted and filtered, and smoothed when the run
+// smooths, for rows begin..end − 1, and row end's predicted and smoothed state when end < rows (what the RTS
+// step and an evaluation between rows end − 1 and end need).
+class SingerBlock {
+ public:
+  std::size_t begin() const { return begin_; }
+  std::size_t end() const { return end_; }
+  // As SingerSeriesResult::At, for a row in [begin, end).
+  bool At(std::size_t column, std::size_t row, Eigen::Vector3d* x, Eigen::Matrix3d* P) const;
+
+ private:
+  friend class SingerSmoother;
+  std::size_t begin_ = 0, end_ = 0;
+  bool smoothed_ = false;
+  const std::vector<SingerColumnStats>* stats_ = nullptr;
+  std::vector<SingerTrack> tracks_;  // per column, block_rows + 1 entries
+};
+
+// The same filter and RTS smoother as RunSingerSeries, in memory independent of the series' length
+// (checkpointed smoother). The forward pass (run by the constructor, every candidate σ_m of every column in
+// one pass over the rows) keeps only each column's filtered state at the start of every block of
+// `block_rows` rows, besides the counts. A first backward sweep, from the last block to the first,
+// recomputes each block forward from its checkpoint and smooths it backwards from the smoothed state of the
+// row after it, keeping the smoothed state at the block's first row; ForEachBlock then recomputes and
+// smooths each block again, in time order, and hands it over. Every recomputation runs the same arithmetic
+// in the same order on the same inputs as the single forward and backward pass, so the numbers are those of
+// RunSingerSeries exactly. Cost: the forward pass once per candidate, then twice again (once without
+// smoothing) and the RTS step twice; memory: two states per block and column, plus one block.
+class SingerSmoother {
+ public:
+  // Throws as RunSingerSeries. `series` must outlive the smoother. block_rows ≥ 1 (RK_CHECK).
+  SingerSmoother(const Series& series, const SingerSeriesOptions& options, std::size_t block_rows = kSingerBlockRows);
+
+  const SingerSeriesSummary& summary() const { return summary_; }
+  SingerRowStatus RowStatus(std::size_t row) const { return SingerRowStatusAt(series_, summary_.stats, row); }
+  std::size_t blocks() const { return (series_.rows() + block_rows_ - 1) / block_rows_; }
+
+  // Calls visit(block) for every block, in time order (smoothed estimates if the run smooths, else filtered).
+  void ForEachBlock(const std::function<void(const SingerBlock&)>& visit) const;
+
+  // EvaluateSinger, block by block: the row whose block holds what an estimate of `column` (with at least one
+  // update) at t_s needs (the first row with a value for t_s before it, else the last row at or before t_s;
+  // non-decreasing in t_s), and the estimate itself from that row's block.
+  std::size_t EvaluationRow(std::size_t column, double t_s) const;
+  void Evaluate(const SingerBlock& block, std::size_t column, double t_s, Eigen::Vector3d* x,
+                Eigen::Matrix3d* P) const;
+
+ private:
+  struct Column {
+    SingerColumnModel model;
+    std::vector<SingerState> start;       // [b], b ≥ 1: filtered state after row b·block_rows − 1
+    std::vector<SingerState> smooth_end;  // [b]: smoothed state at row (b + 1)·block_rows (first sweep)
+  };
+  void Forward(const std::vector<std::vector<SingerColumnModel>>& candidates, const std::vector<std::size_t>& fallback);
+  void SmoothBlockEnds();
+  SingerBlock NewBlock() const;
+  void BlockSteps(std::size_t b, std::vector<track::SingerStep>* steps) const;
+  bool Recompute(std::size_t b, std::size_t column, const std::vector<track::SingerStep>& steps,
+                 SingerBlock* block) const;
+  void Smooth(std::size_t b, std::size_t column, const std::vector<track::SingerStep>& steps,
+              SingerBlock* block) const;
+
+  const Series& series_;
+  std::size_t block_rows_;
+  SingerSeriesSummary summary_;
+  std::vector<Column> columns_;
+};
+
 // Robust σ of white noise from the k-th differences of the usable (finite) values; angles
 // are unwrapped first. Returns NaN if fewer than k + 3 usable values.
-double EstimateNoiseSigma(const std::vector<double>& values, bool angle, int order = kNoiseDifferenceOrder);
+double EstimateNoiseSigma(std::span<const double> values, bool angle, int order = kNoiseDifferenceOrder);
+inline double EstimateNoiseSigma(const std::vector<double>& values, bool angle, int order = kNoiseDifferenceOrder) {
+  return EstimateNoiseSigma(std::span<const double>(values), angle, order);
+}
 // Measurement-noise σ of a series from its k-th differences, k = min_order..max_order: for each order the
 // RMS of the differences within 4 robust σ (1.4826·MAD) of their median, divided by √C(2k, k) (the variance
 // gain of Δᵏ on white noise); the smallest over the orders is returned (with the order that gave it). Δᵏ
@@ -165,7 +273,10 @@ std::vector<double> ColumnUnitsToInternal(const std::vector<double>& values, con
 
 // True if an angle column is written in [0, 360): azimuth-like name (starts with "az" or
 // "yaw", SPEC.md §2), or no input value < 0 and some > 180° (the aukf rule); else (−180, 180].
-bool AngleColumnIs360(const std::string& column, const std::vector<double>& values_rad);
+bool AngleColumnIs360(const std::string& column, std::span<const double> values_rad);
+inline bool AngleColumnIs360(const std::string& column, const std::vector<double>& values_rad) {
+  return AngleColumnIs360(column, std::span<const double>(values_rad));
+}
 // AngleColumnIs360 of every column of `series` (false for a column that is not an angle).
 std::vector<bool> AngleColumnsIn360(const Series& series);
 

@@ -227,7 +227,6 @@ void Smooth(const IntersectOptions& options, IntersectResult* r) {
   for (std::size_t i = 0; i < r->rows.size(); ++i) {
     const TrajectoryRow& tr = r->rows[i];
     series.t_s.push_back(tr.t_s);
-    series.line.push_back(i + 2);
     if (tr.status != RowStatus::kOk || !(std::sqrt(tr.result.solution.P.trace()) <= gate)) continue;
     for (int c = 0; c < 3; ++c) {
       series.values(static_cast<Eigen::Index>(i), c) = tr.result.solution.p(c);

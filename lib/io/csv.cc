@@ -868,6 +868,13 @@ void CsvWriter::Write(const std::string& path) const {
   WriteFileAtomic(path, text_);
 }
 
+std::string CsvWriter::TakeText() {
+  RK_CHECK(fields_in_row_ == 0, "unfinished row");
+  std::string out = std::move(text_);
+  text_.clear();
+  return out;
+}
+
 std::vector<std::string> SplitList(std::string_view list, char sep) {
   std::vector<std::string> out;
   std::size_t start = 0;

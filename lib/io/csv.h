@@ -184,6 +184,9 @@ class CsvWriter {
   std::size_t rows() const { return rows_; }
   // Atomic write to `path`, or stdout for "-".
   void Write(const std::string& path) const;
+  // Moves out the text written so far (the header first), for an output written in pieces
+  // (io::OutputFile); RK_CHECKs that no row is unfinished. rows() still counts every row.
+  std::string TakeText();
 
  private:
   std::vector<std::string> columns_;

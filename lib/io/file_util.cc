@@ -6,6 +6,7 @@
 
 #include <cerrno>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -101,12 +102,17 @@ void WriteAll(int fd, std::string_view data, const std::string& name) {
   }
 }
 
-void WriteThrough(const std::string& path, const std::string& data) {
+int OpenWriteThrough(const std::string& path) {
   // No O_CREAT: this path exists and is not a regular file; if it vanished meanwhile, creating a
   // regular file in its place is exactly what must not happen. No O_TRUNC: devices and FIFOs have
   // nothing to truncate.
   const int fd = ::open(path.c_str(), O_WRONLY | O_NOCTTY | O_CLOEXEC);
   if (fd < 0) throw IoError(path, std::string("cannot open for writing: ") + std::strerror(errno));
+  return fd;
+}
+
+void WriteThrough(const std::string& path, const std::string& data) {
+  const int fd = OpenWriteThrough(path);
   try {
     WriteAll(fd, data, path);
   } catch (...) {
@@ -116,16 +122,9 @@ void WriteThrough(const std::string& path, const std::string& data) {
   if (::close(fd) != 0) throw IoError(path, std::string("write failed: ") + std::strerror(errno));
 }
 
-void ReplaceAtomically(const std::string& path, const std::string& data) {
-  int fd = -1;
-  std::string tmp = TempNameBeside(path, &fd);
-  try {
-    WriteAll(fd, data, path);
-  } catch (...) {
-    ::close(fd);
-    ::unlink(tmp.c_str());
-    throw;
-  }
+// The end of an atomic replacement: `fd`, the temporary file `tmp` beside `path` holding the whole data, is
+// given its mode, flushed to disk, closed and renamed over `path`; on failure `tmp` is removed.
+void FinishReplace(int fd, const std::string& tmp, const std::string& path) {
   // Files are created 0600 by mkstemp; give them the usual 0644 (less umask).
   mode_t mask = ::umask(0);
   ::umask(mask);
@@ -146,6 +145,49 @@ void ReplaceAtomically(const std::string& path, const std::string& data) {
     int e = errno;
     ::unlink(tmp.c_str());
     throw IoError(path, std::string("cannot rename into place: ") + std::strerror(e));
+  }
+}
+
+void ReplaceAtomically(const std::string& path, const std::string& data) {
+  int fd = -1;
+  std::string tmp = TempNameBeside(path, &fd);
+  try {
+    WriteAll(fd, data, path);
+  } catch (...) {
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw;
+  }
+  FinishReplace(fd, tmp, path);
+}
+
+// An unnamed temporary file (created and unlinked at once) in $TMPDIR, else /tmp, for OutputFile's spool.
+int OpenSpool(const std::string& for_path) {
+  const char* dir = std::getenv("TMPDIR");
+  std::string templ = std::string(dir && *dir ? dir : "/tmp") + "/rk-output.XXXXXX";
+  std::vector<char> buf(templ.begin(), templ.end());
+  buf.push_back('\0');
+  const int fd = ::mkstemp(buf.data());
+  if (fd < 0) {
+    throw IoError(for_path, std::string("cannot create a temporary file in ") + (dir && *dir ? dir : "/tmp") +
+                                ": " + std::strerror(errno));
+  }
+  ::unlink(buf.data());
+  return fd;
+}
+
+// Copies the spool `from` (from its start) to `to` through the one write loop.
+void CopySpool(int from, int to, const std::string& name) {
+  if (::lseek(from, 0, SEEK_SET) != 0) throw IoError(name, std::string("temporary file: ") + std::strerror(errno));
+  std::vector<char> buf(std::size_t{1} << 20);
+  for (;;) {
+    const ssize_t n = ::read(from, buf.data(), buf.size());
+    if (n < 0) {
+      if (errno == EINTR) continue;
+      throw IoError(name, std::string("temporary file: ") + std::strerror(errno));
+    }
+    if (n == 0) return;
+    WriteAll(to, std::string_view(buf.data(), static_cast<std::size_t>(n)), name);
   }
 }
 
@@ -184,6 +226,60 @@ void WriteFileAtomic(const std::string& path, const std::string& data) {
     case OutputTarget::Kind::kReplace:
       ReplaceAtomically(target.path, data);
       return;
+  }
+}
+
+OutputFile::OutputFile(const std::string& path) : path_(path), target_(ResolveOutput(path)) {
+  if (target_.kind == OutputTarget::Kind::kReplace) {
+    tmp_ = TempNameBeside(target_.path, &fd_);
+  } else {
+    fd_ = OpenSpool(path_);
+  }
+}
+
+OutputFile::~OutputFile() {
+  if (fd_ < 0) return;
+  ::close(fd_);
+  if (!tmp_.empty()) ::unlink(tmp_.c_str());
+}
+
+void OutputFile::Write(std::string_view data) {
+  RK_CHECK(fd_ >= 0, "OutputFile written after Commit");
+  WriteAll(fd_, data, target_.kind == OutputTarget::Kind::kReplace ? target_.path : path_);
+}
+
+void OutputFile::Commit() {
+  RK_CHECK(fd_ >= 0, "OutputFile committed twice");
+  const int fd = fd_;
+  fd_ = -1;  // from here FinishReplace (or the close below) owns it
+  switch (target_.kind) {
+    case OutputTarget::Kind::kReplace:
+      FinishReplace(fd, tmp_, target_.path);
+      return;
+    case OutputTarget::Kind::kDescriptor:
+      try {
+        std::cout.flush();  // what std::cout buffered comes first, as in WriteToDescriptor
+        CopySpool(fd, target_.fd, target_.fd == STDOUT_FILENO ? "<stdout>" : path_);
+      } catch (...) {
+        ::close(fd);
+        throw;
+      }
+      ::close(fd);
+      return;
+    case OutputTarget::Kind::kWriteThrough: {
+      int out = -1;
+      try {
+        out = OpenWriteThrough(target_.path);
+        CopySpool(fd, out, target_.path);
+      } catch (...) {
+        ::close(fd);
+        if (out >= 0) ::close(out);
+        throw;
+      }
+      ::close(fd);
+      if (::close(out) != 0) throw IoError(target_.path, std::string("write failed: ") + std::strerror(errno));
+      return;
+    }
   }
 }
 

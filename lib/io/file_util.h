@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rk::io {
@@ -40,6 +41,30 @@ std::string ResolveOutputFolder(const std::string& path);
 // half-written file and a failed run leaves nothing behind), in place for devices and FIFOs,
 // to the descriptor for "-" and /dev/stdout.
 void WriteFileAtomic(const std::string& path, const std::string& data);
+
+// An output written in pieces, for data too large to hold in memory whole (rk-smooth singer on a long log),
+// with WriteFileAtomic's guarantees: nothing appears at `path` before Commit(), and an OutputFile destroyed
+// without Commit() (a failed run) leaves nothing anywhere. A file (ResolveOutput's kReplace) is written
+// straight into the temporary file beside it and renamed over it at Commit(); a descriptor ("-") or a
+// device / FIFO gets the whole data at Commit(), copied from a spool (an unnamed temporary file in $TMPDIR,
+// else /tmp), so that a failed run writes nothing there either.
+class OutputFile {
+ public:
+  // Resolves `path` (ResolveOutput) and creates the temporary file or the spool; IoError as WriteFileAtomic.
+  explicit OutputFile(const std::string& path);
+  OutputFile(const OutputFile&) = delete;
+  OutputFile& operator=(const OutputFile&) = delete;
+  ~OutputFile();  // without Commit(): the temporary file is removed
+  void Write(std::string_view data);
+  // Flushed to disk and renamed into place (kReplace), or the spool copied to its descriptor or device.
+  void Commit();
+
+ private:
+  std::string path_;
+  OutputTarget target_;
+  int fd_ = -1;      // the temporary file beside the target (kReplace) or the spool
+  std::string tmp_;  // kReplace: the temporary file's name, removed unless committed
+};
 
 // Files a tool makes for itself in a folder it works in (rk-run's TRIAL/.rk-run.lock, rk-run.log,
 // last-run.json), as opposed to outputs the user names: they never go through a symbolic link, so that

@@ -52,7 +52,6 @@ Series Turntable(unsigned seed, std::vector<double>* noise_deg) {
     const double e = g(rng);
     noise_deg->push_back(e);
     s.t_s.push_back(t);
-    s.line.push_back(static_cast<std::size_t>(k + 2));
     s.values(k, 0) = geo::DegToRad(kTurntableRateDegS * t + e);
   }
   return s;
@@ -132,7 +131,6 @@ Series PoseSeries(const std::vector<double>& t, const std::vector<Eigen::VectorX
   s.values.resize(static_cast<Eigen::Index>(t.size()), 6);
   for (std::size_t k = 0; k < t.size(); ++k) {
     s.t_s.push_back(t[k]);
-    s.line.push_back(k + 2);
     for (int c = 0; c < 6; ++c) {
       const double sd = c >= 3 ? geo::DegToRad(kAngNoiseDeg) : kPosNoiseM;
       double v = truth[2 * k](3 * c) + sd * g(*rng);
@@ -373,7 +371,6 @@ TEST(Aukf, AngleWrapThroughNorth) {
   for (int k = 0; k < N; ++k) {
     const double t = k * 0.05;
     s.t_s.push_back(t);
-    s.line.push_back(static_cast<std::size_t>(k + 2));
     s.values(k, 0) = geo::WrapPi(geo::DegToRad(170.0 + 5.0 * t) + g(rng));
   }
   AukfOptions opt;
@@ -416,7 +413,6 @@ void GoldenEqualsLinearKalmanFilter(bool joint_transform) {
   double t = 0;
   for (int k = 0; k < N; ++k) {
     s.t_s.push_back(t);
-    s.line.push_back(static_cast<std::size_t>(k + 2));
     for (int c = 0; c < m; ++c) s.values(k, c) = std::sin(0.7 * t + c) * (c + 1) + 0.01 * g(rng);
     t += u(rng);  // irregular sampling
   }
@@ -511,7 +507,6 @@ TEST(Aukf, BlockTransformEqualsJointTransform) {
   double t = 0;
   for (int k = 0; k < N; ++k) {
     s.t_s.push_back(t);
-    s.line.push_back(static_cast<std::size_t>(k + 2));
     s.values(k, 0) = geo::WrapPi(3.0 + 0.4 * t + 0.3 * std::sin(2 * t) + 0.002 * g(rng));  // crosses ±π
     s.values(k, 1) = std::cos(t) + 0.01 * g(rng);
     t += 0.04 + 0.02 * (k % 3);

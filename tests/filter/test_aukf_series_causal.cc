@@ -33,7 +33,6 @@ Series Track(unsigned seed, int rows) {
   double t = 0;
   for (int k = 0; k < rows; ++k) {
     s.t_s.push_back(t);
-    s.line.push_back(static_cast<std::size_t>(k + 2));
     const double yaw = geo::DegToRad(175.0 + 20.0 * std::sin(1.3 * t) + 5.0 * std::sin(4.1 * t + 1.0));
     s.values(k, 0) = geo::WrapPi(yaw + geo::DegToRad(0.05) * g(rng));
     s.values(k, 1) = 2.0 + 0.4 * t + 0.1 * std::sin(2.2 * t) + 0.001 * g(rng);
@@ -47,7 +46,6 @@ Series Track(unsigned seed, int rows) {
 Series Head(const Series& s, int rows) {
   Series h = s;
   h.t_s.resize(static_cast<std::size_t>(rows));
-  h.line.resize(static_cast<std::size_t>(rows));
   h.values.conservativeResize(rows, Eigen::NoChange);
   return h;
 }
@@ -191,7 +189,6 @@ TEST(AukfCausal, PredictionSigmaConsistentOnWhiteJerkTruth) {
       if (j % 2 == 0) {
         const int k = j / 2;
         s.t_s.push_back(k * kFrameS);
-        s.line.push_back(static_cast<std::size_t>(k + 2));
         s.values(k, 0) = geo::WrapPi(x[0](0) + geo::DegToRad(kSigmaAngDeg) * g(rng));
         s.values(k, 1) = x[1](0) + kSigmaPos * g(rng);
       }

@@ -16,7 +16,6 @@ inline Series MakeSeries(const std::string& column, const std::vector<double>& t
   s.t_s = t;
   s.values.resize(static_cast<Eigen::Index>(t.size()), 1);
   for (std::size_t i = 0; i < t.size(); ++i) s.values(static_cast<Eigen::Index>(i), 0) = v[i];
-  s.line.assign(t.size(), 0);
   return s;
 }
 

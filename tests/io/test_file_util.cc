@@ -141,6 +141,72 @@ TEST_F(OutputPaths, OwnDescriptorsAreWrittenToTheDescriptor) {
   EXPECT_EQ(Inode(log), ino);
 }
 
+// io::OutputFile (an output written in pieces): nothing at the path before Commit, the whole data after it,
+// nothing anywhere when it is dropped uncommitted; through a FIFO and a descriptor, all at Commit.
+TEST_F(OutputPaths, OutputFileInPiecesIsAtomic) {
+  std::ofstream(P("old.csv")) << "old\n";
+  {
+    OutputFile out(P("old.csv"));
+    out.Write("a\n");
+    out.Write("1\n");
+    EXPECT_EQ(Slurp(P("old.csv")), "old\n");  // not yet
+    EXPECT_EQ(HiddenTemporaries(), 1u);
+    out.Commit();
+  }
+  EXPECT_EQ(Slurp(P("old.csv")), "a\n1\n");
+  EXPECT_EQ(HiddenTemporaries(), 0u);
+  {
+    OutputFile out(P("failed.csv"));  // a run that fails before Commit
+    out.Write("partial\n");
+  }
+  EXPECT_FALSE(fs::exists(P("failed.csv")));
+  EXPECT_EQ(HiddenTemporaries(), 0u);
+  {
+    OutputFile out(P("old.csv"));
+    out.Write("partial\n");
+  }
+  EXPECT_EQ(Slurp(P("old.csv")), "a\n1\n");  // the old file stays as it was
+  EXPECT_EQ(HiddenTemporaries(), 0u);
+
+  ASSERT_EQ(::mkfifo(P("fifo").c_str(), 0644), 0);
+  std::string got;
+  std::thread reader([&] { got = Slurp(P("fifo")); });
+  {
+    OutputFile out(P("fifo"));
+    out.Write("through ");
+    out.Write("the fifo\n");
+    out.Commit();
+  }
+  reader.join();
+  EXPECT_EQ(got, "through the fifo\n");
+  EXPECT_TRUE(fs::is_fifo(P("fifo")));
+
+  // A descriptor: a child whose stdout is a file gets the data at Commit, nothing without it.
+  for (const bool commit : {true, false}) {
+    const std::string log = P(commit ? "committed.log" : "dropped.log");
+    std::ofstream(log) << "first\n";
+    const pid_t pid = ::fork();
+    ASSERT_GE(pid, 0);
+    if (pid == 0) {
+      const int fd = ::open(log.c_str(), O_WRONLY | O_APPEND);
+      if (fd < 0 || ::dup2(fd, STDOUT_FILENO) < 0) ::_exit(2);
+      try {
+        OutputFile out("-");
+        out.Write("second\n");
+        if (commit) out.Commit();
+      } catch (...) {
+        ::_exit(3);
+      }
+      ::_exit(0);
+    }
+    int status = 0;
+    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 0);
+    EXPECT_EQ(Slurp(log), commit ? "first\nsecond\n" : "first\n");
+  }
+}
+
 TEST_F(OutputPaths, FoldersAreRefused) {
   try {
     WriteFileAtomic(dir_.string(), "x");
