@@ -108,6 +108,27 @@ TEST_F(OutputPaths, DeviceIsWrittenThroughNeverReplaced) {
   EXPECT_EQ(HiddenTemporaries(), 0u);
 }
 
+// Runs `write` in a child whose stdout is `log` opened for appending (a shell's ">>"); the child's exit code
+// (0: `write` returned, 3: it threw, 2: the file could not be opened).
+template <typename F>
+int InChildAppendingTo(const std::string& log, F write) {
+  const pid_t pid = ::fork();
+  if (pid < 0) return -1;
+  if (pid == 0) {
+    const int fd = ::open(log.c_str(), O_WRONLY | O_APPEND);
+    if (fd < 0 || ::dup2(fd, STDOUT_FILENO) < 0) ::_exit(2);
+    try {
+      write();
+    } catch (...) {
+      ::_exit(3);
+    }
+    ::_exit(0);
+  }
+  int status = 0;
+  if (::waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
+  return WEXITSTATUS(status);
+}
+
 TEST_F(OutputPaths, OwnDescriptorsAreWrittenToTheDescriptor) {
   for (const char* name : {"-", "/dev/stdout", "/dev/fd/1", "/proc/self/fd/1"}) {
     const OutputTarget t = ResolveOutput(name);
@@ -121,22 +142,7 @@ TEST_F(OutputPaths, OwnDescriptorsAreWrittenToTheDescriptor) {
   const std::string log = P("append.log");
   std::ofstream(log) << "first\n";
   const ino_t ino = Inode(log);
-  const pid_t pid = ::fork();
-  ASSERT_GE(pid, 0);
-  if (pid == 0) {
-    const int fd = ::open(log.c_str(), O_WRONLY | O_APPEND);
-    if (fd < 0 || ::dup2(fd, STDOUT_FILENO) < 0) ::_exit(2);
-    try {
-      WriteFileAtomic("/dev/stdout", "second\n");
-    } catch (...) {
-      ::_exit(3);
-    }
-    ::_exit(0);
-  }
-  int status = 0;
-  ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFEXITED(status));
-  EXPECT_EQ(WEXITSTATUS(status), 0);
+  EXPECT_EQ(InChildAppendingTo(log, [] { WriteFileAtomic("/dev/stdout", "second\n"); }), 0);
   EXPECT_EQ(Slurp(log), "first\nsecond\n");
   EXPECT_EQ(Inode(log), ino);
 }
@@ -185,24 +191,13 @@ TEST_F(OutputPaths, OutputFileInPiecesIsAtomic) {
   for (const bool commit : {true, false}) {
     const std::string log = P(commit ? "committed.log" : "dropped.log");
     std::ofstream(log) << "first\n";
-    const pid_t pid = ::fork();
-    ASSERT_GE(pid, 0);
-    if (pid == 0) {
-      const int fd = ::open(log.c_str(), O_WRONLY | O_APPEND);
-      if (fd < 0 || ::dup2(fd, STDOUT_FILENO) < 0) ::_exit(2);
-      try {
-        OutputFile out("-");
-        out.Write("second\n");
-        if (commit) out.Commit();
-      } catch (...) {
-        ::_exit(3);
-      }
-      ::_exit(0);
-    }
-    int status = 0;
-    ASSERT_EQ(::waitpid(pid, &status, 0), pid);
-    ASSERT_TRUE(WIFEXITED(status));
-    EXPECT_EQ(WEXITSTATUS(status), 0);
+    EXPECT_EQ(InChildAppendingTo(log,
+                                 [commit] {
+                                   OutputFile out("-");
+                                   out.Write("second\n");
+                                   if (commit) out.Commit();
+                                 }),
+              0);
     EXPECT_EQ(Slurp(log), commit ? "first\nsecond\n" : "first\n");
   }
 }
