@@ -172,54 +172,57 @@ TimeSeriesInterpolator::TimeSeriesInterpolator(std::shared_ptr<const std::vector
   if (opt_.angle) UnwrapAnglesInPlace(&values);
   std::size_t usable = 0;
   for (const double x : values) usable += std::isfinite(x) ? 1 : 0;
-  if (usable == values.size()) {
-    times_ = std::move(t_s);  // every sample usable: the times as they are, shared
-    v_ = std::move(values);
-  } else {
-    auto kept = std::make_shared<std::vector<double>>();
+  // One pass over the samples: the usable ones kept (in place; the times as they are, shared, when every
+  // sample is usable) and the segments found: a break where an unusable sample lies between two usable
+  // ones, or where they are further apart than max_gap_s.
+  const bool all_usable = usable == values.size();
+  std::shared_ptr<std::vector<double>> kept;
+  if (!all_usable) {
+    kept = std::make_shared<std::vector<double>>();
     kept->reserve(usable);
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < t.size(); ++i) {
-      if (!std::isfinite(values[i])) continue;
-      kept->push_back(t[i]);
-      values[n++] = values[i];
-    }
-    values.resize(n);
-    values.shrink_to_fit();
-    v_ = std::move(values);
-    times_ = std::move(kept);
   }
-  // Segments, from the original sequence: a break where an unusable sample lies between two usable ones,
-  // or where they are further apart than max_gap_s.
-  const std::vector<double>& tu = *times_;
-  if (tu.empty()) return;
-  segment_begin_.push_back(0);
+  std::size_t n = 0, prev = 0;  // usable samples so far, index of the last one
   bool unusable_between = false;
-  std::size_t k = 0;  // index of the next usable sample
   for (std::size_t i = 0; i < t.size(); ++i) {
-    const bool is_usable = usable == t.size() || (k < tu.size() && tu[k] == t[i] && std::isfinite(v_[k]));
-    if (!is_usable) {
+    if (!std::isfinite(values[i])) {
       unusable_between = true;
       continue;
     }
-    if (k > 0) {
+    if (n == 0) {
+      segment_begin_.push_back(0);
+    } else {
       InterpStatus link = InterpStatus::kOk;
       if (unusable_between) {
         link = InterpStatus::kUnusable;
-      } else if (tu[k] - tu[k - 1] > opt_.max_gap_s * (1.0 + kGapSlack)) {
+      } else if (t[i] - t[prev] > opt_.max_gap_s * (1.0 + kGapSlack)) {
         link = InterpStatus::kGap;
       }
       if (link != InterpStatus::kOk) {
-        segment_end_.push_back(k - 1);
+        segment_end_.push_back(n - 1);
         segment_break_.push_back(link);
-        segment_begin_.push_back(k);
+        segment_begin_.push_back(n);
       }
     }
+    if (!all_usable) {
+      kept->push_back(t[i]);
+      values[n] = values[i];
+    }
     unusable_between = false;
-    ++k;
+    prev = i;
+    ++n;
   }
-  segment_end_.push_back(tu.size() - 1);
-  segment_break_.push_back(InterpStatus::kOutside);  // after the last segment: nothing follows
+  if (n > 0) {
+    segment_end_.push_back(n - 1);
+    segment_break_.push_back(InterpStatus::kOutside);  // after the last segment: nothing follows
+  }
+  if (all_usable) {
+    times_ = std::move(t_s);
+  } else {
+    values.resize(n);
+    values.shrink_to_fit();
+    times_ = std::move(kept);
+  }
+  v_ = std::move(values);
 }
 
 std::size_t TimeSeriesInterpolator::HeldBytes() const {
