@@ -8,6 +8,7 @@
    (docs/<tool>*.md; rk-nightly, rk-slurm and rk-report are in docs/rk-run.md), by its long or its short form.
 Usage: help_matches_docs.py DOCS_DIR BIN_DIR
 """
+import functools
 import os
 import re
 import subprocess
@@ -31,9 +32,17 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from cli_manual import doc_pages  # noqa: E402 - a tool's pages: the man pages' SEE ALSO uses the same rule
 
 
+@functools.lru_cache(maxsize=None)
+def run_help(cmd):
+    """(exit code, stdout) of `cmd --help` (cmd a tuple): each tool and subcommand is run once, though both
+    checks below read it (a sanitized tool takes a tenth of a second to start)."""
+    out = subprocess.run(list(cmd) + ["--help"], capture_output=True, text=True, check=False)
+    return out.returncode, out.stdout
+
+
 def help_options(cmd):
     """(options as (short or None, long), subcommands) listed by `cmd --help` (CLI11 or argparse)."""
-    out = subprocess.run(cmd + ["--help"], capture_output=True, text=True, check=False).stdout
+    out = run_help(tuple(cmd))[1]
     opts = set()
     for m in re.finditer(r"^\s+(?:(-\w)(?: \w+)?,\s*)?(--[a-z][a-z0-9-]*)", out, re.M):
         opts.add((m.group(1), m.group(2)))
@@ -85,8 +94,8 @@ def main():
             cmd = [os.path.join(bindir, words[1])]
             if len(words) > 2 and re.fullmatch(r"[a-z][a-z0-9-]*", words[2]):
                 cmd.append(words[2])
-            out = subprocess.run(cmd + ["--help"], capture_output=True, text=True, check=False)
-            got = [l.rstrip() for l in out.stdout.splitlines()]
+            code, stdout = run_help(tuple(cmd))
+            got = [l.rstrip() for l in stdout.splitlines()]
             g = next((i for i, l in enumerate(got) if l.startswith("Usage: ")), None)
             want = lines[at:]
             while want and not want[-1]:
@@ -95,7 +104,7 @@ def main():
             while have and not have[-1]:
                 have.pop()
             checked += 1
-            if out.returncode != 0 or have != want:
+            if code != 0 or have != want:
                 bad += 1
                 diff = next((i for i in range(max(len(want), len(have)))
                              if i >= len(want) or i >= len(have) or want[i] != have[i]), 0)
