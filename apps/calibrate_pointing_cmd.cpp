@@ -19,6 +19,7 @@
 #include "io/json_util.h"
 #include "locate/boresight.h"
 #include "locate/inputs.h"
+#include "station_option.h"
 
 namespace rk::app {
 namespace {
@@ -63,7 +64,7 @@ std::vector<std::string> CheckPaths(const PointingCli& c, const Context& ctx) {
 
 calibrate::TargetCatalogue ReadTargets(const PointingCli& c) {
   calibrate::TargetCatalogue t;
-  t.station = target::ParseStation(c.station, "--station");
+  t.station = cli::ParseStationOption(c.station);
   if (!c.landmarks.empty()) {
     t.landmarks = target::ReadLandmarks(io::CsvTable::Read(c.landmarks, {c.bad_rows, {}}), t.station);
     t.landmarks_source = c.landmarks;
@@ -106,7 +107,7 @@ int RunPointing(const PointingCli& c, const Context& ctx) {
   const calibrate::EstimateSet est = calibrate::ParseEstimate(c.estimate);
   if (c.landmarks.empty() && c.stars.empty()) throw UsageError("give --landmarks, --stars or both");
   if (!c.stars.empty() && c.epoch_utc.empty()) throw UsageError("--stars needs --epoch-utc (the UTC of t_s = 0)");
-  target::ParseStation(c.station, "--station");
+  cli::ParseStationOption(c.station);
   if (!c.epoch_utc.empty()) target::ParseUtc(c.epoch_utc, "--epoch-utc");
   CheckPaths(c, ctx);
   if (!c.stars.empty() && c.dut1->count() == 0) {

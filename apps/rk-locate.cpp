@@ -14,6 +14,7 @@
 #include "io/file_util.h"
 #include "locate/inputs.h"
 #include "locate/locate.h"
+#include "station_option.h"
 
 namespace {
 
@@ -51,9 +52,7 @@ int main(int argc, char** argv) {
     std::string why;
     if (!opt.Check(&why)) throw rk::UsageError(why);
     if (!station_text.empty()) {
-      rk::geo::Geodetic station;
-      if (!rk::geo::ParseGeodetic(station_text, &station, &why)) throw rk::UsageError("--station: " + why);
-      opt.station = station;
+      opt.station = rk::cli::ParseStationOption(station_text);
     }
     std::vector<std::string> inputs = {track_path, camera_path, turret_path};
     if (!range_path.empty()) inputs.push_back(range_path);

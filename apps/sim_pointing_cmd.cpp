@@ -9,6 +9,7 @@
 #include "io/json_util.h"
 #include "sim/pointing_scenario.h"
 #include "sim/pointing_trial.h"
+#include "station_option.h"
 #include "target/calibration_targets.h"
 #include "sim_commands.h"
 
@@ -24,9 +25,9 @@ struct PointingSimCli {
 int RunPointingSim(PointingSimCli& p, const Context& ctx) {
   if (p.out.empty() || p.out == "-") throw UsageError("--out must name a folder");
   if (!p.station.empty()) {
-    const rk::target::Geodetic g = rk::target::ParseStation(p.station, "--station");
-    p.o.lat_deg = rk::geo::RadToDeg(g.lat_rad);
-    p.o.lon_deg = rk::geo::RadToDeg(g.lon_rad);
+    const rk::geo::Geodetic g = rk::cli::ParseStationOption(p.station);
+    p.o.lat_deg = g.lat_deg;
+    p.o.lon_deg = g.lon_deg;
     p.o.h_m = g.h_m;
   }
   const rk::sim::PointingSession s = rk::sim::SimulatePointingSession(p.o);

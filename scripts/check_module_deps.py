@@ -9,6 +9,10 @@ docs/architecture.md holds the module graph as a table whose rows are
 sources) must name the module itself or one of its allowed modules. A module missing from the table,
 or a table row for a folder that does not exist, is an error too: the page must stay true.
 
+The graph is written a second time in each lib/<module>/CMakeLists.txt (rk_add_module's PUBLIC and PRIVATE
+rangekit::<module> lists): those must be exactly the table's row, so the link order and the page agree.
+Third-party libraries with one owner (THIRD_PARTY_OWNER) may be included and linked by that module only.
+
   check_module_deps.py [REPO]            exit 1 and one line per violation
   check_module_deps.py [REPO] --graph    print the graph found in the sources (module: used modules)
 """
@@ -17,6 +21,11 @@ import re
 import sys
 
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([a-z_]+)/[^"]+"', re.M)
+SYSTEM_INCLUDE = re.compile(r'^\s*#\s*include\s+<([A-Za-z_]+)/[^>]+>', re.M)
+CMAKE_MODULE = re.compile(r"rangekit::([a-z_]+)")
+CMAKE_ADD = re.compile(r"rk_add_module\(\s*([a-z_]+)(.*?)\)", re.S)
+# Include folder or CMake target prefix of a third-party library → the one module that owns it.
+THIRD_PARTY_OWNER = {"GeographicLib": "geo"}
 ROW = re.compile(r"^\|\s*`([a-z_]+)`\s*\|([^|]*)\|")
 
 
@@ -40,6 +49,36 @@ def used(repo, module):
                 line = text.count("\n", 0, m.start()) + 1
                 found[dep] = "lib/%s/%s:%d" % (module, name, line)
     return found
+
+
+def cmake_deps(repo, module):
+    """rangekit:: modules named in rk_add_module(module ...) of lib/<module>/CMakeLists.txt, or None."""
+    with open(os.path.join(repo, "lib", module, "CMakeLists.txt"), encoding="utf-8") as f:
+        text = re.sub(r"#[^\n]*", "", f.read())
+    m = CMAKE_ADD.search(text)
+    return None if m is None else set(CMAKE_MODULE.findall(m.group(2))) - {module}
+
+
+def third_party_problems(repo, module):
+    """Lines of lib/<module>/ that include or link a third-party library another module owns."""
+    problems = []
+    folder = os.path.join(repo, "lib", module)
+    for name in sorted(os.listdir(folder)):
+        path = os.path.join(folder, name)
+        if not os.path.isfile(path):
+            continue
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        for lib, owner in THIRD_PARTY_OWNER.items():
+            if owner == module:
+                continue
+            pattern = SYSTEM_INCLUDE if name != "CMakeLists.txt" else re.compile(r"(%s)::" % lib)
+            for m in pattern.finditer(text):
+                if m.group(1) == lib and not text[:m.start()].rstrip().endswith("#"):
+                    line = text.count("\n", 0, m.start()) + 1
+                    problems.append("lib/%s/%s:%d: %s belongs to module '%s' (scripts/check_module_deps.py)"
+                                    % (module, name, line, lib, owner))
+    return problems
 
 
 def allowed(repo):
@@ -77,6 +116,16 @@ def main():
             if dep not in table[m]:
                 problems.append("%s: module '%s' includes '%s/...', which docs/architecture.md does not allow"
                                 % (where, m, dep))
+        linked = cmake_deps(repo, m)
+        if linked is None:
+            problems.append("lib/%s/CMakeLists.txt: no rk_add_module(%s ...)" % (m, m))
+        elif linked != table[m]:
+            extra, missing = sorted(linked - table[m]), sorted(table[m] - linked)
+            problems.append("lib/%s/CMakeLists.txt: rk_add_module lists %s; docs/architecture.md's row says %s%s%s"
+                            % (m, ", ".join(sorted(linked)) or "no module", ", ".join(sorted(table[m])) or "none",
+                               " (not in the row: %s)" % ", ".join(extra) if extra else "",
+                               " (not linked: %s)" % ", ".join(missing) if missing else ""))
+        problems += third_party_problems(repo, m)
     for m in sorted(set(table) - set(mods)):
         problems.append("docs/architecture.md: module '%s' has no folder lib/%s" % (m, m))
     for p in problems:

@@ -68,7 +68,7 @@ class Axes:
         self.title_size = FONT + 1
         self.xlim = self.ylim = None
         self.yinvert = False
-        self.equal = False
+        self.aspect = None  # display length of a y unit over an x unit ('equal' = 1), None = fill the box
         self.visible = True
         self.legend_on = False
         self.show_xticklabels = True
@@ -134,7 +134,9 @@ class Axes:
         self.yinvert = True
 
     def set_aspect(self, how, adjustable=None):
-        self.equal = how == "equal"
+        # matplotlib's meaning: "equal" or a number, the ratio of a y unit's length on the page to an x unit's
+        # (1 / cos(latitude) for longitude against latitude); only adjustable="datalim" is drawn.
+        self.aspect = 1.0 if how == "equal" else (float(how) if isinstance(how, (int, float)) and how > 0 else None)
 
     def ticklabel_format(self, **_):
         pass
@@ -178,17 +180,18 @@ class Axes:
             return (lo - d, hi + d)
         xl = self.sharex.limits()[0] if self.sharex is not None and self.sharex is not self else pad(xs, self.xlim)
         yl = pad(ys, self.ylim)
-        if self.equal and self.xlim and self.ylim and not getattr(self, "_boxed", False):
+        a = self.aspect
+        if a and self.xlim and self.ylim and not getattr(self, "_boxed", False):
             x, y, w, h = self.box
-            k = min(w / (xl[1] - xl[0]), h / (yl[1] - yl[0]))
-            nw, nh = k * (xl[1] - xl[0]), k * (yl[1] - yl[0])
+            k = min(w / (xl[1] - xl[0]), h / (a * (yl[1] - yl[0])))
+            nw, nh = k * (xl[1] - xl[0]), k * a * (yl[1] - yl[0])
             self.box = (x + (w - nw) / 2, y + (h - nh) / 2, nw, nh)
             self._boxed = True
-        if self.equal and not self.xlim:
+        if a and not self.xlim:
             x, y, w, h = self.box
-            sx, sy = (xl[1] - xl[0]) / w, (yl[1] - yl[0]) / h
+            sx, sy = (xl[1] - xl[0]) / w, a * (yl[1] - yl[0]) / h
             if sx > sy:
-                c, half = (yl[0] + yl[1]) / 2, sx * h / 2
+                c, half = (yl[0] + yl[1]) / 2, sx * h / (2 * a)
                 yl = (c - half, c + half)
             else:
                 c, half = (xl[0] + xl[1]) / 2, sy * w / 2

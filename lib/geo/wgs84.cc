@@ -1,12 +1,33 @@
 // Station ENU ↔ WGS-84; see wgs84.h.
 #include "geo/wgs84.h"
 
+#include <GeographicLib/Geocentric.hpp>
 #include <GeographicLib/LocalCartesian.hpp>
 #include <cmath>
 #include <sstream>
 #include <vector>
 
 namespace rk::geo {
+
+Eigen::Vector3d EcefFromGeodetic(const Geodetic& g, Eigen::Matrix3d* R_ecef_enu) {
+  Eigen::Vector3d x;
+  if (!R_ecef_enu) {
+    GeographicLib::Geocentric::WGS84().Forward(g.lat_deg, g.lon_deg, g.h_m, x.x(), x.y(), x.z());
+    return x;
+  }
+  std::vector<double> M(9);
+  GeographicLib::Geocentric::WGS84().Forward(g.lat_deg, g.lon_deg, g.h_m, x.x(), x.y(), x.z(), M);
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) (*R_ecef_enu)(r, c) = M[3 * r + c];  // GeographicLib: row-major, ECEF = M · ENU
+  }
+  return x;
+}
+
+Geodetic GeodeticFromEcef(const Eigen::Vector3d& x) {
+  Geodetic g;
+  GeographicLib::Geocentric::WGS84().Reverse(x.x(), x.y(), x.z(), g.lat_deg, g.lon_deg, g.h_m);
+  return g;
+}
 
 bool ParseGeodetic(const std::string& text, Geodetic* out, std::string* why) {
   std::vector<double> v;
@@ -52,6 +73,8 @@ LocalEnu::LocalEnu(const Geodetic& origin)
                            origin.lat_deg, origin.lon_deg, origin.h_m, GeographicLib::Geocentric::WGS84())})) {}
 
 LocalEnu::~LocalEnu() = default;
+LocalEnu::LocalEnu(LocalEnu&&) noexcept = default;
+LocalEnu& LocalEnu::operator=(LocalEnu&&) noexcept = default;
 
 Geodetic LocalEnu::ToGeodetic(const Eigen::Vector3d& p) const {
   Geodetic g;

@@ -1,6 +1,7 @@
-// Station ENU ↔ WGS-84 (SPEC.md §3: "Station frame: local ENU …; its geodetic position, where needed, is
-// WGS-84 lat/lon/h"). GeographicLib::LocalCartesian at the station's position: exact (no flat-earth
-// approximation), ellipsoidal heights.
+// Station ENU ↔ WGS-84 ↔ ECEF (SPEC.md §3: "Station frame: local ENU …; its geodetic position, where needed,
+// is WGS-84 lat/lon/h"). GeographicLib (LocalCartesian, Geocentric) at the station's position: exact (no
+// flat-earth approximation), ellipsoidal heights. The one place rangekit holds a geodetic position and the
+// only module that includes GeographicLib (docs/architecture.md).
 #pragma once
 
 #include <Eigen/Core>
@@ -16,6 +17,11 @@ struct Geodetic {
   double h_m = 0.0;
 };
 
+// Earth-centred, Earth-fixed position (m) of `g` and, when R_ecef_enu is given, the rotation whose columns are
+// the local east, north and up axes there, in ECEF (GeographicLib::Geocentric).
+Eigen::Vector3d EcefFromGeodetic(const Geodetic& g, Eigen::Matrix3d* R_ecef_enu = nullptr);
+Geodetic GeodeticFromEcef(const Eigen::Vector3d& x_ecef_m);
+
 // Parses "LAT,LON,H" (degrees, degrees, metres); false with the reason in *why for a malformed text or a
 // latitude outside [-90, 90], a longitude outside [-180, 360] or a non-finite value.
 bool ParseGeodetic(const std::string& text, Geodetic* out, std::string* why);
@@ -27,6 +33,8 @@ class LocalEnu {
   ~LocalEnu();
   LocalEnu(const LocalEnu&) = delete;
   LocalEnu& operator=(const LocalEnu&) = delete;
+  LocalEnu(LocalEnu&&) noexcept;
+  LocalEnu& operator=(LocalEnu&&) noexcept;
 
   Geodetic ToGeodetic(const Eigen::Vector3d& p_enu_m) const;
   Eigen::Vector3d ToEnu(const Geodetic& p) const;

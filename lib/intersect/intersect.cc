@@ -103,7 +103,7 @@ void Record(const std::vector<StationFrame>& frames, const LineObservation* obs,
   }
 }
 
-void Classify(const OriginFrame& origin, TrajectoryRow* tr, IntersectResult* r) {
+void Classify(const geo::LocalEnu& origin, TrajectoryRow* tr, IntersectResult* r) {
   const Solution& sol = tr->result.solution;
   if (sol.status == SolveStatus::kTooFew) {
     tr->status = RowStatus::kLost;
@@ -182,7 +182,7 @@ IntersectResult Intersect(const StationsFile& stations, const std::vector<Statio
     r.has_range.push_back(tracks[s].has_range());
   }
   const std::size_t S = tracks.size();
-  const OriginFrame origin(stations.origin);
+  const geo::LocalEnu origin(stations.origin);
   r.rows.resize(times.size());
   r.use.assign(times.size() * S, LineUse::kNone);
   r.residual.assign(times.size() * S, Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN()));

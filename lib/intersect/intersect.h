@@ -52,7 +52,7 @@ struct TrajectoryRow {
   RowStatus status = RowStatus::kLost;
   int n_lines = 0;  // lines of sight available; used = popcount(result.used)
   RowResult result;
-  Geodetic wgs84;
+  geo::Geodetic wgs84;
   bool has_kinematics = false;
   Eigen::Vector3d v = Eigen::Vector3d::Zero(), a = Eigen::Vector3d::Zero();  // m/s, m/s² (ENU)
   Eigen::Vector3d sigma_v = Eigen::Vector3d::Zero(), sigma_a = Eigen::Vector3d::Zero();

@@ -118,9 +118,9 @@ double Number(const Context& ctx, const io::Json& obj, std::vector<std::string> 
   return x;
 }
 
-Geodetic Position(const Context& ctx, const io::Json& obj, const std::vector<std::string>& where) {
+geo::Geodetic Position(const Context& ctx, const io::Json& obj, const std::vector<std::string>& where) {
   if (!obj.is_object()) throw ctx.At(where, "expected an object with lat_deg, lon_deg, h_m");
-  Geodetic g;
+  geo::Geodetic g;
   g.lat_deg = Number(ctx, obj, where, "lat_deg", -90.0, 90.0);
   g.lon_deg = Number(ctx, obj, where, "lon_deg", -540.0, 540.0);
   g.h_m = Number(ctx, obj, where, "h_m", -1.0e5, 1.0e6);

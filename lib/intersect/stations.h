@@ -13,14 +13,14 @@ namespace rk::intersect {
 
 struct StationSpec {
   std::string name;     // unique, [A-Za-z0-9_.-]+ (it names the station's residual columns)
-  Geodetic position;
+  geo::Geodetic position;
   std::string located;  // path of its located.csv, resolved against the folder of stations.json
   std::size_t line = 0, column = 0;  // of the station's object in stations.json, for messages
 };
 
 struct StationsFile {
   std::string path;
-  Geodetic origin;           // "origin", default the first station
+  geo::Geodetic origin;           // "origin", default the first station
   bool origin_given = false;
   std::vector<StationSpec> stations;  // at least 2
 };

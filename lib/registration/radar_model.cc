@@ -1,9 +1,9 @@
 #include "registration/radar_model.h"
 
-#include <GeographicLib/Geocentric.hpp>
 #include <cmath>
 
 #include "geo/angles.h"
+#include "geo/wgs84.h"
 
 namespace rk::registration {
 
@@ -92,9 +92,7 @@ PlatformPose MakePlatformPose(double lat, double lon, double h, double yaw, doub
   p.yaw_rad = yaw;
   p.pitch_rad = pitch;
   p.roll_rad = roll;
-  double X = 0, Y = 0, Z = 0;
-  GeographicLib::Geocentric::WGS84().Forward(geo::RadToDeg(lat), geo::RadToDeg(lon), h, X, Y, Z);
-  p.p_ecef = Vec3(X, Y, Z);
+  p.p_ecef = geo::EcefFromGeodetic({geo::RadToDeg(lat), geo::RadToDeg(lon), h});
   p.R_ecef_enu = RotationEcefFromEnu(lat, lon);
   return p;
 }

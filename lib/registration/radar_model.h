@@ -92,10 +92,10 @@ struct MeasurementNoise {
 struct PlatformPose {
   double lat_rad = 0.0, lon_rad = 0.0, h_m = 0.0;      // WGS-84 geodetic
   double yaw_rad = 0.0, pitch_rad = 0.0, roll_rad = 0.0;  // eq. 6 angles
-  Vec3 p_ecef = Vec3::Zero();                             // X_i, from GeographicLib::Geocentric
+  Vec3 p_ecef = Vec3::Zero();                             // X_i, from geo::EcefFromGeodetic
   Mat3 R_ecef_enu = Mat3::Identity();                     // T_ic (eq. 12)
 };
-// Fills p_ecef (WGS-84, GeographicLib) and R_ecef_enu (eq. 12).
+// Fills p_ecef (WGS-84, geo::EcefFromGeodetic) and R_ecef_enu (eq. 12).
 PlatformPose MakePlatformPose(double lat_rad, double lon_rad, double h_m, double yaw_rad, double pitch_rad,
                               double roll_rad);
 

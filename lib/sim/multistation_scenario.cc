@@ -1,12 +1,12 @@
 // rk-sim multistation; see multistation_scenario.h.
 #include "sim/multistation_scenario.h"
 
-#include <GeographicLib/LocalCartesian.hpp>
 #include <algorithm>
 #include <cmath>
 #include <random>
 
 #include "geo/angles.h"
+#include "geo/wgs84.h"
 #include "io/file_util.h"
 #include "sim/sim_common.h"
 #include "sim/beacon_trial.h"
@@ -75,24 +75,28 @@ bool MultistationOptions::Check(std::string* why) const {
 }
 
 struct MultistationScenario::Impl {
-  GeographicLib::LocalCartesian origin;
-  std::vector<GeographicLib::LocalCartesian> station;
+  geo::LocalEnu origin;
+  std::vector<geo::LocalEnu> station;
+  explicit Impl(const geo::Geodetic& o) : origin(o) {}
 };
 
 MultistationScenario::~MultistationScenario() = default;
 
 MultistationScenario::MultistationScenario(const MultistationOptions& options)
-    : impl_(std::make_unique<Impl>()), o_(options) {
+    : o_(options) {
   std::string why;
   if (!o_.Check(&why)) throw UsageError(why);
-  impl_->origin.Reset(o_.origin_lat_deg, o_.origin_lon_deg, o_.origin_h_m);
+  impl_ = std::make_unique<Impl>(geo::Geodetic{o_.origin_lat_deg, o_.origin_lon_deg, o_.origin_h_m});
   const double b = 1000.0 * o_.baseline_km;
   for (int s = 0; s < o_.stations; ++s) {
     SimStation st;
     st.name = "s" + std::to_string(s + 1);
     st.p_enu = {kLayout[s][0] * b, kLayout[s][1] * b, kLayout[s][2]};
-    impl_->origin.Reverse(st.p_enu(0), st.p_enu(1), st.p_enu(2), st.lat_deg, st.lon_deg, st.h_m);
-    impl_->station.emplace_back(st.lat_deg, st.lon_deg, st.h_m);
+    const geo::Geodetic g = impl_->origin.ToGeodetic(st.p_enu);
+    st.lat_deg = g.lat_deg;
+    st.lon_deg = g.lon_deg;
+    st.h_m = g.h_m;
+    impl_->station.emplace_back(g);
     st.has_range = s < o_.range_stations;
     stations_.push_back(st);
   }
@@ -119,9 +123,8 @@ Eigen::Vector3d MultistationScenario::Velocity(double t) const {
 }
 
 Eigen::Vector3d MultistationScenario::Geodetic(const Eigen::Vector3d& p) const {
-  Eigen::Vector3d g;
-  impl_->origin.Reverse(p(0), p(1), p(2), g(0), g(1), g(2));
-  return g;
+  const geo::Geodetic g = impl_->origin.ToGeodetic(p);
+  return {g.lat_deg, g.lon_deg, g.h_m};
 }
 
 Eigen::Vector3d MultistationScenario::AzElRange(std::size_t s, const Eigen::Vector3d& p) const {
@@ -210,10 +213,7 @@ io::CsvWriter MultistationScenario::TruthCsv() const {
 }
 
 Eigen::Vector3d MultistationScenario::StationEnu(std::size_t s, const Eigen::Vector3d& p_enu) const {
-  const Eigen::Vector3d g = Geodetic(p_enu);
-  Eigen::Vector3d d;
-  impl_->station[s].Forward(g(0), g(1), g(2), d(0), d(1), d(2));
-  return d;
+  return impl_->station[s].ToEnu(impl_->origin.ToGeodetic(p_enu));
 }
 
 namespace {

@@ -3,8 +3,8 @@
 // noise (σ across the line of sight: σ_el = σ, σ_az = σ / cos el) and optionally a laser range; the target
 // flies a ballistic arc (to 15 km by default) or a straight crossing at constant height.
 //
-// Truth chain (independent of any estimator, GeographicLib only): the trajectory is defined in the origin's
-// ENU frame → WGS-84 (LocalCartesian at the origin) → each station's own ENU frame (LocalCartesian at the
+// Truth chain (independent of any estimator, geo/wgs84.h only): the trajectory is defined in the origin's
+// ENU frame → WGS-84 (geo::LocalEnu at the origin) → each station's own ENU frame (geo::LocalEnu at the
 // station: its own vertical and north) → az = atan2(e, n), el = atan2(u, hypot(e, n)), range = |ENU|.
 // The ballistic arc is a parabola in the origin ENU frame (constant g = 9.80665 m/s² along −u of the origin):
 // a kinematic test path, not a flight model.

@@ -273,7 +273,7 @@ PointingSession SimulatePointingSession(const PointingSimOptions& o) {
   std::string why;
   if (!o.Check(&why)) throw UsageError(why);
   PointingSession s;
-  s.station = {geo::DegToRad(o.lat_deg), geo::DegToRad(o.lon_deg), o.h_m};
+  s.station = {o.lat_deg, o.lon_deg, o.h_m};
   s.epoch = target::ParseUtc(o.epoch_utc, "epoch");
   s.camera_nominal.width_px = o.width_px;
   s.camera_nominal.height_px = o.height_px;

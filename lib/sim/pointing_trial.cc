@@ -4,6 +4,7 @@
 
 #include "camera/pointing_model.h"
 #include "geo/angles.h"
+#include "geo/wgs84.h"
 #include "io/csv.h"
 #include "io/file_util.h"
 #include "sim/sim_common.h"
@@ -18,9 +19,10 @@ constexpr int kCatalogueDecimals = 10;  // degrees: 1e-10° = 0.4 µas
 
 void WritePointingTargets(const PointingSession& s, const TrialFolder& dir) {
   io::CsvWriter lm({"id", "lat_deg", "lon_deg", "h_m", "e_m", "n_m", "u_m"});
+  const geo::LocalEnu enu(s.station);
   for (const target::Landmark& l : s.landmarks) {
-    const target::Geodetic g = target::GeodeticFromEnu(s.station, l.p_enu);
-    lm.Add(l.id).Add(geo::RadToDeg(g.lat_rad), kCatalogueDecimals).Add(geo::RadToDeg(g.lon_rad), kCatalogueDecimals);
+    const geo::Geodetic g = enu.ToGeodetic(l.p_enu);
+    lm.Add(l.id).Add(g.lat_deg, kCatalogueDecimals).Add(g.lon_deg, kCatalogueDecimals);
     lm.Add(g.h_m, kMetreDecimals).Add(l.p_enu.x(), kMetreDecimals).Add(l.p_enu.y(), kMetreDecimals);
     lm.Add(l.p_enu.z(), kMetreDecimals).EndRow();
   }

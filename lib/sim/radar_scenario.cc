@@ -1,13 +1,13 @@
 #include "sim/radar_scenario.h"
 
 #include <Eigen/Geometry>
-#include <GeographicLib/Geocentric.hpp>
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <random>
 
 #include "geo/angles.h"
+#include "geo/wgs84.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "sim/trial_folder.h"
@@ -29,30 +29,17 @@ constexpr double kNoTargetMinRangeM = 1000.0, kNoTargetMaxRangeM = 300000.0;
 constexpr double kNoTargetMinElRad = -geo::kPi / 6, kNoTargetMaxElRad = geo::kPi / 3;
 
 
-// WGS-84 geometry of the common frame.
+// WGS-84 geometry of the common frame (geo/wgs84.h).
 struct CommonFrame {
   Eigen::Vector3d origin_ecef;
   Eigen::Matrix3d R_ecef_enu0;
-  CommonFrame(double lat0, double lon0, double h0) {
-    std::vector<double> M(9);
-    double X, Y, Z;
-    GeographicLib::Geocentric::WGS84().Forward(lat0, lon0, h0, X, Y, Z, M);
-    origin_ecef = Eigen::Vector3d(X, Y, Z);
-    R_ecef_enu0 << M[0], M[1], M[2], M[3], M[4], M[5], M[6], M[7], M[8];
-  }
+  CommonFrame(double lat0, double lon0, double h0) { origin_ecef = geo::EcefFromGeodetic({lat0, lon0, h0}, &R_ecef_enu0); }
   Eigen::Vector3d Ecef(const Eigen::Vector3d& enu) const { return origin_ecef + R_ecef_enu0 * enu; }
   // Geodetic (deg, deg, m) and the local ENU axes there.
   Eigen::Vector3d Geodetic(const Eigen::Vector3d& enu, Eigen::Matrix3d* R_ecef_enu) const {
-    const Eigen::Vector3d x = Ecef(enu);
-    double lat, lon, h;
-    GeographicLib::Geocentric::WGS84().Reverse(x.x(), x.y(), x.z(), lat, lon, h);
-    if (R_ecef_enu) {
-      std::vector<double> M(9);
-      double X, Y, Z;
-      GeographicLib::Geocentric::WGS84().Forward(lat, lon, h, X, Y, Z, M);
-      *R_ecef_enu << M[0], M[1], M[2], M[3], M[4], M[5], M[6], M[7], M[8];
-    }
-    return Eigen::Vector3d(lat, lon, h);
+    const geo::Geodetic g = geo::GeodeticFromEcef(Ecef(enu));
+    if (R_ecef_enu) geo::EcefFromGeodetic(g, R_ecef_enu);
+    return Eigen::Vector3d(g.lat_deg, g.lon_deg, g.h_m);
   }
 };
 

@@ -3,9 +3,9 @@
 //
 // Common frame: local ENU (x east, y north, z up, m) with its origin at a stated WGS-84 point
 // (default 25°N 110°E, h 0: near the paper's authors in Guilin; --origin). The paper's
-// platform and target coordinates are in this frame; every geodetic conversion uses
-// GeographicLib (WGS-84): common ENU → ECEF with the origin's ENU axes, platform geodetic
-// position by GeographicLib::LocalCartesian.
+// platform and target coordinates are in this frame; every geodetic conversion is geo/wgs84.h's
+// (GeographicLib, WGS-84): common ENU → ECEF with the origin's ENU axes, platform geodetic
+// position from ECEF.
 // Time: scan k = 0 … N−1 at t_k = t0 + k·dt (dt = 5 s). The paper's expressions in k (platform
 // positions s(k), attitudes v(k)) are evaluated at κ = t − t0 in seconds (--index-unit second,
 // default: the paper gives their units as m, m/s, rad and rad/s, so 200 is a speed in m/s and

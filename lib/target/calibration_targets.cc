@@ -2,7 +2,6 @@
 
 #include "io/utc_time.h"
 
-#include <GeographicLib/LocalCartesian.hpp>
 #include <erfa.h>
 
 #include <cmath>
@@ -10,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "geo/angles.h"
 #include "io/error.h"
 
 namespace rk::target {
@@ -19,59 +19,19 @@ constexpr double kDeg = M_PI / 180.0;
 constexpr double kMasToRad = kDeg / 3.6e6;
 constexpr double kMinLandmarkRangeM = 1.0;  // a landmark closer than this has no usable direction
 
-double ParseNumber(const std::string& text, const std::string& what) {
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(v)) throw UsageError(what + ": '" + text + "' is not a number");
-  return v;
-}
-
 // The station-ENU position of one landmark row (WGS-84 or ENU columns).
-Eigen::Vector3d LandmarkEnu(const io::CsvTable& t, std::size_t r, const Geodetic& station, bool geodetic) {
+Eigen::Vector3d LandmarkEnu(const io::CsvTable& t, std::size_t r, const geo::LocalEnu& station, bool geodetic) {
   if (geodetic) {
     const int clat = t.RequireColumn("lat_deg"), clon = t.RequireColumn("lon_deg"), ch = t.RequireColumn("h_m");
     const double lat = t.Double(r, clat);
     if (std::abs(lat) > 90.0) throw t.CellError(r, clat, "lat_deg must be in [-90, 90]");
-    return EnuFromGeodetic(station, {lat * kDeg, t.Double(r, clon) * kDeg, t.Double(r, ch)});
+    return station.ToEnu({lat, t.Double(r, clon), t.Double(r, ch)});
   }
   return {t.Double(r, t.RequireColumn("e_m")), t.Double(r, t.RequireColumn("n_m")),
           t.Double(r, t.RequireColumn("u_m"))};
 }
 
 }  // namespace
-
-Geodetic ParseStation(const std::string& text, const std::string& option) {
-  std::vector<std::string> parts;
-  std::stringstream ss(text);
-  for (std::string p; std::getline(ss, p, ',');) parts.push_back(p);
-  if (parts.size() != 3) throw UsageError(option + " must be LAT,LON,H (degrees, degrees, metres), got '" + text + "'");
-  const double lat = ParseNumber(parts[0], option), lon = ParseNumber(parts[1], option);
-  const double h = ParseNumber(parts[2], option);
-  if (std::abs(lat) > 90.0) throw UsageError(option + ": latitude must be in [-90, 90] degrees");
-  if (std::abs(lon) > 360.0) throw UsageError(option + ": longitude must be in [-360, 360] degrees");
-  return {lat * kDeg, lon * kDeg, h};
-}
-
-Eigen::Vector3d EnuFromGeodetic(const Geodetic& station, const Geodetic& point) {
-  const GeographicLib::LocalCartesian lc(station.lat_rad / kDeg, station.lon_rad / kDeg, station.h_m);
-  Eigen::Vector3d p;
-  lc.Forward(point.lat_rad / kDeg, point.lon_rad / kDeg, point.h_m, p.x(), p.y(), p.z());
-  return p;
-}
-
-Geodetic GeodeticFromEnu(const Geodetic& station, const Eigen::Vector3d& p_enu) {
-  const GeographicLib::LocalCartesian lc(station.lat_rad / kDeg, station.lon_rad / kDeg, station.h_m);
-  Geodetic g;
-  lc.Reverse(p_enu.x(), p_enu.y(), p_enu.z(), g.lat_rad, g.lon_rad, g.h_m);
-  g.lat_rad *= kDeg;
-  g.lon_rad *= kDeg;
-  return g;
-}
 
 std::vector<Landmark> ReadLandmarks(const io::CsvTable& t, const Geodetic& station) {
   const int cid = t.RequireColumn("id");
@@ -82,13 +42,14 @@ std::vector<Landmark> ReadLandmarks(const io::CsvTable& t, const Geodetic& stati
   const int csig = t.Column("sigma_m");
   std::vector<Landmark> out;
   std::set<std::string> seen;
+  const geo::LocalEnu enu(station);
   for (std::size_t r = 0; r < t.rows(); ++r) {
     Landmark l;
     l.id = std::string(t.Cell(r, cid));
     l.line = t.Line(r);
     if (l.id.empty()) throw t.CellError(r, cid, "empty landmark id");
     if (!seen.insert(l.id).second) throw t.CellError(r, cid, "duplicate landmark id '" + l.id + "'");
-    l.p_enu = LandmarkEnu(t, r, station, geodetic);
+    l.p_enu = LandmarkEnu(t, r, enu, geodetic);
     if (l.p_enu.norm() < kMinLandmarkRangeM) {
       throw t.CellError(r, cid, "landmark '" + l.id + "' is within 1 m of the station");
     }
@@ -157,7 +118,7 @@ ObservedPlace StarObservedPlace(const Star& s, const Geodetic& st, const UtcJd& 
   const double pr = s.pm_ra_cosdec_mas_yr * kMasToRad / cos_dec, pd = s.pm_dec_mas_yr * kMasToRad;
   double aob = 0, zob = 0, hob = 0, dob = 0, rob = 0, eo = 0;
   const int j = eraAtco13(s.ra_rad, s.dec_rad, pr, pd, s.parallax_mas * 1e-3, s.rv_kms, utc.jd1, utc.jd2, dut1_s,
-                          st.lon_rad, st.lat_rad, st.h_m, 0.0, 0.0, a.pressure_hpa, a.temperature_c, a.humidity,
+                          geo::DegToRad(st.lon_deg), geo::DegToRad(st.lat_deg), st.h_m, 0.0, 0.0, a.pressure_hpa, a.temperature_c, a.humidity,
                           a.wavelength_um, &aob, &zob, &hob, &dob, &rob, &eo);
   if (j < 0) throw ProcessingError("ERFA cannot compute the observed place of star '" + s.id + "' (bad date)");
   return {eraAnp(aob), M_PI / 2 - zob};
@@ -167,8 +128,8 @@ Star StarFromObservedPlace(const std::string& id, const ObservedPlace& o, const 
                            double dut1_s, const Atmosphere& a) {
   Star s;
   s.id = id;
-  const int j = eraAtoc13("A", o.az_rad, M_PI / 2 - o.el_rad, utc.jd1, utc.jd2, dut1_s, st.lon_rad, st.lat_rad,
-                          st.h_m, 0.0, 0.0, a.pressure_hpa, a.temperature_c, a.humidity, a.wavelength_um, &s.ra_rad,
+  const int j = eraAtoc13("A", o.az_rad, M_PI / 2 - o.el_rad, utc.jd1, utc.jd2, dut1_s, geo::DegToRad(st.lon_deg),
+                          geo::DegToRad(st.lat_deg), st.h_m, 0.0, 0.0, a.pressure_hpa, a.temperature_c, a.humidity, a.wavelength_um, &s.ra_rad,
                           &s.dec_rad);
   if (j < 0) throw ProcessingError("ERFA cannot compute the catalogue place of star '" + id + "' (bad date)");
   s.ra_rad = eraAnp(s.ra_rad);

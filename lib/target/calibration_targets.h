@@ -2,7 +2,7 @@
 // rk-calibrate pointing (estimator) and rk-sim pointing (simulator) share, so it lives here, below both.
 //
 // Landmarks (SPEC.md §2.1 `id,lat_deg,lon_deg,h_m` WGS-84 ellipsoidal, or `id,e_m,n_m,u_m` station ENU;
-// optional `sigma_m`): station-ENU position by GeographicLib::LocalCartesian at the station's WGS-84
+// optional `sigma_m`): station-ENU position by geo::LocalEnu at the station's WGS-84
 // position; no refraction (ranges below 2 km).
 // Stars (`id,ra_deg,dec_deg` ICRS catalogue place at J2000.0; optional `pm_ra_mas_yr` = μα·cos δ,
 // `pm_dec_mas_yr`, `parallax_mas`, `rv_kms`, `mag`): observed (topocentric, refracted) azimuth and
@@ -16,16 +16,12 @@
 #include <string>
 #include <vector>
 
+#include "geo/wgs84.h"
 #include "io/csv.h"
 
 namespace rk::target {
 
-// WGS-84 geodetic position: latitude, longitude (radians, east positive), ellipsoidal height (m).
-struct Geodetic {
-  double lat_rad = 0.0, lon_rad = 0.0, h_m = 0.0;
-};
-// "LAT,LON,H" in degrees, degrees, metres (--station). Throws UsageError naming `option`.
-Geodetic ParseStation(const std::string& text, const std::string& option);
+using geo::Geodetic;  // the station's WGS-84 position (geo/wgs84.h; degrees, metres)
 
 struct Landmark {
   std::string id;
@@ -36,9 +32,6 @@ struct Landmark {
 // Reads a landmarks table; positions in station ENU. DataError at file:line:col for a bad cell, a duplicate
 // id, neither column set present, or a landmark at the station (closer than 1 m).
 std::vector<Landmark> ReadLandmarks(const io::CsvTable& table, const Geodetic& station);
-// The ENU position of a WGS-84 point seen from `station` (GeographicLib LocalCartesian).
-Eigen::Vector3d EnuFromGeodetic(const Geodetic& station, const Geodetic& point);
-Geodetic GeodeticFromEnu(const Geodetic& station, const Eigen::Vector3d& p_enu);
 
 struct Star {
   std::string id;

@@ -16,6 +16,8 @@
 namespace rk::intersect {
 namespace {
 
+using geo::Geodetic;
+
 // Numerical derivative step (m) and its tolerance: central differences err by ~h² f''' ≈ 1e-12 relative.
 constexpr double kStepM = 1e-3;
 constexpr double kJacobianTolerance = 1e-7;  // relative to the row's norm

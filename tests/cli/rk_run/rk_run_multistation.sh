@@ -45,6 +45,20 @@ print("rows", len(rows), "ok", len(ok), "worst axis error m", round(worst, 3))
 assert worst <= TOL_M, worst
 PY
 rk-run "$t" --no-plots | grep -q 'trajectory/intersect *skipped'
+# The report page draws the trajectory and the stations from the tools' WGS-84 columns and the manifest's
+# positions (issue 28: the page converts no coordinates): a plan view in longitude and latitude with the
+# three stations named, and the stations' table without converted ENU columns.
+rk-report "$t/out" -o "$d/page.html" -q
+python3 - "$d/page.html" <<'PY'
+import re, sys
+page = open(sys.argv[1]).read()
+plan = [s for s in re.findall(r"<svg.*?</svg>", page, re.S) if ">lon_deg<" in s and ">lat_deg<" in s]
+assert plan, "no longitude/latitude plan view"
+assert any(all(">%s<" % n in svg for n in ("s1", "s2", "s3")) for svg in plan), "stations not marked in the plan view"
+assert "trajectory and stations (WGS-84)" in page
+stations = page[page.index('id="station"'):]
+assert "<th>lat_deg</th>" in stations and "<th>e_m</th>" not in stations.split("</table>")[0]
+PY
 
 # Malformed multi-station manifests: exit 3 at trial.json:LINE:COL, nothing written.
 bad() {  # bad NAME PYTHON-EDIT: a copy of the trial with its manifest edited (m = the manifest)
