@@ -54,9 +54,9 @@ void Accumulate(const std::vector<StationFrame>& frames, const LineObservation* 
     const Prediction pr = Predict(frames[obs[i].station], p);
     const Eigen::Vector3d z = NormalisedResiduals(obs[i], pr);
     const int rows = obs[i].has_range ? 3 : 2;
-    const double sig[3] = {obs[i].sigma_az_rad, obs[i].sigma_el_rad, obs[i].sigma_range_m};
+    const Eigen::Matrix3d Jn = NormalisedJacobian(obs[i], pr);
     for (int r = 0; r < rows; ++r) {
-      const Eigen::RowVector3d h = pr.J.row(r) / sig[r];
+      const Eigen::RowVector3d h = Jn.row(r);
       *A += h.transpose() * h;
       *g += h.transpose() * z(r);
       *chi2 += z(r) * z(r);
@@ -95,10 +95,10 @@ double LeaveOneOut(const std::vector<StationFrame>& frames, const LineObservatio
   if (s.status != SolveStatus::kOk) return -1.0;
   const Prediction pr = Predict(frames[obs[i].station], s.p);
   const Eigen::Vector3d z = NormalisedResiduals(obs[i], pr);
-  const double sig[3] = {obs[i].sigma_az_rad, obs[i].sigma_el_rad, obs[i].sigma_range_m};
+  const Eigen::Matrix3d Jn = NormalisedJacobian(obs[i], pr);
   double worst = 0.0;
   for (int r = 0; r < (obs[i].has_range ? 3 : 2); ++r) {
-    const Eigen::RowVector3d h = pr.J.row(r) / sig[r];
+    const Eigen::RowVector3d h = Jn.row(r);
     worst = std::max(worst, std::abs(z(r)) / std::sqrt(1.0 + h * s.P * h.transpose()));
   }
   return worst;
@@ -161,9 +161,30 @@ Prediction Predict(const StationFrame& f, const Eigen::Vector3d& p) {
   return pr;
 }
 
+namespace {
+// ρ and sqrt(1 − ρ²) of an observation, ρ capped at ±kMaxCorrelation.
+void Correlation(const LineObservation& o, double* rho, double* s) {
+  *rho = std::clamp(o.corr_az_el, -kMaxCorrelation, kMaxCorrelation);
+  *s = std::sqrt(1.0 - *rho * *rho);
+}
+}  // namespace
+
 Eigen::Vector3d NormalisedResiduals(const LineObservation& o, const Prediction& pr) {
-  return {geo::WrapPi(o.az_rad - pr.az) / o.sigma_az_rad, (o.el_rad - pr.el) / o.sigma_el_rad,
+  double rho = 0.0, s = 1.0;
+  Correlation(o, &rho, &s);
+  const double z_az = geo::WrapPi(o.az_rad - pr.az) / o.sigma_az_rad;
+  return {z_az, ((o.el_rad - pr.el) / o.sigma_el_rad - rho * z_az) / s,
           o.has_range ? (o.range_m - pr.range) / o.sigma_range_m : 0.0};
+}
+
+Eigen::Matrix3d NormalisedJacobian(const LineObservation& o, const Prediction& pr) {
+  double rho = 0.0, s = 1.0;
+  Correlation(o, &rho, &s);
+  Eigen::Matrix3d Jn;
+  Jn.row(0) = pr.J.row(0) / o.sigma_az_rad;
+  Jn.row(1) = (pr.J.row(1) / o.sigma_el_rad - rho * Jn.row(0)) / s;
+  Jn.row(2) = o.has_range ? Eigen::RowVector3d(pr.J.row(2) / o.sigma_range_m) : Eigen::RowVector3d::Zero();
+  return Jn;
 }
 
 bool Solvable(const LineObservation* obs, int n, std::uint64_t mask) {

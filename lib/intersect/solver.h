@@ -7,9 +7,11 @@
 // c_i = R_ecef_enu_iᵀ (o_ecef − s_ecef_i), both from GeographicLib::Geocentric (station_frames.h).
 // Model of station i, with h = hypot(d_e, d_n), ρ = |d|:
 //   az_i(p) = atan2(d_e, d_n),   el_i(p) = atan2(d_u, h),   range_i(p) = ρ.
-// Residuals, each divided by its 1σ (so the weight matrix is the identity):
+// Residuals, whitened by the observation's covariance (so the weight matrix is the identity):
 //   z_az = wrap(az_meas − az_i(p)) / σ_az   (= cos(el)·Δaz / (cos(el)·σ_az): the cross-elevation residual)
-//   z_el = (el_meas − el_i(p)) / σ_el,      z_ρ = (ρ_meas − ρ_i(p)) / σ_ρ   (where a range is given).
+//   z_el = ((el_meas − el_i(p)) / σ_el − ρ z_az) / sqrt(1 − ρ²),   z_ρ = (ρ_meas − ρ_i(p)) / σ_ρ (with a range),
+// ρ the correlation of the az and el errors (rk-locate's corr_az_el, 0 when the file has none): z = L⁻¹ r with
+// L the Cholesky factor of [[σ_az², ρσ_azσ_el], [ρσ_azσ_el, σ_el²]]. With ρ = 0 these are r / σ exactly.
 // Jacobians (analytic, checked against numerical ones in tests/intersect):
 //   ∂az/∂d = (d_n, −d_e, 0) / h²,   ∂el/∂d = (−d_e d_u, −d_n d_u, h²) / (h ρ²),   ∂ρ/∂d = dᵀ/ρ,   ∂d/∂p = M_i.
 // Minimise Σ z² by Gauss–Newton, p ← p + (JᵀJ)⁻¹ Jᵀ z with J = ∂(pred/σ)/∂p, from the linear closest
@@ -50,6 +52,7 @@ struct LineObservation {
   double az_rad = 0.0, el_rad = 0.0;
   double sigma_az_rad = 0.0;    // 1σ of the azimuth angle itself (cross-elevation σ / cos el)
   double sigma_el_rad = 0.0;
+  double corr_az_el = 0.0;      // correlation of the azimuth and elevation errors, |ρ| ≤ kMaxCorrelation used
   bool has_range = false;
   double range_m = 0.0, sigma_range_m = 0.0;
 };
@@ -62,8 +65,12 @@ struct Prediction {
 };
 Prediction Predict(const StationFrame& f, const Eigen::Vector3d& p);
 
-// Normalised residuals of one observation at p (az, el, range; range 0 without one).
+// Normalised (whitened) residuals of one observation at p (az, el, range; range 0 without one).
 Eigen::Vector3d NormalisedResiduals(const LineObservation& o, const Prediction& pr);
+// Their Jacobian with respect to p, up to sign: the rows of pr.J whitened the same way (∂z/∂p = −this).
+Eigen::Matrix3d NormalisedJacobian(const LineObservation& o, const Prediction& pr);
+// |corr_az_el| is capped here: a correlation of ±1 is a degenerate covariance (one angle the other's copy).
+inline constexpr double kMaxCorrelation = 0.999;
 
 enum class SolveStatus { kOk, kTooFew, kSingular, kNotConverged, kBehind };
 

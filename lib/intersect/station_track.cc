@@ -35,6 +35,12 @@ double InterpSigma(const std::vector<double>& s, std::size_t k, double f) {
   return std::sqrt((1.0 - f) * (1.0 - f) * s[k] * s[k] + f * f * s[k + 1] * s[k + 1]);
 }
 
+// Covariance of two such interpolated errors with per-row covariances c (rows independent of each other).
+double InterpCovariance(const std::vector<double>& c, std::size_t k, double f) {
+  if (k + 1 >= c.size()) return c[k];
+  return (1.0 - f) * (1.0 - f) * c[k] + f * f * c[k + 1];
+}
+
 }  // namespace
 
 struct StationTrack::Impl {
@@ -50,7 +56,7 @@ StationTrack::StationTrack(const io::CsvTable& table, const TrackDefaults& defau
             c_el = table.RequireColumn("el_deg");
   const int c_r = table.Column("range_m"), c_st = table.Column("status");
   const int c_saz = table.Column("sigma_az_deg"), c_sel = table.Column("sigma_el_deg"),
-            c_sr = table.Column("sigma_range_m");
+            c_sr = table.Column("sigma_range_m"), c_corr = table.Column("corr_az_el");
   has_range_ = c_r >= 0;
   has_sigma_ = c_saz >= 0 && c_sel >= 0;
   table.RequireIncreasing(c_t);
@@ -77,7 +83,14 @@ StationTrack::StationTrack(const io::CsvTable& table, const TrackDefaults& defau
         if (sa) saz = geo::DegToRad(*sa);
         if (se) sel = geo::DegToRad(*se);
       }
-      t_.push_back(t), sig_az_.push_back(saz), sig_el_.push_back(sel);
+      // rk-locate's correlation of the azimuth and elevation errors (issue 28 item 6); 0 when absent.
+      double corr = 0.0;
+      if (c_corr >= 0) {
+        const std::optional<double> c = table.OptionalDouble(i, c_corr);
+        if (c && !(std::abs(*c) <= 1.0)) throw table.CellError(i, c_corr, "corr_az_el must be in [-1, 1]");
+        if (c) corr = *c;
+      }
+      t_.push_back(t), sig_az_.push_back(saz), sig_el_.push_back(sel), cov_az_el_.push_back(corr * saz * sel);
     }
     if (r) {
       double sr = defaults.sigma_range_m;
@@ -118,6 +131,7 @@ bool StationTrack::At(double t_s, LineObservation* o) const {
   o->el_rad = e.value;
   o->sigma_az_rad = InterpSigma(sig_az_, k, f);
   o->sigma_el_rad = InterpSigma(sig_el_, k, f);
+  o->corr_az_el = InterpCovariance(cov_az_el_, k, f) / (o->sigma_az_rad * o->sigma_el_rad);
   o->has_range = false;
   if (impl_->range) {
     const track::InterpValue r = impl_->range->At(t_s);

@@ -7,6 +7,8 @@
 // 1σ: sigma_az_deg / sigma_el_deg / sigma_range_m where the file has them (per row), else the defaults.
 // Linear interpolation of white noise at fraction f between rows k and k+1 has variance
 // (1−f)² σ_k² + f² σ_{k+1}² (≤ σ²): that is the σ given to the solver, so the covariance stays honest.
+// corr_az_el (rk-locate's correlation of a row's azimuth and elevation errors; 0 when absent): the
+// interpolated covariance (1−f)² ρ_k σaz_k σel_k + f² ρ_{k+1} σaz_{k+1} σel_{k+1} over the interpolated σ.
 #pragma once
 
 #include <cstddef>
@@ -49,6 +51,7 @@ class StationTrack {
   std::string source_;
   std::vector<double> row_t_;
   std::vector<double> t_, sig_az_, sig_el_;     // usable angle rows
+  std::vector<double> cov_az_el_;               // their az–el error covariance (rad², corr_az_el · σ_az · σ_el)
   std::vector<double> tr_, sig_r_;              // usable range rows
   bool has_range_ = false, has_sigma_ = false;
   double frame_interval_s_ = 0.0;

@@ -242,9 +242,12 @@ LocateResult Locate(const Track& track, const camera::CameraModel& camera, Turre
 
 namespace {
 
-// sigma_az_deg … sigma_u_m of a row (empty without a line of sight; the range ones empty without a range).
+// sigma_az_deg … sigma_u_m of a row (empty without a line of sight; the range ones empty without a range), then
+// corr_az_el: the correlation of its azimuth and elevation errors (the pixel, turret, pointing-model and mount
+// errors all move both angles), which rk-intersect weights the line of sight with (issue 28 item 6).
 void AddSigmas(const LocatedRow& row, io::CsvWriter* w) {
   constexpr int kSigmaDecimals = 9;
+  constexpr int kCorrelationDecimals = 6;
   auto sd = [&](int i) { return std::sqrt(std::max((*row.cov)(i, i), 0.0)); };
   for (int i = 0; i < kSigmaOutputs; ++i) {
     const bool has = row.cov && (i < 2 || row.range_m);
@@ -253,6 +256,12 @@ void AddSigmas(const LocatedRow& row, io::CsvWriter* w) {
     } else {
       w->Add(i < 2 ? geo::RadToDeg(sd(i)) : sd(i), kSigmaDecimals);
     }
+  }
+  const double s = row.cov ? sd(0) * sd(1) : 0.0;
+  if (s > 0.0) {
+    w->Add(std::clamp((*row.cov)(0, 1) / s, -1.0, 1.0), kCorrelationDecimals);
+  } else {
+    w->AddEmpty();
   }
 }
 
@@ -263,7 +272,7 @@ io::CsvWriter LocatedCsv(const LocateResult& result) {
   if (result.has_frame) cols.push_back("frame");
   for (const char* c : {"t_s", "az_deg", "el_deg", "range_m", "e_m", "n_m", "u_m", "status", "range_status",
                         "boresight_az_deg", "boresight_el_deg", "sigma_az_deg", "sigma_el_deg", "sigma_range_m",
-                        "sigma_e_m", "sigma_n_m", "sigma_u_m"}) {
+                        "sigma_e_m", "sigma_n_m", "sigma_u_m", "corr_az_el"}) {
     cols.push_back(c);
   }
   if (result.has_station) {

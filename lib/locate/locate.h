@@ -124,7 +124,7 @@ LocateResult Locate(const Track& track, const camera::CameraModel& camera, Turre
 // Located-target CSV (SPEC.md §2.1) with extra columns:
 //   frame (if the track had it),t_s,az_deg,el_deg,range_m,e_m,n_m,u_m,status,
 //   range_status,boresight_az_deg,boresight_el_deg,
-//   sigma_az_deg,sigma_el_deg,sigma_range_m,sigma_e_m,sigma_n_m,sigma_u_m[,lat_deg,lon_deg,h_m]
+//   sigma_az_deg,sigma_el_deg,sigma_range_m,sigma_e_m,sigma_n_m,sigma_u_m,corr_az_el[,lat_deg,lon_deg,h_m]
 // (lat/lon/h with a station position). boresight_* are the logged (interpolated) turret angles.
 io::CsvWriter LocatedCsv(const LocateResult& result);
 

@@ -333,5 +333,31 @@ TEST(Intersect, SmoothGivesVelocityAndAcceleration) {
   EXPECT_NEAR(sum_a / static_cast<double>(n), -9.80665, 1.0);
 }
 
+// Issue 28 item 6: a located file's corr_az_el reaches the line of sight: at a row it is that row's, between
+// rows the correlation of the interpolated errors ((1−f)² c_k + f² c_k+1 over the interpolated σ), absent = 0,
+// and a value outside [−1, 1] is refused at its cell.
+TEST(Intersect, StationTrackReadsTheAzElCorrelation) {
+  const std::string head = "t_s,az_deg,el_deg,sigma_az_deg,sigma_el_deg,corr_az_el\n";
+  const StationTrack t(io::CsvTable::Parse(head + "0,10,20,0.001,0.002,0.5\n1,10,20,0.001,0.002,-0.3\n", "a.csv"),
+                       TrackDefaults{});
+  LineObservation o;
+  ASSERT_TRUE(t.At(0.0, &o));
+  EXPECT_NEAR(o.corr_az_el, 0.5, 1e-12);
+  ASSERT_TRUE(t.At(0.5, &o));
+  // Equal σ at both rows: covariance (0.25·0.5 + 0.25·(−0.3))·σaσe over the interpolated σaσe = 0.5·σaσe.
+  EXPECT_NEAR(o.corr_az_el, (0.25 * 0.5 + 0.25 * -0.3) / 0.5, 1e-12);
+  const StationTrack none(io::CsvTable::Parse("t_s,az_deg,el_deg\n0,10,20\n1,10,20\n", "b.csv"),
+                          TrackDefaults{5e-5, 1.0, 1.5});
+  ASSERT_TRUE(none.At(0.5, &o));
+  EXPECT_EQ(o.corr_az_el, 0.0);
+  try {
+    StationTrack bad(io::CsvTable::Parse(head + "0,10,20,0.001,0.002,1.5\n", "c.csv"), TrackDefaults{});
+    FAIL() << "a correlation of 1.5 was accepted";
+  } catch (const rk::Error& e) {
+    EXPECT_NE(std::string(e.what()).find("c.csv:2:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("corr_az_el must be in [-1, 1]"), std::string::npos) << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace rk::intersect

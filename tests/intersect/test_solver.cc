@@ -1,6 +1,8 @@
 // The per-row solver (lib/intersect/solver.h): analytic Jacobians against numerical ones, exactness on
 // noise-free lines over 20 km baselines (the ECEF treatment: a flat earth errs by metres), azimuth across
 // north, outlier rejection, degenerate geometry.
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <GeographicLib/LocalCartesian.hpp>
 #include <gtest/gtest.h>
 
@@ -186,6 +188,85 @@ TEST(IntersectSolver, TargetOnTheBaselineIsSingular) {
   const Eigen::Vector3d p = s.frames[1].a + 2.0 * (s.frames[1].a - s.frames[0].a);
   std::vector<LineObservation> obs = {Truth(0, s.geo[0], p, 1e-5), Truth(1, s.geo[1], p, 1e-5)};
   EXPECT_NE(SolveMasked(s.frames, obs.data(), 2, 3).status, SolveStatus::kOk);
+}
+
+// Issue 28 item 6: rk-locate's corr_az_el reaches the solver. The whitened residuals' Jacobian is the numerical
+// one (∂z/∂p = −NormalisedJacobian), and with correlated angle errors the covariance is honest only when the
+// correlation is used: NEES over Monte Carlo runs in its band with ρ, out of it without.
+TEST(IntersectSolver, CorrelatedAnglesJacobianMatchesNumerical) {
+  const Layout s = ThreeStations();
+  const Eigen::Vector3d p0(7000, 8000, 3000);
+  const double sigma = 5.0 / geo::kArcsecPerRad;
+  for (const double rho : {-0.9, 0.0, 0.6}) {
+    for (int i = 0; i < 3; ++i) {
+      LineObservation o = Truth(i, s.geo[i], p0 + Eigen::Vector3d(30, -20, 10), sigma);
+      o.has_range = true;
+      o.corr_az_el = rho;
+      const Eigen::Matrix3d Jn = NormalisedJacobian(o, Predict(s.frames[i], p0));
+      for (int k = 0; k < 3; ++k) {
+        Eigen::Vector3d dp = Eigen::Vector3d::Zero();
+        dp(k) = kStepM;
+        const Eigen::Vector3d num = (NormalisedResiduals(o, Predict(s.frames[i], p0 + dp)) -
+                                     NormalisedResiduals(o, Predict(s.frames[i], p0 - dp))) / (2 * kStepM);
+        for (int r = 0; r < 3; ++r) {
+          EXPECT_NEAR(-Jn(r, k), num(r), kJacobianTolerance * Jn.row(r).norm()) << "rho " << rho << " row " << r;
+        }
+      }
+    }
+  }
+}
+
+// Eigenvalues of P^{-1/2} S P^{-1/2}: 1, 1, 1 when the sample covariance S of the errors is what P claims.
+Eigen::Vector3d CovarianceRatio(const Eigen::Matrix3d& P, const Eigen::Matrix3d& S) {
+  const Eigen::Matrix3d L = P.llt().matrixL();
+  const Eigen::Matrix3d W = L.triangularView<Eigen::Lower>().solve(
+      L.triangularView<Eigen::Lower>().solve(S).transpose());
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(0.5 * (W + W.transpose())).eigenvalues();
+}
+
+TEST(IntersectSolver, CorrelatedAngleErrorsCovarianceHonestOnlyWithTheCorrelation) {
+  // Two stations' lines of sight only (no range): the az/el correlation shapes the 3-D error ellipsoid.
+  const Layout s = ThreeStations();
+  const Eigen::Vector3d p(7000, 8000, 3000);
+  const double sigma = 10.0 / geo::kArcsecPerRad, rho = 0.85;
+  constexpr int kRuns = 4000;
+  // A sample covariance of kRuns 3-D errors, whitened by the true one, has eigenvalues within
+  // (1 ± sqrt(3 / kRuns))² ≈ [0.946, 1.056] (Marchenko–Pastur edges) plus their fluctuation: ±0.1 is wide.
+  constexpr double kRatioTol = 0.1;
+  std::mt19937_64 rng(28);
+  std::normal_distribution<double> n01;
+  Eigen::Matrix3d S_with = Eigen::Matrix3d::Zero(), S_without = Eigen::Matrix3d::Zero(), P_with, P_without;
+  double nees_with = 0.0;
+  for (int run = 0; run < kRuns; ++run) {
+    std::vector<LineObservation> obs;
+    for (int i = 0; i < 2; ++i) {
+      LineObservation o = Truth(i, s.geo[i], p, sigma);
+      o.has_range = false;
+      const double a = n01(rng), b = n01(rng);
+      o.az_rad += o.sigma_az_rad * a;
+      o.el_rad += o.sigma_el_rad * (rho * a + std::sqrt(1.0 - rho * rho) * b);
+      o.corr_az_el = rho;
+      obs.push_back(o);
+    }
+    const Solution with = SolveMasked(s.frames, obs.data(), 2, 3);
+    for (LineObservation& o : obs) o.corr_az_el = 0.0;
+    const Solution without = SolveMasked(s.frames, obs.data(), 2, 3);
+    ASSERT_EQ(with.status, SolveStatus::kOk);
+    ASSERT_EQ(without.status, SolveStatus::kOk);
+    const Eigen::Vector3d e1 = with.p - p, e0 = without.p - p;
+    S_with += e1 * e1.transpose() / kRuns;
+    S_without += e0 * e0.transpose() / kRuns;
+    nees_with += e1.dot(with.P.ldlt().solve(e1)) / kRuns;
+    P_with = with.P;  // the geometry is fixed: P hardly moves with the noise
+    P_without = without.P;
+  }
+  const Eigen::Vector3d r_with = CovarianceRatio(P_with, S_with), r_without = CovarianceRatio(P_without, S_without);
+  std::printf("mean NEES with rho %.3f; covariance ratio eigenvalues with %.3f %.3f %.3f, without %.3f %.3f %.3f\n",
+              nees_with, r_with(0), r_with(1), r_with(2), r_without(0), r_without(1), r_without(2));
+  EXPECT_NEAR(nees_with, 3.0, 3.0 * kRatioTol);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(r_with(k), 1.0, kRatioTol) << r_with.transpose();
+  // Without the correlation P claims an ellipsoid the errors do not have (this checks the test has power).
+  EXPECT_GT((r_without.array() - 1.0).abs().maxCoeff(), 3.0 * kRatioTol) << r_without.transpose();
 }
 
 }  // namespace

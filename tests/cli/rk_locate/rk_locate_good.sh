@@ -7,7 +7,7 @@ data=$1 expect=$2 src=$3
 d=$data/locate; o=$d/out; rm -rf "$o"; mkdir -p "$o"
 rk-locate --track "$d/track.csv" --camera "$d/camera.json" --turret "$d/turret.csv" --range "$d/range.csv" \
   -o "$o/located.csv" --report "$o/report.json" --quiet
-head -1 "$o/located.csv" | grep -qx 'frame,t_s,az_deg,el_deg,range_m,e_m,n_m,u_m,status,range_status,boresight_az_deg,boresight_el_deg,sigma_az_deg,sigma_el_deg,sigma_range_m,sigma_e_m,sigma_n_m,sigma_u_m'
+head -1 "$o/located.csv" | grep -qx 'frame,t_s,az_deg,el_deg,range_m,e_m,n_m,u_m,status,range_status,boresight_az_deg,boresight_el_deg,sigma_az_deg,sigma_el_deg,sigma_range_m,sigma_e_m,sigma_n_m,sigma_u_m,corr_az_el'
 test "$(grep -c '' "$o/located.csv")" = 25
 grep -q '^7,0.370000000,,,,,,,lost,,' "$o/located.csv"          # lost row kept, empty values
 grep -q '^0,0.020000000,359\.[0-9]*,29\.9[0-9]*,80\.010000,' "$o/located.csv"  # az before north, range at 0.02 s

@@ -18,8 +18,8 @@ rk-locate "${base[@]}" --pointing "$o/pointing.json" --station -33.9,18.4,120 -o
 # A zero pointing model changes nothing.
 cmp "$o/plain.csv" "$o/zero.csv"
 # The SPEC.md §2.1 columns: 1σ always, lat/lon/h with --station.
-head -1 "$o/plain.csv" | grep -q ',sigma_az_deg,sigma_el_deg,sigma_range_m,sigma_e_m,sigma_n_m,sigma_u_m$'
-head -1 "$o/pm.csv" | grep -q ',sigma_u_m,lat_deg,lon_deg,h_m$'
+head -1 "$o/plain.csv" | grep -q ',sigma_az_deg,sigma_el_deg,sigma_range_m,sigma_e_m,sigma_n_m,sigma_u_m,corr_az_el$'
+head -1 "$o/pm.csv" | grep -q ',sigma_u_m,corr_az_el,lat_deg,lon_deg,h_m$'
 # The pointing model moves the azimuth by about the offset (2.5° + the tilts' share) and no row is lost.
 paste -d, <(cut -d, -f3 "$o/plain.csv") <(cut -d, -f3 "$o/pm.csv") | awk -F, '
   NR > 1 && $1 != "" { d = $2 - $1; if (d < -180) d += 360; if (d > 180) d -= 360;
@@ -29,6 +29,7 @@ paste -d, <(cut -d, -f3 "$o/plain.csv") <(cut -d, -f3 "$o/pm.csv") | awk -F, '
 awk -F, 'NR == 1 { for (i = 1; i <= NF; i++) c[$i] = i; next }
   $c["status"] == "ok" { s = $c["sigma_az_deg"]; if (s < 0.0009 || s > 0.0015) { print "sigma_az " s; bad = 1 }
     if ($c["sigma_e_m"] == "" && $c["range_m"] != "") { print "no sigma_e"; bad = 1 }
+    r = $c["corr_az_el"]; if (r == "" || r < -1 || r > 1) { print "corr_az_el " r; bad = 1 }
     if ($c["range_m"] != "" && ($c["lat_deg"] < -33.91 || $c["lat_deg"] > -33.89)) { print "lat " $c["lat_deg"]; bad = 1 } }
   END { exit bad }' "$o/pm.csv"
 grep -q '"pointing"' "$o/pm.json"
