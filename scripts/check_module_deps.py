@@ -51,10 +51,15 @@ def used(repo, module):
     return found
 
 
+def without_cmake_comments(text):
+    """CMake text with every '# ...' comment blanked (line numbers kept)."""
+    return re.sub(r"#[^\n]*", "", text)
+
+
 def cmake_deps(repo, module):
     """rangekit:: modules named in rk_add_module(module ...) of lib/<module>/CMakeLists.txt, or None."""
     with open(os.path.join(repo, "lib", module, "CMakeLists.txt"), encoding="utf-8") as f:
-        text = re.sub(r"#[^\n]*", "", f.read())
+        text = without_cmake_comments(f.read())
     m = CMAKE_ADD.search(text)
     return None if m is None else set(CMAKE_MODULE.findall(m.group(2))) - {module}
 
@@ -69,15 +74,16 @@ def third_party_problems(repo, module):
             continue
         with open(path, encoding="utf-8") as f:
             text = f.read()
+        cmake = name == "CMakeLists.txt"
+        if cmake:
+            text = without_cmake_comments(text)
         for lib, owner in THIRD_PARTY_OWNER.items():
             if owner == module:
                 continue
-            pattern = SYSTEM_INCLUDE if name != "CMakeLists.txt" else re.compile(r"(%s)::" % lib)
-            for m in pattern.finditer(text):
-                if m.group(1) == lib and not text[:m.start()].rstrip().endswith("#"):
-                    line = text.count("\n", 0, m.start()) + 1
+            for m in (re.finditer(r"(%s)::" % lib, text) if cmake else SYSTEM_INCLUDE.finditer(text)):
+                if m.group(1) == lib:
                     problems.append("lib/%s/%s:%d: %s belongs to module '%s' (scripts/check_module_deps.py)"
-                                    % (module, name, line, lib, owner))
+                                    % (module, name, text.count("\n", 0, m.start()) + 1, lib, owner))
     return problems
 
 

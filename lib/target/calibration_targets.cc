@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
-#include <sstream>
 
 #include "geo/angles.h"
 #include "io/error.h"
@@ -15,8 +14,7 @@
 namespace rk::target {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
-constexpr double kMasToRad = kDeg / 3.6e6;
+constexpr double kMasToRad = geo::DegToRad(1.0) / 3.6e6;
 constexpr double kMinLandmarkRangeM = 1.0;  // a landmark closer than this has no usable direction
 
 // The station-ENU position of one landmark row (WGS-84 or ENU columns).
@@ -78,8 +76,8 @@ std::vector<Star> ReadStars(const io::CsvTable& t) {
     const double ra = t.Double(r, cra), dec = t.Double(r, cdec);
     if (ra < 0.0 || ra >= 360.0) throw t.CellError(r, cra, "ra_deg must be in [0, 360)");
     if (std::abs(dec) > 90.0) throw t.CellError(r, cdec, "dec_deg must be in [-90, 90]");
-    s.ra_rad = ra * kDeg;
-    s.dec_rad = dec * kDeg;
+    s.ra_rad = geo::DegToRad(ra);
+    s.dec_rad = geo::DegToRad(dec);
     s.pm_ra_cosdec_mas_yr = opt(r, cpmr);
     s.pm_dec_mas_yr = opt(r, cpmd);
     s.parallax_mas = opt(r, cpx);
