@@ -224,6 +224,22 @@ Eigen::Vector3d CovarianceRatio(const Eigen::Matrix3d& P, const Eigen::Matrix3d&
   return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(0.5 * (W + W.transpose())).eigenvalues();
 }
 
+TEST(IntersectSolver, CorrelatedResidualsWrapAcrossNorth) {
+  // A target due north of station 0 (predicted azimuth 0) measured at 359.9994°: the azimuth residual is
+  // −2 µrad, not 2π, and the whitened elevation residual carries −ρ of it.
+  const Layout s = ThreeStations();
+  const Prediction pr = Predict(s.frames[0], s.frames[0].a + Eigen::Vector3d(0.0, 10000.0, 2000.0));
+  const double sigma = 5.0 / geo::kArcsecPerRad, rho = 0.5;
+  LineObservation o;
+  o.az_rad = geo::WrapTwoPi(pr.az - 1e-5);
+  o.el_rad = pr.el + 2e-5;
+  o.sigma_az_rad = o.sigma_el_rad = sigma;
+  o.corr_az_el = rho;
+  const Eigen::Vector3d z = NormalisedResiduals(o, pr);
+  EXPECT_NEAR(z(0), -1e-5 / sigma, 1e-6);
+  EXPECT_NEAR(z(1), (2e-5 / sigma + rho * 1e-5 / sigma) / std::sqrt(1.0 - rho * rho), 1e-6);
+}
+
 TEST(IntersectSolver, CorrelatedAngleErrorsCovarianceHonestOnlyWithTheCorrelation) {
   // Two stations' lines of sight only (no range): the az/el correlation shapes the 3-D error ellipsoid.
   const Layout s = ThreeStations();
