@@ -12,6 +12,7 @@
 #include "analyze_commands.h"
 #include "attitude/cylinder_budget.h"
 #include "camera/camera_model.h"
+#include "camera/pointing_model.h"
 #include "io/error.h"
 #include "io/file_util.h"
 #include "io/json_util.h"
@@ -62,6 +63,24 @@ camera::CameraModel BudgetCamera(const io::Json& j, const std::string& budget_pa
   throw DataError(budget_path, 0, 0, "\"camera\" must be a path or a camera model object");
 }
 
+// "pointing" (model locate): a pointing.json path (relative to the budget file), an inline pointing model, or
+// absent (every term zero, no σ). *file names it for the sources made from its σ.
+camera::PointingModel BudgetPointing(const io::Json& j, const std::string& budget_path, std::string* file) {
+  *file = "pointing";
+  if (!j.contains("pointing") || j.at("pointing").is_null()) return {};
+  const io::Json& p = j.at("pointing");
+  if (p.is_string()) {
+    std::filesystem::path path(p.get<std::string>());
+    if (path.is_relative() && !io::IsStdStream(budget_path)) {
+      path = std::filesystem::path(budget_path).parent_path() / path;
+    }
+    *file = path.filename().string();
+    return camera::LoadPointingModel(path.string());
+  }
+  if (p.is_object()) return camera::PointingModelFromJson(p, budget_path + ": pointing");
+  throw DataError(budget_path, 0, 0, "\"pointing\" must be a path or a pointing model object");
+}
+
 }  // namespace
 
 Command AddBudgetCommand(CLI::App& parent) {
@@ -71,7 +90,8 @@ Command AddBudgetCommand(CLI::App& parent) {
       "Error budget: independent error sources (angles in arcmin/arcsec, pixels, sizes, ranges) from a JSON budget "
       "propagated through a computation (models: cylinder, cylinder-ranges, locate) by autodiff Jacobian and by "
       "Monte Carlo, side by side, with each source's share.");
-  c->add_option("--budget", a->budget_path, "Budget JSON: model, camera, nominal, sources[, monte_carlo] ('-' = stdin)")
+  c->add_option("--budget", a->budget_path,
+                "Budget JSON: model, camera, [pointing,] nominal, sources[, monte_carlo] ('-' = stdin)")
       ->required();
   c->add_option("-o,--output", a->out_path, "Result JSON ('-' = stdout)")->required();
   cli::AddOptions(c, &a->given, analysis::BudgetOptions::Table());
@@ -89,17 +109,26 @@ Command AddBudgetCommand(CLI::App& parent) {
             if (!j.contains("sources")) throw DataError(where, 0, 0, "missing \"sources\"");
             const attitude::CylinderSolveOptions& solve = a->solve;
             std::unique_ptr<analysis::BudgetModel> model;
+            std::vector<analysis::BudgetSource> calibrated;  // σ the camera and pointing files carry
+            if (model_name != "locate" && j.contains("pointing")) {
+              throw DataError(where, 0, 0, "\"pointing\" is a term of the locate model only");
+            }
             if (model_name == "cylinder") {
               model = attitude::MakeCylinderBudgetModel(j.at("nominal"), BudgetCamera(j, where, sim::Seed004Camera()), solve, where);
             } else if (model_name == "cylinder-ranges") {
               model = attitude::MakeCylinderRangesBudgetModel(j.at("nominal"), BudgetCamera(j, where, sim::Seed004Camera()),
                                                               solve, where);
             } else if (model_name == "locate") {
-              model = analysis::MakeLocateBudgetModel(j.at("nominal"), BudgetCamera(j, where, camera::DefaultCamera()), where);
+              const camera::CameraModel cam = BudgetCamera(j, where, camera::DefaultCamera());
+              std::string pointing_file;
+              const camera::PointingModel pointing = BudgetPointing(j, where, &pointing_file);
+              model = analysis::MakeLocateBudgetModel(j.at("nominal"), cam, pointing, where);
+              calibrated = analysis::LocateCalibrationSources(*model, cam, pointing, pointing_file, where);
             } else {
               throw DataError(where, 0, 0, "unknown model '" + model_name + "' (cylinder, cylinder-ranges or locate)");
             }
-            const auto sources = analysis::ParseBudgetSources(j.at("sources"), *model, where);
+            std::vector<analysis::BudgetSource> sources = analysis::ParseBudgetSources(j.at("sources"), *model, where);
+            sources.insert(sources.end(), calibrated.begin(), calibrated.end());
             analysis::BudgetOptions opt;
             if (j.contains("monte_carlo") && j.at("monte_carlo").is_object()) {
               const io::Json& mc = j.at("monte_carlo");

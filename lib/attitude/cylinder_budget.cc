@@ -9,7 +9,7 @@
 #include <cmath>
 #include <limits>
 
-#include "analysis/budget_autodiff.h"
+#include "camera/projection.h"
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
 #include "io/error.h"
@@ -45,7 +45,16 @@ Eigen::Matrix3d ResidualJacobian(const RayAngles& a, const Eigen::Vector3d& R) {
 template <typename T>
 void AxisYawPitch(const Vec3<T>& p1, const Vec3<T>& p2, const Vec3<T>& p3, T* yaw, T* pitch) {
   const Vec3<T> axis = p1 - 0.5 * (p2 + p3);
-  analysis::AzElAutodiff<T>(axis, yaw, pitch);
+  camera::AzElT<T>(axis, yaw, pitch);
+}
+
+// Line of sight through a jet pixel for jet boresight angles (the camera's mount, no pointing terms).
+template <typename T>
+Vec3<T> RayT(const camera::CameraModel& cam, const T& x_px, const T& y_px, const T& az_rad, const T& el_rad) {
+  camera::SightParams<T> s = cam.Sight(0.0, 0.0).cast<T>();
+  s.az_rad = az_rad;
+  s.el_rad = el_rad;
+  return camera::RayEnuT<T>(cam.ToIntrinsics(), x_px, y_px, s);
 }
 
 }  // namespace
@@ -63,9 +72,9 @@ bool CylinderJacobian(const camera::CameraModel& cam, const CylinderInputs& x0, 
   using J = ceres::Jet<double, kCylinderInputs>;
   J x[kCylinderInputs];
   for (int i = 0; i < kCylinderInputs; ++i) x[i] = J(x0(i), i);
-  const Vec3<J> u1 = analysis::RayEnuAutodiff<J>(cam, Eigen::Vector2d(x0(2), x0(3)), x[2], x[3], x[0], x[1]);
-  const Vec3<J> u2 = analysis::RayEnuAutodiff<J>(cam, Eigen::Vector2d(x0(4), x0(5)), x[4], x[5], x[0], x[1]);
-  const Vec3<J> u3 = analysis::RayEnuAutodiff<J>(cam, Eigen::Vector2d(x0(6), x0(7)), x[6], x[7], x[0], x[1]);
+  const Vec3<J> u1 = RayT<J>(cam, x[2], x[3], x[0], x[1]);
+  const Vec3<J> u2 = RayT<J>(cam, x[4], x[5], x[0], x[1]);
+  const Vec3<J> u3 = RayT<J>(cam, x[6], x[7], x[0], x[1]);
   const J slant2 = x[8] * x[8] + 0.25 * x[9] * x[9];
   const J diam2 = x[9] * x[9];
   const Vec3<J> F = ResidualsT<J>(u1, u2, u3, slant2, diam2, R0);

@@ -9,8 +9,8 @@
 // (cylinder_geometry.h), so ∂R/∂x = −(∂F/∂R)⁻¹ ∂F/∂x. This is computed as ONE Newton step in jet
 // arithmetic from the converged double solution R0: R = R0 − (∂F/∂R)⁻¹ F(R0, x) with F evaluated on jets
 // (F(R0, x0) = 0, so the value stays R0 and the derivative part is exactly the implicit derivative). The
-// rays' jets come from analysis::RayEnuAutodiff (SPEC.md §3 geometry, undistortion linearised at the
-// nominal pixel), yaw/pitch from the axis by atan2. The solver itself (search or closed form) is never
+// rays' jets come from camera::RayEnuT (camera/projection.h: SPEC.md §3 geometry, the undistortion's derivative
+// by the implicit-function theorem at the nominal pixel), yaw/pitch from the axis by atan2. The solver itself (search or closed form) is never
 // differentiated, so the Jacobian does not depend on which one found R0. At a double root (side-on view)
 // ∂F/∂R is singular and the Jacobian is infinite: CylinderJacobian returns false.
 //

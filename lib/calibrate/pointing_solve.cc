@@ -315,7 +315,7 @@ std::size_t RejectOutliers(const PointingSolution& s, Problem* p, std::size_t* m
 
 void ResetProblem(const PointingObservations& obs, const camera::CameraModel& cam, Problem* p) {
   p->obs = &obs;
-  p->in = Intrinsics::Of(cam);
+  p->in = cam.ToIntrinsics();
   p->c.assign(obs.cluster_sigma_rad.size(), Eigen::Vector2d::Zero());
   p->t.assign(obs.target_ids.size(), Eigen::Vector2d::Zero());
   p->costs.clear();

@@ -4,52 +4,29 @@
 #include <cmath>
 
 #include "geo/angles.h"
-#include "geo/line_of_sight.h"
-#include "geo/pointing.h"
 #include "io/error.h"
 
 namespace rk::camera {
-namespace {
 
-// Applies distortion to a normalised point; optionally returns the Jacobian.
-Eigen::Vector2d Distort(const std::array<double, 5>& k, const Eigen::Vector2d& n, Eigen::Matrix2d* J) {
-  const double x = n.x(), y = n.y();
-  const double k1 = k[0], k2 = k[1], p1 = k[2], p2 = k[3], k3 = k[4];
-  const double r2 = x * x + y * y;
-  const double radial = 1.0 + r2 * (k1 + r2 * (k2 + r2 * k3));
-  Eigen::Vector2d d(x * radial + 2 * p1 * x * y + p2 * (r2 + 2 * x * x),
-                    y * radial + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y);
-  if (J) {
-    const double dradial_dr2 = k1 + r2 * (2 * k2 + 3 * k3 * r2);
-    const double drx = 2 * x, dry = 2 * y;  // d r2 / dx, dy
-    (*J)(0, 0) = radial + x * dradial_dr2 * drx + 2 * p1 * y + p2 * (drx + 4 * x);
-    (*J)(0, 1) = x * dradial_dr2 * dry + 2 * p1 * x + p2 * dry;
-    (*J)(1, 0) = y * dradial_dr2 * drx + p1 * drx + 2 * p2 * y;
-    (*J)(1, 1) = radial + y * dradial_dr2 * dry + p1 * (dry + 4 * y) + 2 * p2 * x;
-  }
-  return d;
+bool CameraModel::HasDistortion() const { return ToIntrinsics().HasDistortion(); }
+
+Intrinsics CameraModel::ToIntrinsics() const {
+  return {fx(), fy(), principal_point_px.x(), principal_point_px.y(), distortion};
 }
 
-}  // namespace
-
-bool CameraModel::HasDistortion() const {
-  for (double k : distortion) {
-    if (k != 0.0) return true;
-  }
-  return false;
+SightParams<double> CameraModel::Sight(double az_rad, double el_rad, const geo::PointingTerms& pointing) const {
+  SightParams<double> s;
+  s.az_rad = az_rad;
+  s.el_rad = el_rad;
+  s.SetPointing(pointing);
+  s.mount_yaw_rad = mount_yaw_rad;
+  s.mount_pitch_rad = mount_pitch_rad;
+  s.mount_roll_rad = mount_roll_rad;
+  return s;
 }
 
 Eigen::Vector3d CameraModel::NormalisedRay(const Eigen::Vector2d& px) const {
-  Eigen::Vector2d d((px.x() - principal_point_px.x()) / fx(), (px.y() - principal_point_px.y()) / fy());
-  if (!HasDistortion()) return {d.x(), d.y(), 1.0};
-  Eigen::Vector2d n = d;
-  for (int it = 0; it < 30; ++it) {
-    Eigen::Matrix2d J;
-    Eigen::Vector2d r = Distort(distortion, n, &J) - d;
-    Eigen::Vector2d step = J.partialPivLu().solve(r);
-    n -= step;
-    if (step.norm() < 1e-15) break;
-  }
+  const Eigen::Vector2d n = NormalisedFromPixelT<double>(ToIntrinsics(), px.x(), px.y());
   return {n.x(), n.y(), 1.0};
 }
 
@@ -60,15 +37,13 @@ Eigen::Matrix2d CameraModel::NormalisedRayJacobian(const Eigen::Vector2d& px) co
   if (!HasDistortion()) return scale;
   const Eigen::Vector3d m = NormalisedRay(px);
   Eigen::Matrix2d J;
-  Distort(distortion, Eigen::Vector2d(m.x(), m.y()), &J);
+  DistortT<double>(distortion, m.x(), m.y(), &J);
   return J.inverse() * scale;
 }
 
 std::optional<Eigen::Vector2d> CameraModel::Project(const Eigen::Vector3d& p_cam) const {
   if (!(p_cam.z() > 0.0)) return std::nullopt;
-  Eigen::Vector2d n(p_cam.x() / p_cam.z(), p_cam.y() / p_cam.z());
-  Eigen::Vector2d d = HasDistortion() ? Distort(distortion, n, nullptr) : n;
-  return Eigen::Vector2d(fx() * d.x() + principal_point_px.x(), fy() * d.y() + principal_point_px.y());
+  return PixelFromNormalisedT<double>(ToIntrinsics(), p_cam.x() / p_cam.z(), p_cam.y() / p_cam.z());
 }
 
 Eigen::Matrix3d CameraModel::RotationTurretFromCamera() const {
@@ -76,24 +51,19 @@ Eigen::Matrix3d CameraModel::RotationTurretFromCamera() const {
 }
 
 Eigen::Vector3d CameraModel::RayEnu(const Eigen::Vector2d& px, double az_rad, double el_rad) const {
-  Eigen::Vector3d m_cam = NormalisedRay(px);
-  Eigen::Vector3d ray = geo::RotationEnuFromTurret(az_rad, el_rad) * (RotationTurretFromCamera() * m_cam);
-  return ray.normalized();
+  return RayEnuT<double>(ToIntrinsics(), px.x(), px.y(), Sight(az_rad, el_rad));
 }
 
 Eigen::Vector3d CameraModel::RayEnu(const Eigen::Vector2d& px, double az_rad, double el_rad,
                                     const geo::PointingTerms& pointing) const {
-  if (pointing.IsZero()) return RayEnu(px, az_rad, el_rad);
-  Eigen::Vector3d m_cam = NormalisedRay(px);
-  Eigen::Vector3d ray = geo::RotationEnuFromTurret(az_rad, el_rad, pointing) * (RotationTurretFromCamera() * m_cam);
-  return ray.normalized();
+  return RayEnuT<double>(ToIntrinsics(), px.x(), px.y(), Sight(az_rad, el_rad, pointing));
 }
 
 std::optional<Eigen::Vector2d> CameraModel::ProjectEnu(const Eigen::Vector3d& dir_enu, double az_rad,
                                                        double el_rad) const {
-  Eigen::Vector3d p_cam =
-      RotationTurretFromCamera().transpose() * (geo::RotationEnuFromTurret(az_rad, el_rad).transpose() * dir_enu);
-  return Project(p_cam);
+  Eigen::Vector2d px;
+  if (!ProjectEnuT<double>(ToIntrinsics(), dir_enu, Sight(az_rad, el_rad), &px)) return std::nullopt;
+  return px;
 }
 
 CameraModel DefaultCamera() { return CameraModel{}; }
@@ -134,6 +104,35 @@ CameraModel CameraModelFromJson(const io::Json& j, const std::string& where) {
   }
   if (j.contains("calibration") && !j.at("calibration").is_null()) c.calibration = j.at("calibration");
   return c;
+}
+
+namespace {
+
+double SigmaNumber(const io::Json& j, const char* key, const std::string& where) {
+  if (!j.contains(key) || j.at(key).is_null()) return 0.0;
+  const double v = io::RequireNumber(j, key, where);
+  if (!std::isfinite(v) || v < 0.0) throw DataError(where, 0, 0, std::string(key) + " must be finite and >= 0");
+  return v;
+}
+
+}  // namespace
+
+CalibrationSigma CameraCalibrationSigma(const CameraModel& camera, const std::string& where) {
+  CalibrationSigma s;
+  if (!camera.calibration.is_object() || !camera.calibration.contains("sigma")) return s;
+  const io::Json& sig = camera.calibration.at("sigma");
+  const std::string w = where + ": calibration.sigma";
+  if (sig.is_null()) return s;
+  if (!sig.is_object()) throw DataError(where, 0, 0, "calibration.sigma must be an object");
+  if (sig.contains("mount_deg") && !sig.at("mount_deg").is_null()) {
+    const io::Json& m = sig.at("mount_deg");
+    if (!m.is_object()) throw DataError(where, 0, 0, "calibration.sigma.mount_deg must be an object");
+    const char* keys[] = {"yaw", "pitch", "roll"};
+    for (int i = 0; i < 3; ++i) s.mount_rad[i] = geo::DegToRad(SigmaNumber(m, keys[i], w + ".mount_deg"));
+  }
+  s.focal_mm = SigmaNumber(sig, "focal_length_mm", w);
+  s.time_offset_s = SigmaNumber(sig, "time_offset_s", w);
+  return s;
 }
 
 CameraModel LoadCameraModel(const std::string& path) { return CameraModelFromJson(io::LoadJson(path), path); }

@@ -21,6 +21,7 @@
 #include <optional>
 #include <string>
 
+#include "camera/projection.h"
 #include "geo/pointing.h"
 #include "io/json_util.h"
 
@@ -46,9 +47,13 @@ struct CameraModel {
   double fx() const { return focal_length_mm / pixel_size_mm[0]; }
   double fy() const { return focal_length_mm / pixel_size_mm[1]; }
   bool HasDistortion() const;
+  // The lens as numbers and the line-of-sight parameters at boresight az/el (radians) under `pointing`, with this
+  // camera's mount, for camera/projection.h: every method below is a call of it.
+  Intrinsics ToIntrinsics() const;
+  SightParams<double> Sight(double az_rad, double el_rad, const geo::PointingTerms& pointing = {}) const;
 
   // Pixel → undistorted normalised ray m = (xn, yn, 1) in the camera frame.
-  // The distortion is inverted by Newton iteration to ~1e-14 (not OpenCV's
+  // The distortion is inverted by Newton iteration to ~1e-15 (camera::Undistort; not OpenCV's
   // fixed 5 iterations, which leave ~0.01 px at the corners of strong lenses).
   Eigen::Vector3d NormalisedRay(const Eigen::Vector2d& px) const;
   // Jacobian d(xn, yn)/d(x_px, y_px) of NormalisedRay (inverse of the distortion Jacobian, scaled by
@@ -66,6 +71,16 @@ struct CameraModel {
   // ENU direction → pixel for boresight az/el; nullopt if behind the camera.
   std::optional<Eigen::Vector2d> ProjectEnu(const Eigen::Vector3d& dir_enu, double az_rad, double el_rad) const;
 };
+
+// The 1σ of the calibrated mount, focal length and latency, from the file's "calibration": {"sigma":
+// {"mount_deg": {"yaw", "pitch", "roll"}, "focal_length_mm", "time_offset_s"}} (rk-calibrate; absent = 0).
+// DataError naming `where` for a malformed or negative one. Radians, mm, seconds.
+struct CalibrationSigma {
+  std::array<double, 3> mount_rad{};  // yaw, pitch, roll
+  double focal_mm = 0.0;
+  double time_offset_s = 0.0;
+};
+CalibrationSigma CameraCalibrationSigma(const CameraModel& camera, const std::string& where);
 
 // The default station camera of seed 001: 2448×2048, 3.45 µm, 50 mm.
 CameraModel DefaultCamera();

@@ -14,30 +14,12 @@
 #include <Eigen/Core>
 #include <cmath>
 
+#include "geo/pointing.h"  // RotationEnuFromTurretT: the closed form below is written there
+
 namespace rk::geo {
 
-// Columns r, d, b of SPEC.md §3. Angles in radians.
+// Columns r, d, b of SPEC.md §3 (geo::RotationEnuFromTurretT, geo/pointing.h). Angles in radians.
 Eigen::Matrix3d RotationEnuFromTurret(double az_rad, double el_rad);
-
-// The same for any scalar type with sin/cos found by argument-dependent lookup (e.g. ceres::Jet for
-// automatic differentiation); RotationEnuFromTurret(double, double) is this with T = double.
-template <typename T>
-Eigen::Matrix<T, 3, 3> RotationEnuFromTurretT(const T& az_rad, const T& el_rad) {
-  using std::cos;
-  using std::sin;
-  const T sa = sin(az_rad), ca = cos(az_rad), se = sin(el_rad), ce = cos(el_rad);
-  Eigen::Matrix<T, 3, 3> R;
-  R(0, 0) = ca;
-  R(1, 0) = -sa;
-  R(2, 0) = T(0.0);  // r: image x (right)
-  R(0, 1) = sa * se;
-  R(1, 1) = ca * se;
-  R(2, 1) = -ce;  // d: image y (down)
-  R(0, 2) = sa * ce;
-  R(1, 2) = ca * ce;
-  R(2, 2) = se;  // b: boresight
-  return R;
-}
 
 // Unit direction in ENU for an azimuth/elevation pair (radians).
 Eigen::Vector3d DirectionFromAzEl(double az_rad, double el_rad);

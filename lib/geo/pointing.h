@@ -16,6 +16,7 @@
 
 #include <Eigen/Core>
 #include <cmath>
+#include <type_traits>
 
 namespace rk::geo {
 
@@ -59,16 +60,54 @@ Eigen::Matrix<T, 3, 3> RotZ(const T& a) {
   return R;
 }
 
-// R_enu_turret of SPEC.md §3.1 with the pointing terms as separate scalars (for automatic
-// differentiation with respect to any of them). Angles in radians.
+// The §3.1 product itself, for every scalar and every value of the terms.
 template <typename T>
-Eigen::Matrix<T, 3, 3> RotationEnuFromTurretT(const T& az_rad, const T& el_rad, const T& az_offset_rad,
-                                              const T& tilt_north_rad, const T& tilt_east_rad,
-                                              const T& el_axis_tilt_rad) {
+Eigen::Matrix<T, 3, 3> RotationEnuFromTurretProductT(const T& az_rad, const T& el_rad, const T& az_offset_rad,
+                                                     const T& tilt_north_rad, const T& tilt_east_rad,
+                                                     const T& el_axis_tilt_rad) {
   Eigen::Matrix<T, 3, 3> C;
   C << T(1), T(0), T(0), T(0), T(0), T(1), T(0), T(-1), T(0);
   return RotY<T>(tilt_east_rad) * RotX<T>(-tilt_north_rad) * RotZ<T>(-(az_rad + az_offset_rad)) *
          RotY<T>(el_axis_tilt_rad) * RotX<T>(el_rad) * C;
+}
+
+// R_enu_turret with every pointing term zero (SPEC.md §3's [r d b]), the product below multiplied out:
+//   r = (cos A, −sin A, 0),  d = (sin A sin E, cos A sin E, −cos E),  b = (sin A cos E, cos A cos E, sin E).
+// For any scalar with sin/cos found by argument-dependent lookup (double, ceres::Jet). The property test
+// (tests/camera/test_projection.cc) checks that it equals the product bit for bit.
+template <typename T>
+Eigen::Matrix<T, 3, 3> RotationEnuFromTurretT(const T& az_rad, const T& el_rad) {
+  using std::cos;
+  using std::sin;
+  const T sa = sin(az_rad), ca = cos(az_rad), se = sin(el_rad), ce = cos(el_rad);
+  Eigen::Matrix<T, 3, 3> R;
+  R(0, 0) = ca;
+  R(1, 0) = -sa;
+  R(2, 0) = T(0.0);  // r: image x (right)
+  R(0, 1) = sa * se;
+  R(1, 1) = ca * se;
+  R(2, 1) = -ce;  // d: image y (down)
+  R(0, 2) = sa * ce;
+  R(1, 2) = ca * ce;
+  R(2, 2) = se;  // b: boresight
+  return R;
+}
+
+// R_enu_turret of SPEC.md §3.1 with the pointing terms as separate scalars (for automatic
+// differentiation with respect to any of them). Angles in radians. For plain numbers with every term zero this
+// is the multiplied-out form above (two sines and cosines instead of six); a jet always takes the product, so
+// its derivatives with respect to terms that happen to be zero are kept.
+template <typename T>
+Eigen::Matrix<T, 3, 3> RotationEnuFromTurretT(const T& az_rad, const T& el_rad, const T& az_offset_rad,
+                                              const T& tilt_north_rad, const T& tilt_east_rad,
+                                              const T& el_axis_tilt_rad) {
+  if constexpr (std::is_floating_point_v<T>) {
+    if (az_offset_rad == T(0) && tilt_north_rad == T(0) && tilt_east_rad == T(0) && el_axis_tilt_rad == T(0)) {
+      return RotationEnuFromTurretT<T>(az_rad, el_rad);
+    }
+  }
+  return RotationEnuFromTurretProductT<T>(az_rad, el_rad, az_offset_rad, tilt_north_rad, tilt_east_rad,
+                                          el_axis_tilt_rad);
 }
 
 inline Eigen::Matrix3d RotationEnuFromTurret(double az_rad, double el_rad, const PointingTerms& p) {

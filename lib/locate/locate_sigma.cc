@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "camera/projection.h"
 #include "geo/angles.h"
 #include "geo/pointing.h"
 #include "io/error.h"
@@ -16,41 +17,25 @@ enum SigmaIndex {
   kPx = 0, kPy = 1, kAz = 2, kEl = 3, kTerm0 = 4, kMount0 = 8, kFocal = 11, kRange = 12, kTau = 13
 };
 
-double SigmaNumber(const io::Json& j, const char* key, const std::string& where) {
-  if (!j.contains(key) || j.at(key).is_null()) return 0.0;
-  const double v = io::RequireNumber(j, key, where);
-  if (!std::isfinite(v) || v < 0.0) throw DataError(where, 0, 0, std::string(key) + " must be finite and >= 0");
-  return v;
-}
-
-// y(x) for any scalar (double or jet); the undistortion linearised about the nominal pixel px0 with focal f0.
+// y(x) for any scalar (double or jet), through the one line of sight (camera/projection.h).
 template <typename T>
 Eigen::Matrix<T, kSigmaOutputs, 1> Located(const camera::CameraModel& cam, const SigmaPoint& p,
                                            const Eigen::Matrix<T, kSigmaInputs, 1>& x) {
-  using std::atan2;
-  using std::sqrt;
-  const Eigen::Vector3d m0 = cam.NormalisedRay(p.px);
-  // d(xn, yn)/d(xd, yd): the inverse distortion Jacobian at the nominal pixel.
-  Eigen::Matrix2d Jd = cam.NormalisedRayJacobian(p.px);
-  Jd.col(0) *= cam.fx();
-  Jd.col(1) *= cam.fy();
-  const T xd = (x(kPx) - T(cam.principal_point_px.x())) * T(cam.pixel_size_mm[0]) / x(kFocal);
-  const T yd = (x(kPy) - T(cam.principal_point_px.y())) * T(cam.pixel_size_mm[1]) / x(kFocal);
-  const T dx = xd - T((p.px.x() - cam.principal_point_px.x()) / cam.fx());
-  const T dy = yd - T((p.px.y() - cam.principal_point_px.y()) / cam.fy());
-  const Eigen::Matrix<T, 3, 1> m(T(m0.x()) + Jd(0, 0) * dx + Jd(0, 1) * dy, T(m0.y()) + Jd(1, 0) * dx + Jd(1, 1) * dy,
-                                 T(1.0));
-  const T az = x(kAz) + T(p.az_rate) * x(kTau);
-  const T el = x(kEl) + T(p.el_rate) * x(kTau);
-  const Eigen::Matrix<T, 3, 3> R = geo::RotationEnuFromTurretT<T>(az, el, x(kTerm0), x(kTerm0 + 1), x(kTerm0 + 2),
-                                                                  x(kTerm0 + 3)) *
-                                   geo::RotationTurretFromCameraT<T>(x(kMount0), x(kMount0 + 1), x(kMount0 + 2));
-  Eigen::Matrix<T, 3, 1> ray = R * m;
-  ray /= sqrt(ray.squaredNorm());
+  camera::SightParams<T> s;
+  s.az_rad = x(kAz) + T(p.az_rate) * x(kTau);
+  s.el_rad = x(kEl) + T(p.el_rate) * x(kTau);
+  s.az_offset_rad = x(kTerm0);
+  s.tilt_north_rad = x(kTerm0 + 1);
+  s.tilt_east_rad = x(kTerm0 + 2);
+  s.el_axis_tilt_rad = x(kTerm0 + 3);
+  s.mount_yaw_rad = x(kMount0);
+  s.mount_pitch_rad = x(kMount0 + 1);
+  s.mount_roll_rad = x(kMount0 + 2);
+  s.focal_scale = x(kFocal) / T(cam.focal_length_mm);
+  const Eigen::Matrix<T, 3, 1> ray = camera::RayEnuT<T>(cam.ToIntrinsics(), x(kPx), x(kPy), s);
   const T range = x(kRange) + T(p.range_rate_mps) * x(kTau);
   Eigen::Matrix<T, kSigmaOutputs, 1> y;
-  y(0) = atan2(ray(0), ray(1));
-  y(1) = atan2(ray(2), sqrt(ray(0) * ray(0) + ray(1) * ray(1)));
+  camera::AzElT<T>(ray, &y(0), &y(1));
   y(2) = range;
   for (int k = 0; k < 3; ++k) y(3 + k) = range * ray(k);
   return y;
@@ -59,22 +44,10 @@ Eigen::Matrix<T, kSigmaOutputs, 1> Located(const camera::CameraModel& cam, const
 }  // namespace
 
 void CameraSigma(const camera::CameraModel& camera, const std::string& where, SigmaSources* s) {
-  s->mount_rad = {0.0, 0.0, 0.0};
-  s->focal_mm = 0.0;
-  s->time_offset_s = 0.0;
-  if (!camera.calibration.is_object() || !camera.calibration.contains("sigma")) return;
-  const io::Json& sig = camera.calibration.at("sigma");
-  const std::string w = where + ": calibration.sigma";
-  if (sig.is_null()) return;
-  if (!sig.is_object()) throw DataError(where, 0, 0, "calibration.sigma must be an object");
-  if (sig.contains("mount_deg") && !sig.at("mount_deg").is_null()) {
-    const io::Json& m = sig.at("mount_deg");
-    if (!m.is_object()) throw DataError(where, 0, 0, "calibration.sigma.mount_deg must be an object");
-    const char* keys[] = {"yaw", "pitch", "roll"};
-    for (int i = 0; i < 3; ++i) s->mount_rad[i] = geo::DegToRad(SigmaNumber(m, keys[i], w + ".mount_deg"));
-  }
-  s->focal_mm = SigmaNumber(sig, "focal_length_mm", w);
-  s->time_offset_s = SigmaNumber(sig, "time_offset_s", w);
+  const camera::CalibrationSigma c = camera::CameraCalibrationSigma(camera, where);
+  s->mount_rad = c.mount_rad;
+  s->focal_mm = c.focal_mm;
+  s->time_offset_s = c.time_offset_s;
 }
 
 void PointingSigma(const camera::PointingModel& pointing, SigmaSources* s) {
@@ -92,18 +65,7 @@ SigmaInputVector SigmaNominal(const camera::CameraModel& camera, const geo::Poin
 
 Eigen::Matrix<double, kSigmaOutputs, 1> LocatedFunction(const camera::CameraModel& camera, const SigmaPoint& p,
                                                         const SigmaInputVector& x) {
-  camera::CameraModel c = camera;
-  c.focal_length_mm = x(kFocal);
-  c.mount_yaw_rad = x(kMount0);
-  c.mount_pitch_rad = x(kMount0 + 1);
-  c.mount_roll_rad = x(kMount0 + 2);
-  const geo::PointingTerms terms{x(kTerm0), x(kTerm0 + 1), x(kTerm0 + 2), x(kTerm0 + 3)};
-  const Eigen::Vector3d ray = c.RayEnu(Eigen::Vector2d(x(kPx), x(kPy)), x(kAz) + p.az_rate * x(kTau),
-                                       x(kEl) + p.el_rate * x(kTau), terms);
-  const double range = x(kRange) + p.range_rate_mps * x(kTau);
-  Eigen::Matrix<double, kSigmaOutputs, 1> y;
-  y << std::atan2(ray.x(), ray.y()), std::atan2(ray.z(), std::hypot(ray.x(), ray.y())), range, range * ray;
-  return y;
+  return Located<double>(camera, p, x);
 }
 
 LocatedJacobian LocatedJacobianAt(const camera::CameraModel& camera, const geo::PointingTerms& terms,

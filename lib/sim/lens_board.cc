@@ -49,37 +49,15 @@ BoardTexture ImageTexture(const cv::Mat& gray8, double mm_per_px) {
   };
 }
 
-// OpenCV's distortion of a normalised point and its Jacobian (plain doubles: the renderer inverts it ~10⁵–10⁶ times).
-void LensBoardDistort(const std::array<double, 5>& k, double x, double y, double* xd, double* yd, double J[4]) {
-  const double k1 = k[0], k2 = k[1], p1 = k[2], p2 = k[3], k3 = k[4];
-  const double r2 = x * x + y * y, rad = 1 + r2 * (k1 + r2 * (k2 + r2 * k3));
-  const double drad = k1 + r2 * (2 * k2 + 3 * k3 * r2);  // d rad / d r²
-  *xd = x * rad + 2 * p1 * x * y + p2 * (r2 + 2 * x * x);
-  *yd = y * rad + p1 * (r2 + 2 * y * y) + 2 * p2 * x * y;
-  J[0] = rad + 2 * x * x * drad + 2 * p1 * y + 6 * p2 * x;  // dxd/dx
-  J[1] = 2 * x * y * drad + 2 * p1 * x + 2 * p2 * y;        // dxd/dy
-  J[2] = 2 * x * y * drad + 2 * p1 * x + 2 * p2 * y;        // dyd/dx
-  J[3] = rad + 2 * y * y * drad + 6 * p1 * y + 2 * p2 * x;  // dyd/dy
-}
-
 BoardRenderer::BoardRenderer(const camera::CameraModel& cam) : cam_(cam) {
   const int W = cam.width_px + 1, H = cam.height_px + 1;
   corner_rays_.resize(static_cast<std::size_t>(W) * static_cast<std::size_t>(H));
-  double x = 0, y = 0;  // Newton from the neighbouring corner's solution: 2–3 steps each
+  const camera::Intrinsics in = cam.ToIntrinsics();
+  Eigen::Vector2d n(0.0, 0.0);  // Newton from the neighbouring corner's solution: 2–3 steps each
   for (int r = 0; r < H; ++r) {
     for (int c = 0; c < W; ++c) {
-      const double tx = (c - 0.5 - cam.principal_point_px.x()) / cam.fx();
-      const double ty = (r - 0.5 - cam.principal_point_px.y()) / cam.fy();
-      if (c == 0) x = tx, y = ty;
-      for (int it = 0; it < 50; ++it) {
-        double xd = 0, yd = 0, J[4];
-        LensBoardDistort(cam.distortion, x, y, &xd, &yd, J);
-        const double ex = xd - tx, ey = yd - ty, det = J[0] * J[3] - J[1] * J[2];
-        const double dx = (J[3] * ex - J[1] * ey) / det, dy = (J[0] * ey - J[2] * ex) / det;
-        x -= dx, y -= dy;
-        if (std::abs(dx) + std::abs(dy) < 1e-15) break;
-      }
-      corner_rays_[static_cast<std::size_t>(r) * static_cast<std::size_t>(W) + static_cast<std::size_t>(c)] = {x, y};
+      n = camera::NormalisedFromPixel(in, Eigen::Vector2d(c - 0.5, r - 0.5), c == 0 ? nullptr : &n);
+      corner_rays_[static_cast<std::size_t>(r) * static_cast<std::size_t>(W) + static_cast<std::size_t>(c)] = {n.x(), n.y()};
     }
   }
 }

@@ -7,6 +7,7 @@
 #include "analysis/budget.h"
 #include "analysis/budget_locate.h"
 #include "camera/camera_model.h"
+#include "camera/pointing_model.h"
 #include "geo/angles.h"
 #include "io/json_util.h"
 
@@ -24,10 +25,19 @@ inline camera::CameraModel DistortedCamera() {
   return c;
 }
 
-inline std::unique_ptr<BudgetModel> Locate(double az_deg, double el_deg, double x, double y) {
+// A turret pointing model of a few arcminutes per term, with the σ rk-calibrate pointing would give it.
+inline camera::PointingModel TiltedTurret() {
+  camera::PointingModel p;
+  p.terms = {geo::DegToRad(0.05), geo::DegToRad(-0.03), geo::DegToRad(0.02), geo::DegToRad(0.04)};
+  p.sigma_rad = {geo::DegToRad(10.0 / 3600), geo::DegToRad(4.0 / 3600), geo::DegToRad(4.0 / 3600), std::nullopt};
+  return p;
+}
+
+inline std::unique_ptr<BudgetModel> Locate(double az_deg, double el_deg, double x, double y,
+                                           const camera::PointingModel& pointing = TiltedTurret()) {
   const io::Json nominal = {{"boresight_az_deg", az_deg}, {"boresight_el_deg", el_deg}, {"x_px", x}, {"y_px", y},
                             {"range_m", 850.0}};
-  return MakeLocateBudgetModel(nominal, DistortedCamera(), "budget.json");
+  return MakeLocateBudgetModel(nominal, DistortedCamera(), pointing, "budget.json");
 }
 
 }  // namespace rk::analysis

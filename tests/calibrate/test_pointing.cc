@@ -13,7 +13,6 @@ namespace {
 using testing::InputsOf;
 using testing::TruthOf;
 
-constexpr double kProjectionTolPx = 1e-9;   // same formula, double rounding only
 constexpr double kNumericStep = 1e-7;       // rad (or δf, s): truncation ~1e-14 rel., rounding ~1e-9 px / 1e-7
 constexpr double kJacobianRelTol = 1e-4;    // relative: slopes are O(1e4–1e7) px per unit (σ-scaled residuals)
 constexpr double kAzSumTolDeg = 0.001;      // 3.6″: az_offset + mount yaw from 10 low landmarks
@@ -38,19 +37,6 @@ sim::PointingSimOptions ExactCameraSession(std::uint64_t seed) {
   return o;
 }
 
-TEST(PointingCost, ProjectionMatchesCameraModel) {
-  camera::CameraModel cam = camera::DefaultCamera();
-  cam.distortion = {-0.12, 0.05, 1e-4, -2e-4, 0.01};
-  const Intrinsics in = Intrinsics::Of(cam);
-  for (const Eigen::Vector3d& v : {Eigen::Vector3d(0.1, -0.05, 1.0), Eigen::Vector3d(-0.2, 0.15, 1.0)}) {
-    const Eigen::Vector2d p = ProjectNormalisedT<double>(in, v.x() / v.z(), v.y() / v.z(), 1.0);
-    const auto q = cam.Project(v);
-    ASSERT_TRUE(q.has_value());
-    EXPECT_NEAR(p.x(), q->x(), kProjectionTolPx);
-    EXPECT_NEAR(p.y(), q->y(), kProjectionTolPx);
-  }
-}
-
 TEST(PointingCost, AutomaticJacobianMatchesNumerical) {
   const sim::PointingSession s = sim::SimulatePointingSession(SmallSession(3));
   const testing::SessionInputs in = InputsOf(s);
@@ -61,7 +47,7 @@ TEST(PointingCost, AutomaticJacobianMatchesNumerical) {
   std::array<double, kNumPointingParams> x = TruthOf(s);
   Eigen::Vector2d c(1e-5, -2e-5), t(3e-6, 1e-6);
   for (std::size_t i = 0; i < obs.obs.size(); i += obs.obs.size() / 7) {
-    const PointingPixelCost f(obs.obs[i], Intrinsics::Of(cam), obs.tau0_s);
+    const PointingPixelCost f(obs.obs[i], cam.ToIntrinsics(), obs.tau0_s);
     ceres::AutoDiffCostFunction<PointingPixelCost, 2, kNumPointingParams, 2, 2> ad(new PointingPixelCost(f));
     const double* params[3] = {x.data(), c.data(), t.data()};
     Eigen::Vector2d r;
