@@ -85,7 +85,7 @@ io::Json Recorder::ManifestJson(const std::string& state) {
   const std::string name = !cfg_.name.empty() ? cfg_.name : fs::path(dir_).lexically_normal().filename().string();
   m.name = name.empty() || name == "." ? "trial" : name;
   m.epoch_utc = epoch_.utc();
-  m.station = cfg_.station;
+  m.Single().station = cfg_.station;
   std::lock_guard<std::mutex> lock(manifest_mutex_);
   for (const auto& cam : cameras_) {
     trial::CameraRole role = trial::CameraRole::kBeacon;
@@ -93,10 +93,10 @@ io::Json Recorder::ManifestJson(const std::string& state) {
     trial::CameraEntry c = trial::CameraInItsFolder(cam->cfg.name, role, video_lists_[cam->cfg.name]);
     if (cam->cfg.model_path.empty()) c.model.clear();  // written as null
     if (!cam->cfg.target_path.empty()) c.target = trial::CameraFile(cam->cfg.name, trial::kTargetModelFile);
-    m.cameras.push_back(c);
+    m.Single().cameras.push_back(c);
   }
-  if (turret_) m.turret = trial::kTurretFile;
-  if (range_) m.range = trial::kRangeFile;
+  if (turret_) m.Single().turret = trial::kTurretFile;
+  if (range_) m.Single().range = trial::kRangeFile;
   m.steps = cfg_.steps;
 
   io::Json cap;

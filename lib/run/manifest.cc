@@ -125,7 +125,7 @@ namespace {
 
 // The role of camera unit `unit` ("az", or "s1/az" in a multi-station manifest); "" when there is none.
 std::string CameraUnitRole(const trial::Manifest& m, const std::string& unit) {
-  for (const trial::StationEntry& st : m.Stations()) {
+  for (const trial::StationEntry& st : m.stations) {
     for (const CameraEntry& cam : st.cameras) {
       if (st.Unit(cam) == unit) return CameraRoleName(cam.role);
     }

@@ -52,7 +52,7 @@ class PlanBuilder {
   PlanBuilder(const TrialManifest& m, const PlanOptions& o) : m_(m), o_(o) {}
 
   std::vector<Step> Build() {
-    for (const trial::StationEntry& st : m_.Stations()) {
+    for (const trial::StationEntry& st : m_.stations) {
       st_ = &st;
       for (const auto& cam : st.cameras) {
         switch (cam.role) {

@@ -94,7 +94,7 @@ Json UnitPlan::ToJson() const {
 
 std::vector<UnitPlan> PlanByUnit(const TrialManifest& m, const std::vector<Step>& plan) {
   std::vector<UnitPlan> units;
-  const std::vector<trial::StationEntry> stations = m.Stations();
+  const std::vector<trial::StationEntry>& stations = m.stations;
   for (const trial::StationEntry& st : stations) {
     for (const CameraEntry& cam : st.cameras) {
       units.push_back(UnitOf(st.Unit(cam), std::string(CameraRoleName(cam.role)) + " camera", plan));
@@ -135,7 +135,7 @@ void CheckRequestedProducts(const TrialManifest& m, const std::vector<Step>& pla
       fail(pointer, "asks for " + s.id + ", which cannot run: " + s.note, true);
     }
   }
-  for (const trial::StationEntry& st : m.Stations()) {
+  for (const trial::StationEntry& st : m.stations) {
     for (const CameraEntry& cam : st.cameras) {
       const std::string unit = st.Unit(cam);
       const auto it = std::find_if(plan.begin(), plan.end(),

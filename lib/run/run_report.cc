@@ -150,7 +150,7 @@ Json TrialRun::BuildReport() const {
                   {"manifest", fs::path(manifest_file_).filename().string()},
                   {"manifest_sha256", Sha256Hex(m_->text)},
                   {"epoch_utc", m_->epoch_utc.empty() ? Json(nullptr) : Json(m_->epoch_utc)},
-                  {"station", m_->station}};
+                  {"station", m_->multi_station() ? Json(nullptr) : m_->Single().station}};
   if (m_->multi_station()) {  // several stations: each one's position and the trajectory's origin
     Json positions = Json::object();
     for (const trial::StationEntry& st : m_->stations) positions[st.name] = st.station;

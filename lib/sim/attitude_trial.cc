@@ -150,15 +150,15 @@ void WriteAttitudeManifest(const AttitudeSimulator& sim, const AttitudeTrialWrit
   trial::Manifest m;
   m.name = opt.name.empty() ? dir.stem() : opt.name;
   m.epoch_utc = opt.epoch_utc;
-  m.station = {{"lat_deg", 0.0}, {"lon_deg", 0.0}, {"h_m", 0.0}};
+  m.Single().station = {{"lat_deg", 0.0}, {"lon_deg", 0.0}, {"h_m", 0.0}};
   // Without video there is nothing for rk-extract to read: the camera is left out of the manifest
   // (SPEC.md §6 wants a non-empty video list), the model and frame times are still written.
   if (opt.video) {
     trial::CameraEntry att = trial::CameraInItsFolder(kAttitudeCamera, trial::CameraRole::kFeatures, {video_rel});
     att.target = trial::kTargetModelFile;
-    m.cameras = {att};
+    m.Single().cameras = {att};
   }
-  m.turret = trial::kTurretFile;
+  m.Single().turret = trial::kTurretFile;
   io::Json simj;
   simj["generator"] = "rk-sim attitude";
   simj["seed"] = so.seed;

@@ -172,10 +172,7 @@ void WriteBeaconManifest(const BeaconSimulator& sim, const TrialWriteOptions& op
   trial::Manifest m;
   m.name = opt.name.empty() ? stem : opt.name;
   m.epoch_utc = opt.epoch_utc;
-  m.station = station.station;
-  m.cameras = std::move(station.cameras);
-  m.turret = station.turret;
-  m.range = station.range;
+  m.stations = {std::move(station)};
   io::Json simj;
   simj["generator"] = "rk-sim beacon";
   simj["seed"] = so.seed;

@@ -104,8 +104,8 @@ PointingTrialSummary WritePointingTrial(const PointingSimOptions& o, const Point
   trial::Manifest m;
   m.name = dir.stem();
   m.epoch_utc = o.epoch_utc;
-  m.station = {{"lat_deg", o.lat_deg}, {"lon_deg", o.lon_deg}, {"h_m", o.h_m}};
-  m.turret = trial::kTurretFile;
+  m.Single().station = {{"lat_deg", o.lat_deg}, {"lon_deg", o.lon_deg}, {"h_m", o.h_m}};
+  m.Single().turret = trial::kTurretFile;
   PointingTrialSummary sum;
   sum.observations = s.observations.size();
   sum.frames = s.frames;

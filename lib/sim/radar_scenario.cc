@@ -562,7 +562,7 @@ RadarTrialSummary WriteRadarTrial(const RadarSimulator& sim, const RadarTrialWri
   m.name = std::filesystem::path(opt.out_dir).lexically_normal().filename().string();
   if (m.name.empty()) m.name = std::filesystem::path(opt.out_dir).parent_path().filename().string();
   m.epoch_utc = opt.epoch_utc;
-  m.station = {{"lat_deg", so.origin_lat_deg}, {"lon_deg", so.origin_lon_deg}, {"h_m", so.origin_h_m}};
+  m.Single().station = {{"lat_deg", so.origin_lat_deg}, {"lon_deg", so.origin_lon_deg}, {"h_m", so.origin_h_m}};
   m.radar = trial::RadarEntry{trial::kRadarPlotsFile, trial::kRadarNavFile};
   m.extra["sim"] = {{"generator", "rk-sim radar"},
                     {"scenario", "scenario.json"},

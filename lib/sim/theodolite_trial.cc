@@ -138,14 +138,14 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
   trial::Manifest m;
   m.name = opt.name.empty() ? dir.stem() : opt.name;
   m.epoch_utc = opt.epoch_utc;
-  m.station = {{"lat_deg", 0.0}, {"lon_deg", 0.0}, {"h_m", 0.0}};
+  m.Single().station = {{"lat_deg", 0.0}, {"lon_deg", 0.0}, {"h_m", 0.0}};
   // Without images there is nothing for rk-extract to read: the camera is left out of the manifest
   // (SPEC.md §6 wants a non-empty video list); rk-attitude cylinder can still run on points.csv.
   if (opt.images != "none") {
     const std::string video_rel = trial::CameraFile(kTheodoliteCamera, opt.images == "mkv" ? "video.mkv" : "%06d.png");
     trial::CameraEntry theo = trial::CameraInItsFolder(kTheodoliteCamera, trial::CameraRole::kSilhouette, {video_rel});
     theo.target = trial::kTargetModelFile;
-    m.cameras = {theo};
+    m.Single().cameras = {theo};
     video::FrameSink sink(dir.Path(video_rel), so.camera.width_px, so.camera.height_px, opt.render.sensor.bit_depth,
                           so.fps);
     for (std::size_t k = 0; k < sim.frames().size(); ++k) {
@@ -156,7 +156,7 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
     sink.Close();
   }
 
-  m.theodolite = trial::kTheodoliteFile;
+  m.Single().theodolite = trial::kTheodoliteFile;
   io::Json simj;
   simj["generator"] = "rk-sim theodolite";
   simj["seed"] = so.seed;

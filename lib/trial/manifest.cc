@@ -252,14 +252,8 @@ Manifest ParseManifest(const std::string& text, const std::string& manifest_path
   if (j.contains("stations") && !j.at("stations").is_null()) {
     ParseStations(c, j, &m);
   } else {
-    StationEntry top;
-    ParseStationPart(c, j, "", j, &top);
-    m.station = top.station;
-    m.pointing = top.pointing;
-    m.cameras = std::move(top.cameras);
-    m.turret = top.turret;
-    m.range = top.range;
-    m.theodolite = top.theodolite;
+    m.stations.emplace_back();
+    ParseStationPart(c, j, "", j, &m.stations.back());
   }
   if (j.contains("radar") && !j.at("radar").is_null()) {
     const Json& r = j.at("radar");
@@ -279,21 +273,21 @@ Manifest LoadManifest(const std::string& path) {
   return ParseManifest(io::ReadFile(file), file);
 }
 
-std::vector<StationEntry> Manifest::Stations() const {
-  if (!stations.empty()) return stations;
-  StationEntry top;
-  top.station = station;
-  top.pointing = pointing;
-  top.cameras = cameras;
-  top.turret = turret;
-  top.range = range;
-  top.theodolite = theodolite;
-  return {top};
+StationEntry& Manifest::Single() {
+  if (multi_station()) throw ProcessingError("a multi-station manifest has no single station");
+  if (stations.empty()) stations.emplace_back();
+  return stations.front();
+}
+
+const StationEntry& Manifest::Single() const {
+  static const StationEntry kNone;
+  if (multi_station()) throw ProcessingError("a multi-station manifest has no single station");
+  return stations.empty() ? kNone : stations.front();
 }
 
 std::vector<std::string> Manifest::AllPaths() const {
   std::vector<std::string> out;
-  for (const StationEntry& st : Stations()) {
+  for (const StationEntry& st : stations) {
     for (const auto& cam : st.cameras) {
       for (const auto& v : cam.video) out.push_back(v);
       if (!cam.frames.empty()) out.push_back(cam.frames);
@@ -346,8 +340,8 @@ Json ManifestToJson(const Manifest& m) {
   Json j;
   j["name"] = m.name;
   j["epoch_utc"] = m.epoch_utc;
-  if (m.stations.empty()) {
-    StationPartToJson(m.Stations().front(), &j);
+  if (!m.multi_station()) {
+    StationPartToJson(m.Single(), &j);
   } else {
     j["origin"] = m.origin;
     Json sts = Json::object();

@@ -69,20 +69,17 @@ struct Manifest {
 
   std::string name;  // "name", else the folder's name
   std::string epoch_utc;
-  io::Json station;                  // {"lat_deg","lon_deg","h_m"} or null (kept as JSON: written as given)
-  std::string pointing;              // station.pointing: the turret pointing model (SPEC.md §3.1), "" = none
-  std::vector<CameraEntry> cameras;  // read: in name order
-  std::string turret, range, theodolite;  // empty = none
+  // The stations: a single-station manifest (its station, cameras and logs at the top level) has exactly one,
+  // with an empty name; a multi-station one (docs/rk-run.md "Several stations": "stations" {NAME: {...}}) two or
+  // more, in name order. Only the reader and ManifestToJson know the two JSON forms.
+  std::vector<StationEntry> stations;
+  io::Json origin;  // multi-station: the trajectory's ENU origin {"lat_deg","lon_deg","h_m"}, null = the first station
   std::optional<RadarEntry> radar;
-  // Several stations (docs/rk-run.md "Several stations"): "stations" {NAME: StationEntry} and "origin"
-  // (the trajectory's ENU origin, {"lat_deg","lon_deg","h_m"}, null = the first station). When `stations` is
-  // not empty, the single-station keys above (station, cameras, turret, range, theodolite) are empty: a
-  // manifest has one form or the other.
-  std::vector<StationEntry> stations;  // read: in name order
-  io::Json origin;                     // null when absent
-  bool multi_station() const { return !stations.empty(); }
-  // The stations to process: `stations`, or the top level as one station with an empty name.
-  std::vector<StationEntry> Stations() const;
+  bool multi_station() const { return !stations.empty() && !stations.front().name.empty(); }
+  // The one station of a single-station manifest (a writer's Manifest gets it on first use; a multi-station
+  // manifest is a ProcessingError).
+  StationEntry& Single();
+  const StationEntry& Single() const;
 
   io::Json steps = io::Json::object();  // rk-run's "steps" object (the reader checks only that it is one)
   // Written: further top-level keys, e.g. {"sim": {...}} or {"capture": {...}} (read: see `json`).

@@ -19,11 +19,11 @@ TEST(Manifest, ReadsTheSpecExample) {
   const TrialManifest m = ParseManifest(kBeaconManifest, "/trials/t1/trial.json");
   EXPECT_EQ(m.dir, "/trials/t1");
   EXPECT_EQ(m.name, "t0001");
-  ASSERT_EQ(m.cameras.size(), 1u);
-  EXPECT_EQ(m.cameras[0].video.size(), 2u);
-  EXPECT_EQ(m.cameras[0].role, CameraRole::kBeacon);
-  EXPECT_EQ(m.turret, "turret.csv");
-  EXPECT_TRUE(m.theodolite.empty());
+  ASSERT_EQ(m.Single().cameras.size(), 1u);
+  EXPECT_EQ(m.Single().cameras[0].video.size(), 2u);
+  EXPECT_EQ(m.Single().cameras[0].role, CameraRole::kBeacon);
+  EXPECT_EQ(m.Single().turret, "turret.csv");
+  EXPECT_TRUE(m.Single().theodolite.empty());
   EXPECT_FALSE(m.radar.has_value());
   EXPECT_EQ(m.json["operator"], "kept");  // extra keys are kept
 }

@@ -134,7 +134,7 @@ TEST(Plan, StationPointingAndPositionArePassedOn) {
               "role": "silhouette", "target": "cyl.json"}},
     "turret": "turret.csv"})";
   const TrialManifest m = ParseManifest(text, "/t/trial.json");
-  EXPECT_EQ(m.pointing, "cal/pointing.json");
+  EXPECT_EQ(m.Single().pointing, "cal/pointing.json");
   const std::vector<std::string> paths = m.AllPaths();
   EXPECT_NE(std::find(paths.begin(), paths.end(), "cal/pointing.json"), paths.end());
   const std::vector<Step> plan = BuildPlan(m, PlanOptions{false});

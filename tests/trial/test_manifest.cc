@@ -16,7 +16,7 @@ Manifest BeaconTrial() {
   Manifest m;
   m.name = "t0001";
   m.epoch_utc = "2026-11-21T08:00:00Z";
-  m.station = {{"lat_deg", 10.5}, {"lon_deg", 20}, {"h_m", 5.0}};
+  m.Single().station = {{"lat_deg", 10.5}, {"lon_deg", 20}, {"h_m", 5.0}};
   const CameraEntry az = CameraInItsFolder("az", CameraRole::kBeacon, {"az/seg_000.mkv", "az/seg_001.mkv"});
   CameraEntry theo;
   theo.name = "theo";
@@ -27,9 +27,9 @@ Manifest BeaconTrial() {
   theo.role = CameraRole::kSilhouette;
   theo.target = kTargetModelFile;
   theo.boresight_deg = std::make_pair(326.25, 16.5);
-  m.cameras = {az, theo};
-  m.turret = kTurretFile;
-  m.theodolite = kTheodoliteFile;
+  m.Single().cameras = {az, theo};
+  m.Single().turret = kTurretFile;
+  m.Single().theodolite = kTheodoliteFile;
   m.radar = RadarEntry{"plots.csv", "nav.csv"};
   m.steps = {{"plot", false}};
   m.extra = {{"sim", {{"generator", "test"}}}};
@@ -38,7 +38,7 @@ Manifest BeaconTrial() {
 
 TEST(ManifestWriter, EveryKeyOfTheSpecAndNullsForAbsentFiles) {
   Manifest m = BeaconTrial();
-  m.cameras[0].model.clear();  // rk-capture without a camera model: null
+  m.Single().cameras[0].model.clear();  // rk-capture without a camera model: null
   m.radar.reset();
   const io::Json j = ManifestToJson(m);
   for (const char* key : {"name", "epoch_utc", "station", "cameras", "turret", "range", "theodolite", "radar",
@@ -64,10 +64,12 @@ TEST(ManifestWriter, ReaderReadsBackWhatTheWriterWrote) {
   EXPECT_EQ(r.dir, "/trials/t0001");
   EXPECT_EQ(r.name, w.name);
   EXPECT_EQ(r.epoch_utc, w.epoch_utc);
-  EXPECT_EQ(r.station, w.station);
-  ASSERT_EQ(r.cameras.size(), 2u);
+  ASSERT_FALSE(r.multi_station());
+  ASSERT_EQ(r.stations.size(), 1u);
+  EXPECT_EQ(r.Single().station, w.Single().station);
+  ASSERT_EQ(r.Single().cameras.size(), 2u);
   for (std::size_t i = 0; i < 2; ++i) {
-    const CameraEntry &a = w.cameras[i], &b = r.cameras[i];
+    const CameraEntry &a = w.Single().cameras[i], &b = r.Single().cameras[i];
     EXPECT_EQ(b.name, a.name);
     EXPECT_EQ(b.video, a.video);
     EXPECT_EQ(b.frames, a.frames);
@@ -78,9 +80,9 @@ TEST(ManifestWriter, ReaderReadsBackWhatTheWriterWrote) {
     EXPECT_EQ(b.target, a.target);
     EXPECT_EQ(b.boresight_deg, a.boresight_deg);
   }
-  EXPECT_EQ(r.turret, w.turret);
-  EXPECT_TRUE(r.range.empty());
-  EXPECT_EQ(r.theodolite, w.theodolite);
+  EXPECT_EQ(r.Single().turret, w.Single().turret);
+  EXPECT_TRUE(r.Single().range.empty());
+  EXPECT_EQ(r.Single().theodolite, w.Single().theodolite);
   ASSERT_TRUE(r.radar.has_value());
   EXPECT_EQ(r.radar->plots, "plots.csv");
   EXPECT_EQ(r.radar->nav, "nav.csv");
@@ -95,7 +97,7 @@ TEST(ManifestWriter, ReaderReadsBackWhatTheWriterWrote) {
 // text below is what ManifestToJson(BeaconTrial()).dump(1) gave at 7b68eb7.
 TEST(ManifestWriter, SingleStationFormUnchanged) {
   Manifest m = BeaconTrial();
-  m.cameras.resize(1);
+  m.Single().cameras.resize(1);
   m.radar.reset();
   const io::Json j = ManifestToJson(m);
   EXPECT_FALSE(j.contains("stations"));
@@ -108,7 +110,7 @@ TEST(ManifestWriter, SingleStationFormUnchanged) {
 }
 
 // Several stations: written with "origin" and "stations" (each station's keys in the single-station form), read
-// back the same; Stations() gives them, or the top level as one unnamed station.
+// back the same; `stations` holds them, or the top level as one unnamed station (Single() refuses the first).
 TEST(ManifestWriter, SeveralStationsRoundTrip) {
   Manifest w;
   w.name = "ms";
@@ -134,7 +136,7 @@ TEST(ManifestWriter, SeveralStationsRoundTrip) {
   ASSERT_TRUE(r.multi_station());
   ASSERT_EQ(r.stations.size(), 2u);
   EXPECT_EQ(r.origin, w.origin);
-  EXPECT_TRUE(r.cameras.empty());
+  EXPECT_THROW(r.Single(), Error);
   EXPECT_EQ(r.stations[1].name, "s2");
   EXPECT_EQ(r.stations[1].station, w.stations[1].station);
   EXPECT_EQ(r.stations[1].Unit(r.stations[1].cameras[0]), "s2/az");
@@ -142,9 +144,9 @@ TEST(ManifestWriter, SeveralStationsRoundTrip) {
   EXPECT_EQ(r.AllPaths().size(), 9u);  // per station video, frames, model, turret; s1's range
   EXPECT_EQ(ManifestToJson(r), j);
   const Manifest single = ParseManifest(ManifestToJson(BeaconTrial()).dump(), "/trials/t0001/trial.json");
-  ASSERT_EQ(single.Stations().size(), 1u);
-  EXPECT_EQ(single.Stations()[0].name, "");
-  EXPECT_EQ(single.Stations()[0].Unit(single.cameras[0]), "az");
+  ASSERT_EQ(single.stations.size(), 1u);
+  EXPECT_EQ(single.stations[0].name, "");
+  EXPECT_EQ(single.stations[0].Unit(single.Single().cameras[0]), "az");
 }
 
 // Errors of the multi-station form name the field and its line and column.
