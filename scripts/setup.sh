@@ -64,6 +64,7 @@ if [ "$ASAN" = 1 ]; then
   # -O1 -g1: the sanitizers' usual level. Against -O2 -g it compiles ≈ 1.7x faster (UBSan's checks in
   # Eigen- and CLI11-heavy code dominate), keeps line numbers in the reports, and still runs the suite
   # at a reasonable pace. NDEBUG as in Release, so both builds run the same code.
+  echo "== setup.sh: ASan+UBSan build at ${SECONDS} s" >&2
   cmake -S "$ROOT" -B "$ROOT/build-asan" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DRANGEKIT_ENABLE_ASAN=ON \
     -DRANGEKIT_BUILD_BENCH=OFF >&2
@@ -72,8 +73,10 @@ fi
 if [ "$FUZZ" = 1 ]; then
   # clang++ with -fsanitize=fuzzer,address,undefined in a folder of its own; -O1 -g1 and assertions on
   # (no NDEBUG: a failed assert is a finding). Only the harnesses and the modules they link are built.
+  echo "== setup.sh: libFuzzer build at ${SECONDS} s" >&2
   cmake -S "$ROOT" -B "$ROOT/build-fuzz" -DCMAKE_CXX_COMPILER=clang++ -DRANGEKIT_BUILD_FUZZ=ON \
     -DRANGEKIT_BUILD_TESTS=OFF -DRANGEKIT_BUILD_BENCH=OFF -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1" >&2
   cmake --build "$ROOT/build-fuzz" -j"$JOBS" --target fuzz_all >&2
 fi
+echo "== setup.sh: done at ${SECONDS} s" >&2

@@ -19,13 +19,15 @@ if [ "${CI:-}" = true ] || [ "${RK_FUZZ_TEST:-}" = 1 ]; then FUZZ=1; SETUP+=(--f
 if [ "${CI:-}" = true ] || [ "${RK_BROWSER_TEST:-}" = 1 ]; then SETUP+=(--browser); fi
 "$ROOT/scripts/setup.sh" "${SETUP[@]}"
 JOBS=$(nproc)
-echo "== ASan+UBSan build: ctest"
+# Each phase says when it starts (seconds since the start): the CI budget is watched phase by phase.
+echo "== ASan+UBSan build: ctest (set-up and builds took ${SECONDS} s)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 (cd "$ROOT/build-asan" && ctest --output-on-failure -j"$JOBS")
 if [ "$FUZZ" = 1 ]; then
   # Each harness uses one core for RANGEKIT_FUZZ_SMOKE_SECONDS (5) on its committed corpus: one per core
   # (one at a time left a core idle for half of the minute this takes; CI budget, issue 27).
-  echo "== libFuzzer harnesses: smoke run (ctest -L fuzz)"
+  echo "== libFuzzer harnesses: smoke run (ctest -L fuzz) at ${SECONDS} s"
   (cd "$ROOT/build-fuzz" && ctest --output-on-failure -L fuzz -j"$JOBS")
 fi
+echo "== test command done in ${SECONDS} s"
