@@ -19,6 +19,7 @@
 #include "geo/line_of_sight.h"
 #include "geo/pointing.h"
 #include "locate/locate_sigma.h"
+#include "rk_test/matchers.h"
 
 namespace rk::camera {
 namespace {
@@ -101,10 +102,8 @@ TEST(Projection, EveryFormerPathAgreesWithTheOneLineOfSight) {
     p.el_rad = c.el;
     p.range_m = 1000.0;
     const auto y = locate::LocatedFunction(c.cam, p, locate::SigmaNominal(c.cam, c.terms, p));
-    const geo::AzEl ae = geo::AzElFromEnu(ray);
-    EXPECT_LT(std::abs(geo::WrapPi(y(0) - ae.az_rad)), kAgreeRad);
-    EXPECT_LT(std::abs(y(1) - ae.el_rad), kAgreeRad);
-    EXPECT_LT((y.tail<3>() - 1000.0 * ray).norm(), 1000.0 * kAgreeRad);
+    EXPECT_THAT((geo::AzEl{y(0), y(1)}), test::AzElNear(geo::AzElFromEnu(ray), kAgreeRad));
+    EXPECT_THAT(Eigen::Vector3d(y.tail<3>()), test::EnuNear(1000.0 * ray, 1000.0 * kAgreeRad));
 
     // rk-analyze budget's locate model.
     PointingModel pm;

@@ -8,14 +8,15 @@
 #include "capture/durable_file.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "test_temp_dir.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::capture {
 namespace {
 namespace fs = std::filesystem;
 
 TEST(AppendLog, LinesAndHeader) {
-  const std::string dir = TempDir("log");
+  const rk::test::TempDir dir_tmp("capture_log");
+  const std::string dir = dir_tmp.path();
   Syncer syncer(dir, 0.05);
   syncer.Start();
   {

@@ -13,7 +13,7 @@
 #include "capture/dimetix.h"
 #include "capture/emulator_dimetix.h"
 #include "test_serial_device.h"
-#include "test_temp_dir.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::capture {
 namespace {
@@ -96,7 +96,8 @@ void ExpectSamplesMatchTruth(const std::vector<RangeSample>& samples, const std:
 }
 
 TEST(DimetixDriver, TrackingWithErrorSilenceAndGarbage) {
-  const std::string dir = TempDir("dls");
+  const rk::test::TempDir dir_tmp("capture_dls");
+  const std::string dir = dir_tmp.path();
   DimetixEmulatorOptions e;
   e.common.link = dir + "/dls";
   e.common.truth_path = dir + "/truth.csv";
@@ -148,7 +149,8 @@ TEST(DimetixDriver, TrackingWithErrorSilenceAndGarbage) {
 }
 
 TEST(DimetixDriver, SingleModeAtItsRate) {
-  const std::string dir = TempDir("dls1");
+  const rk::test::TempDir dir_tmp("capture_dls1");
+  const std::string dir = dir_tmp.path();
   DimetixEmulatorOptions e;
   e.common.link = dir + "/dls";
   e.common.truth_path = dir + "/truth.csv";
@@ -180,7 +182,8 @@ TEST(DimetixDriver, SingleModeAtItsRate) {
 }
 
 TEST(DimetixDriver, ReconnectsAfterAHangUp) {
-  const std::string dir = TempDir("dls2");
+  const rk::test::TempDir dir_tmp("capture_dls2");
+  const std::string dir = dir_tmp.path();
   DimetixEmulatorOptions e;
   e.common.link = dir + "/dls";
   e.common.truth_path = dir + "/truth.csv";

@@ -13,7 +13,7 @@
 #include "capture/durable_file.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "test_temp_dir.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::capture {
 namespace {
@@ -22,7 +22,8 @@ namespace fs = std::filesystem;
 // In a child process (the limit is per process): RLIMIT_FSIZE = 1000 bytes; a 600-byte record fits,
 // the next one is written only in part by the kernel and must be cut back to the record boundary.
 TEST(DurableFile, ShortWriteIsCutBackToTheRecordBoundary) {
-  const std::string dir = TempDir("fsize");
+  const rk::test::TempDir dir_tmp("capture_fsize");
+  const std::string dir = dir_tmp.path();
   const std::string path = (fs::path(dir) / "log.csv").string();
   const pid_t pid = ::fork();
   ASSERT_GE(pid, 0);
@@ -53,7 +54,8 @@ TEST(DurableFile, ShortWriteIsCutBackToTheRecordBoundary) {
 }
 
 TEST(DurableFile, NeverReplacesAFile) {
-  const std::string dir = TempDir("excl");
+  const rk::test::TempDir dir_tmp("capture_excl");
+  const std::string dir = dir_tmp.path();
   const std::string path = (fs::path(dir) / "x").string();
   std::ofstream(path) << "precious";
   std::string why;
@@ -64,7 +66,8 @@ TEST(DurableFile, NeverReplacesAFile) {
 }
 
 TEST(Syncer, FreeSpaceProbeAndRetiredFiles) {
-  const std::string dir = TempDir("sync");
+  const rk::test::TempDir dir_tmp("capture_sync");
+  const std::string dir = dir_tmp.path();
   Syncer syncer(dir, 1.0);
   syncer.set_free_space_probe([] { return std::int64_t{12345}; });
   std::string why;

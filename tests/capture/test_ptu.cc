@@ -14,7 +14,7 @@
 #include "capture/ptu.h"
 #include "geo/angles.h"
 #include "test_serial_device.h"
-#include "test_temp_dir.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::capture {
 namespace {
@@ -127,7 +127,8 @@ std::vector<std::pair<std::int64_t, std::int64_t>> TruthPairs(const std::vector<
 }
 
 TEST(PtuDriver, PollsBothAxesAndReadsTheResolution) {
-  const std::string dir = TempDir("ptu");
+  const rk::test::TempDir dir_tmp("capture_ptu");
+  const std::string dir = dir_tmp.path();
   PtuEmulatorOptions e;
   e.common.link = dir + "/ptu";
   e.common.truth_path = dir + "/truth.csv";
@@ -176,7 +177,8 @@ TEST(PtuDriver, PollsBothAxesAndReadsTheResolution) {
 }
 
 TEST(PtuDriver, FaultsNeverMispairReplies) {
-  const std::string dir = TempDir("ptu2");
+  const rk::test::TempDir dir_tmp("capture_ptu2");
+  const std::string dir = dir_tmp.path();
   PtuEmulatorOptions e;
   e.common.link = dir + "/ptu";
   e.common.truth_path = dir + "/truth.csv";
@@ -230,7 +232,8 @@ TEST(PtuDriver, FaultsNeverMispairReplies) {
 }
 
 TEST(PtuDriver, PointsTheTurretAtStart) {
-  const std::string dir = TempDir("ptu3");
+  const rk::test::TempDir dir_tmp("capture_ptu3");
+  const std::string dir = dir_tmp.path();
   PtuEmulatorOptions e;
   e.common.link = dir + "/ptu";
   e.slew_deg_s = 1000;  // arrives within one poll

@@ -14,7 +14,7 @@
 #include "io/file_util.h"
 #include "io/json_util.h"
 #include "test_station.h"
-#include "test_temp_dir.h"
+#include "rk_test/temp_dir.h"
 #include "trial/layout.h"
 #include "video/frame_sink.h"
 #include "video/frame_source.h"
@@ -24,7 +24,8 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(Recorder, SyntheticCameraTrialReadsBack) {
-  const std::string dir = TempDir("basic");
+  const rk::test::TempDir dir_tmp("capture_basic");
+  const std::string dir = dir_tmp.path();
   const CaptureSummary s = Record(dir, SyntheticStation(), 0.8);
   ASSERT_EQ(s.cameras.size(), 1u);
   EXPECT_EQ(s.stop_reason, "duration");
@@ -61,7 +62,8 @@ TEST(Recorder, SyntheticCameraTrialReadsBack) {
 }
 
 TEST(Recorder, PgmSequenceSegments) {
-  const std::string dir = TempDir("pgm");
+  const rk::test::TempDir dir_tmp("capture_pgm");
+  const std::string dir = dir_tmp.path();
   const CaptureSummary s = Record(dir, SyntheticStation("pgm"), 0.7);
   EXPECT_EQ(s.write_failures, 0);
   const std::string trial = dir + "/trial";
@@ -74,7 +76,8 @@ TEST(Recorder, PgmSequenceSegments) {
 // The OpenCV VideoCapture path (V4L2 and GStreamer cameras use it) on a file: every frame of an FFV1
 // grey video recorded bit-exact (grey → BGR → grey is exact in OpenCV's integer conversion).
 TEST(Recorder, OpenCvSourceRecordsEveryFrameOfAFile) {
-  const std::string dir = TempDir("cvfile");
+  const rk::test::TempDir dir_tmp("capture_cvfile");
+  const std::string dir = dir_tmp.path();
   std::vector<cv::Mat> src;
   {
     video::FrameSink sink(dir + "/src.mkv", 64, 48, 8, 40.0);
@@ -108,7 +111,8 @@ TEST(Recorder, OpenCvSourceRecordsEveryFrameOfAFile) {
 }
 
 TEST(Recorder, DiskAlmostFullDropsVideoAsAGap) {
-  const std::string dir = TempDir("full");
+  const rk::test::TempDir dir_tmp("capture_full");
+  const std::string dir = dir_tmp.path();
   // The probe says 1 MB free: below the default 512 MB reserve, every frame is dropped.
   const CaptureSummary s = Record(dir, SyntheticStation(), 0.4, [] { return std::int64_t{1000000}; });
   EXPECT_EQ(s.cameras[0].written, 0);
@@ -128,7 +132,8 @@ TEST(Recorder, DiskAlmostFullDropsVideoAsAGap) {
 }
 
 TEST(Recorder, RefusesANonEmptyFolderAndLeavesItAlone) {
-  const std::string dir = TempDir("refuse");
+  const rk::test::TempDir dir_tmp("capture_refuse");
+  const std::string dir = dir_tmp.path();
   fs::create_directories(dir + "/trial");
   std::ofstream(dir + "/trial/keep.txt") << "precious";
   EXPECT_THROW(Record(dir, SyntheticStation(), 0.2), Error);
@@ -138,7 +143,8 @@ TEST(Recorder, RefusesANonEmptyFolderAndLeavesItAlone) {
 }
 
 TEST(Recorder, ADeviceThatIsNotThereLeavesNothingBehind) {
-  const std::string dir = TempDir("nodev");
+  const rk::test::TempDir dir_tmp("capture_nodev");
+  const std::string dir = dir_tmp.path();
   io::Json j = SyntheticStation();
   j["rangefinder"] = {{"port", dir + "/no-such-tty"}, {"baud", 115200}};
   try {

@@ -11,7 +11,7 @@
 #include "io/file_util.h"
 #include "io/json_util.h"
 #include "test_station.h"
-#include "test_temp_dir.h"
+#include "rk_test/temp_dir.h"
 #include "trial/layout.h"
 
 namespace rk::capture {
@@ -20,15 +20,15 @@ namespace fs = std::filesystem;
 
 class Recover : public ::testing::Test {
  protected:
+  const rk::test::TempDir tmp_{"capture_recover"};
   void SetUp() override {
-    dir_ = TempDir("recover");
+    dir_ = tmp_.path();
     const CaptureSummary s = Record(dir_, SyntheticStation(), 0.8);
     frames_ = s.cameras[0].written;
     trial_ = dir_ + "/trial";
     seg1_ = trial_ + "/az/seg_001.y4m";
     frame_bytes_ = 6 + 64 * 48;
   }
-  void TearDown() override { fs::remove_all(dir_); }
   void Append(const std::string& path, const std::string& bytes) {
     std::ofstream(path, std::ios::app | std::ios::binary) << bytes;
   }
@@ -121,7 +121,8 @@ TEST_F(Recover, ABadRowInsideALogIsReported) {
 }
 
 TEST(RecoverErrors, RefusesARecordingInProgress) {
-  const std::string dir = TempDir("busy");
+  const rk::test::TempDir dir_tmp("capture_busy");
+  const std::string dir = dir_tmp.path();
   const StationConfig cfg = StationConfigFromJson(SyntheticStation(), dir + "/station.json");
   CaptureOptions o;
   o.out_dir = dir + "/trial";
@@ -143,7 +144,8 @@ TEST(RecoverErrors, RefusesARecordingInProgress) {
 }
 
 TEST(RecoverErrors, NotATrial) {
-  const std::string dir = TempDir("nottrial");
+  const rk::test::TempDir dir_tmp("capture_nottrial");
+  const std::string dir = dir_tmp.path();
   try {
     RecoverTrial(dir, {});
     FAIL();

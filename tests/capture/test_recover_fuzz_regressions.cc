@@ -9,7 +9,7 @@
 #include "capture/recover.h"
 #include "io/file_util.h"
 #include "io/json_util.h"
-#include "test_temp_dir.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::capture {
 namespace recover_fuzz_regression {
@@ -18,7 +18,8 @@ namespace recover_fuzz_regression {
 // the repaired manifest (capture.recover.problems) and the --report threw nlohmann's type_error 316, so
 // recover ended in an internal error and repaired nothing. The problem is now reported and written.
 TEST(RecoverFuzzRegression, ProblemQuotingNonUtf8BytesIsWritten) {
-  const std::string trial = TempDir("recover_utf8");
+  const rk::test::TempDir trial_tmp("capture_recover_utf8");
+  const std::string trial = trial_tmp.path();
   std::filesystem::create_directories(trial + "/az");
   std::ofstream(trial + "/trial.json") << R"({"cameras": {"az": {}}, "capture": {"state": "recording"}})";
   {

@@ -12,7 +12,7 @@
 #include "capture/segment_writer.h"
 #include "io/file_util.h"
 #include "video/frame_source.h"
-#include "test_temp_dir.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::capture {
 namespace {
@@ -31,7 +31,8 @@ bool Same(const cv::Mat& a, const cv::Mat& b) {
 
 // Writes 2 segments (3 + 2 frames) and reads them back through video::FrameSource.
 void RoundTrip(const std::string& format, int depth) {
-  const std::string dir = TempDir(format + std::to_string(depth));
+  const rk::test::TempDir dir_tmp(std::string("capture_") + format + std::to_string(depth));
+  const std::string dir = dir_tmp.path();
   fs::create_directories(fs::path(dir) / "cam");
   Syncer syncer(dir, 1.0);
   const FrameFormat f{64, 48, depth, 20.0};
@@ -74,7 +75,8 @@ TEST(SegmentWriter, PgmReadsBackBitExact8And16Bit) {
 
 TEST(SegmentWriter, UndoLastRemovesTheFrame) {
   for (const std::string format : {"y4m", "pgm"}) {
-    const std::string dir = TempDir("undo" + format);
+    const rk::test::TempDir dir_tmp("capture_undo" + format);
+  const std::string dir = dir_tmp.path();
     fs::create_directories(fs::path(dir) / "cam");
     const FrameFormat f{32, 16, 8, 10.0};
     auto w = MakeSegmentWriter(format, dir, "cam", f, nullptr);

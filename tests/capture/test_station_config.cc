@@ -8,14 +8,15 @@
 #include "io/error.h"
 #include "io/json_util.h"
 #include "test_station.h"
-#include "test_temp_dir.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::capture {
 namespace {
 namespace fs = std::filesystem;
 
 TEST(StationConfig, PathsAreRelativeToTheFileAndKeysAreChecked) {
-  const std::string dir = TempDir("cfg");
+  const rk::test::TempDir dir_tmp("capture_cfg");
+  const std::string dir = dir_tmp.path();
   fs::create_directories(dir + "/models");
   io::WriteJson(dir + "/models/az.json", {{"width_px", 64}, {"height_px", 48}, {"pixel_size_mm", {0.005, 0.005}},
                                           {"focal_length_mm", 50.0}, {"principal_point_px", {31.5, 23.5}}});
@@ -89,7 +90,8 @@ TEST(StationConfig, PathsAreRelativeToTheFileAndKeysAreChecked) {
 // SPEC.md §3.1: the station's pointing model, named as station.pointing relative to the file, is checked when
 // read and named in the trial's manifest as its own copy, pointing.json.
 TEST(StationConfig, PointingModelIsCheckedAndRenamedForTheTrial) {
-  const std::string dir = TempDir("cfg_pointing");
+  const rk::test::TempDir dir_tmp("capture_cfg_pointing");
+  const std::string dir = dir_tmp.path();
   fs::create_directories(dir + "/cal");
   io::WriteJson(dir + "/cal/pm.json", {{"az_offset_deg", 12.5}, {"tilt_north_deg", 0.01}});
   io::Json j = {{"turret", {{"port", "/dev/ttyUSB1"}}},

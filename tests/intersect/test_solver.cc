@@ -14,6 +14,7 @@
 #include "geo/angles.h"
 #include "intersect/solver.h"
 #include "intersect/station_frames.h"
+#include "rk_test/matchers.h"
 
 namespace rk::intersect {
 namespace {
@@ -104,7 +105,7 @@ TEST(IntersectSolver, NoiseFreeIsExactOver20kmAndFlatEarthIsNot) {
     for (int i = 0; i < 3; ++i) obs.push_back(Truth(i, s.geo[i], p, 1e-5));
     const RowResult r = SolveRow(s.frames, obs.data(), 3, SolverOptions{});
     ASSERT_EQ(r.solution.status, SolveStatus::kOk);
-    EXPECT_LT((r.solution.p - p).norm(), kExactM) << p.transpose();
+    EXPECT_THAT(r.solution.p, test::EnuNear(p, kExactM)) << p.transpose();
     EXPECT_LT(r.rms_residual_arcsec, 1e-3);
     const Solution f = SolveMasked(flat, obs.data(), 3, 7);
     worst_flat = std::max(worst_flat, (f.p - p).norm());
@@ -122,7 +123,7 @@ TEST(IntersectSolver, AzimuthAcrossNorth) {
     for (int i = 0; i < 3; ++i) obs.push_back(Truth(i, s.geo[i], p, 1e-5));
     const RowResult r = SolveRow(s.frames, obs.data(), 3, SolverOptions{});
     ASSERT_EQ(r.solution.status, SolveStatus::kOk);
-    EXPECT_LT((r.solution.p - p).norm(), kExactM);
+    EXPECT_THAT(r.solution.p, test::EnuNear(p, kExactM));
   }
 }
 
@@ -141,11 +142,11 @@ TEST(IntersectSolver, StationsAtVeryDifferentHeights) {
     below_horizon += obs[1].el_rad < 0 ? 1 : 0;
     const RowResult r = SolveRow(s.frames, obs.data(), 3, SolverOptions{});
     ASSERT_EQ(r.solution.status, SolveStatus::kOk);
-    EXPECT_LT((r.solution.p - p).norm(), kExactM) << p.transpose();
+    EXPECT_THAT(r.solution.p, test::EnuNear(p, kExactM)) << p.transpose();
     // Two stations alone (the valley and the mountain) too.
     const Solution two = SolveMasked(s.frames, obs.data(), 3, 0b110);
     ASSERT_EQ(two.status, SolveStatus::kOk);
-    EXPECT_LT((two.p - p).norm(), kExactM) << p.transpose();
+    EXPECT_THAT(two.p, test::EnuNear(p, kExactM)) << p.transpose();
   }
   EXPECT_GE(below_horizon, 2);  // the case is exercised
 }
@@ -163,7 +164,7 @@ TEST(IntersectSolver, OutlierStationIsRejected) {
   ASSERT_EQ(r.solution.status, SolveStatus::kOk);
   EXPECT_EQ(r.rejected, std::uint64_t{1} << 2);
   EXPECT_EQ(r.used, std::uint64_t{0b1011});
-  EXPECT_LT((r.solution.p - p).norm(), kExactM);
+  EXPECT_THAT(r.solution.p, test::EnuNear(p, kExactM));
   // Two stations cannot decide: nothing is rejected.
   const RowResult two = SolveRow(s.frames, obs.data() + 1, 2, SolverOptions{});
   EXPECT_EQ(two.rejected, 0u);
@@ -178,7 +179,7 @@ TEST(IntersectSolver, OneLineWithRangeAndTooFew) {
   o.has_range = true;
   const Solution sol = SolveMasked(s.frames, &o, 1, 1);
   ASSERT_EQ(sol.status, SolveStatus::kOk);
-  EXPECT_LT((sol.p - p).norm(), kExactM);
+  EXPECT_THAT(sol.p, test::EnuNear(p, kExactM));
   EXPECT_NEAR(std::sqrt(sol.P(0, 0) + sol.P(1, 1) + sol.P(2, 2)) > 0.0, 1.0, 0.0);
 }
 

@@ -11,6 +11,7 @@
 #include "io/csv_stream.h"
 #include "io/error.h"
 #include "test_expect_error.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::io {
 namespace {
@@ -99,7 +100,8 @@ TEST(CsvStream, SendsEndedRowsToADescriptorAtEachFlush) {
 }
 
 TEST(CsvStream, FilesAreNotStreamedButWrittenAtomicallyAtTheEnd) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("rk_csv_stream_" + std::to_string(::getpid()));
+  const rk::test::TempDir tmp("csv_stream");
+  const std::filesystem::path dir = tmp.path();
   std::filesystem::create_directories(dir);
   const std::string path = (dir / "out.csv").string();
   CsvWriter w({"frame"});

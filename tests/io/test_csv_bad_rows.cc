@@ -10,6 +10,7 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/run_record.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::io {
 namespace {
@@ -157,7 +158,8 @@ TEST(CsvBadRows, WarnsTwentyThenCounts) {
 TEST(CsvBadRows, ReadRecordsTheFileAndItsSkippedRows) {
   WarningCapture warnings;
   ClearInputsRead();
-  const std::string path = (std::filesystem::temp_directory_path() / "rk_test_bad_rows.csv").string();
+  const rk::test::TempDir tmp("bad_rows");
+  const std::string path = tmp / "bad_rows.csv";
   const std::string text = "t_s,az_deg\n0,1\nxx,1\n1,2\n";
   {
     std::ofstream f(path);

@@ -14,6 +14,7 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "test_expect_error.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::io {
 namespace {
@@ -22,14 +23,13 @@ namespace {
 class TempCsv {
  public:
   TempCsv(const std::string& name, const std::string& text)
-      : path_((std::filesystem::temp_directory_path() /
-               ("rk_test_csv_" + std::to_string(::getpid()) + "_" + name)).string()) {
+      : dir_("csv_forms"), path_(dir_ / name) {
     std::ofstream(path_, std::ios::binary) << text;
   }
-  ~TempCsv() { std::filesystem::remove(path_); }
   const std::string& path() const { return path_; }
 
  private:
+  rk::test::TempDir dir_;
   std::string path_;
 };
 

@@ -16,6 +16,7 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "test_expect_error.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::io {
 namespace {
@@ -24,11 +25,10 @@ namespace fs = std::filesystem;
 class OutputPaths : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rk_outputs_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
+    dir_ = tmp_.path();
     fs::create_directories(dir_ / "elsewhere");
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  const rk::test::TempDir tmp_{"outputs"};
   std::string P(const std::string& name) const { return (dir_ / name).string(); }
   static std::string Slurp(const std::string& path) {
     std::ifstream in(path);
@@ -229,9 +229,8 @@ namespace {
 
 TEST(FileUtil, AtomicWriteLeavesNoTemporaryAndRefusesToOverwriteInputs) {
   namespace fs = std::filesystem;
-  fs::path dir = fs::temp_directory_path() / "rk_test_atomic";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const rk::test::TempDir tmp("atomic");
+  fs::path dir = tmp.path();
   std::string out = (dir / "out.csv").string();
   WriteFileAtomic(out, "a\n1\n");
   WriteFileAtomic(out, "a\n2\n");

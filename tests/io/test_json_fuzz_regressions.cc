@@ -10,6 +10,7 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "io/json_util.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::io {
 namespace {
@@ -39,8 +40,8 @@ TEST(JsonFuzzRegression, NumberOutOfRangeIsADataErrorWithItsPosition) {
 // writing that list (the manifest's capture.recover, --report) threw nlohmann's type_error 316 (invalid
 // UTF-8): the recovery ended in an internal error. WriteJson now writes invalid bytes as U+FFFD.
 TEST(JsonFuzzRegression, WriteJsonReplacesInvalidUtf8) {
-  const std::string path =
-      (std::filesystem::temp_directory_path() / ("rk_json_utf8_" + std::to_string(::getpid()) + ".json")).string();
+  const rk::test::TempDir tmp("json_utf8");
+  const std::string path = tmp / "utf8.json";
   WriteJson(path, Json{{"problems", {"az/frames.csv:4:7: column 'segment': '0\xdc' is not an integer"}}});
   const Json back = ParseJson(ReadFile(path), path);
   EXPECT_EQ(back["problems"][0], "az/frames.csv:4:7: column 'segment': '0\xef\xbf\xbd' is not an integer");

@@ -13,6 +13,7 @@
 #include "io/json_positions.h"
 #include "io/json_util.h"
 #include "io/utc_time.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::io {
 namespace {
@@ -93,12 +94,11 @@ TEST(JsonPositions, DeepNestingDoesNotRecurseWithoutBound) {
 class Guards : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("rk_guards_" + std::to_string(::getpid()));
-    fs::remove_all(dir_);
+    dir_ = tmp_.path();
     fs::create_directories(dir_ / "trial/sub");
     std::ofstream(dir_ / "victim") << "precious";
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  const rk::test::TempDir tmp_{"guards"};
   std::string P(const std::string& name) const { return (dir_ / name).string(); }
   std::string Victim() const {
     std::ifstream in(dir_ / "victim");

@@ -11,6 +11,7 @@
 #include "pose/pnp.h"
 #include "pose_test_util.h"
 #include "sim/attitude_problems.h"
+#include "rk_test/matchers.h"
 
 namespace rk::pose {
 namespace {
@@ -29,8 +30,9 @@ TEST(PnpSolver, NoiseFreeIsExactForEveryGeometry) {
       const PnpProblem pb = Problem(g, k, 0.0);
       const PnpResult r = solver.Solve(Normalised(pb, false), pb.p_body, {}, pb.fx, pb.fy);
       ASSERT_TRUE(r.ok) << r.failure;
-      EXPECT_LT(RotationAngle(r.best.R_cam_body, pb.R_cam_body), kNoiseFreeRad) << sim::PnpGeometryName(g) << k;
-      EXPECT_LT((r.best.t_cam - pb.t_cam).norm(), kNoiseFreeRad * pb.t_cam.norm());
+      EXPECT_THAT((test::Pose{r.best.R_cam_body, r.best.t_cam}),
+                  test::PoseNear(test::Pose{pb.R_cam_body, pb.t_cam}, kNoiseFreeRad, kNoiseFreeRad * pb.t_cam.norm()))
+          << sim::PnpGeometryName(g) << k;
       EXPECT_LT(r.best.rms_px, 1e-6);
     }
   }

@@ -10,6 +10,7 @@
 
 #include "run/runner.h"
 #include "stand_in_trial.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::run {
 namespace report_regression {
@@ -18,15 +19,13 @@ namespace fs = std::filesystem;
 class StandInTrial : public ::testing::Test {
  protected:
   void SetUp() override {
-    std::string templ = (fs::temp_directory_path() / "rk-report-XXXXXX").string();
-    ASSERT_NE(::mkdtemp(templ.data()), nullptr);
-    dir_ = templ;
+    dir_ = tmp_.path();
     options_ = testing::MakeStandInTrial(dir_);
     options_.progress = [this](const std::string& line) { said_.push_back(line); };
     const RunSummary first = RunTrial(options_);  // identifies the stand-in tools into the cache
     ASSERT_EQ(first.result, TrialResult::kPlanned) << first.error;
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  const rk::test::TempDir tmp_{"report_regression"};
 
   // Plans the trial with `report` as out/report.json.
   RunSummary PlanWith(const std::string& report) {

@@ -7,16 +7,17 @@
 #include <unistd.h>
 
 #include "run/step_progress.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::run::internal {
 namespace {
 
 namespace fs = std::filesystem;
 
+// One folder for the whole test program, removed when it ends.
 fs::path TempDir() {
-  fs::path d = fs::temp_directory_path() / ("rk_step_progress_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
+  static const rk::test::TempDir dir("step_progress");
+  return dir.path();
 }
 
 TEST(StepProgress, OffWhenNobodyShowsIt) {

@@ -12,6 +12,7 @@
 #include "io/error.h"
 #include "io/json_util.h"
 #include "sim/beacon_trial.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::sim {
 namespace {
@@ -20,14 +21,10 @@ namespace fs = std::filesystem;
 class BeaconTrialTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    const char* tmp = std::getenv("TMPDIR");
-    std::string templ = std::string(tmp && *tmp ? tmp : "/tmp") + "/rk-sim-test-XXXXXX";
-    std::vector<char> buf(templ.begin(), templ.end());
-    buf.push_back('\0');
-    ASSERT_NE(::mkdtemp(buf.data()), nullptr);
-    dir_ = buf.data();
+    tmp_ = std::make_unique<rk::test::TempDir>("sim_beacon_trial");
+    dir_ = tmp_->path();
   }
-  void TearDown() override { fs::remove_all(dir_); }
+  std::unique_ptr<rk::test::TempDir> tmp_;
 
   static BeaconSimOptions Options() {
     BeaconSimOptions o;

@@ -10,6 +10,7 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "sim/posetrack.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::sim {
 namespace {
@@ -263,7 +264,8 @@ TEST(PoseTrack, CheckRejectsBadOptions) {
 
 TEST(PoseTrack, WrittenFilesAgreeWithTheSimulator) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("rk_posetrack_test_" + std::to_string(::getpid()));
+  const rk::test::TempDir tmp("posetrack");
+  const fs::path dir = fs::path(tmp.path()) / "trial";
   fs::remove_all(dir);
   PoseTrackOptions o = DefaultPoseTrackOptions(PoseScenario::kHead);
   o.duration_s = 3;

@@ -8,13 +8,15 @@
 #include "io/error.h"
 #include "sim/theodolite_scene.h"
 #include "sim/theodolite_trial.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::sim {
 namespace {
 
 TEST(TheodoliteTrial, WritesTheFilesAtomically) {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "rk_test_theodolite_trial";
+  const rk::test::TempDir tmp("theodolite_trial");
+  const fs::path dir = fs::path(tmp.path()) / "trial";
   fs::remove_all(dir);
   TheodoliteSimOptions o;
   o.duration_s = 0.1;

@@ -9,13 +9,15 @@
 
 #include "io/error.h"
 #include "sim/trial_folder.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::sim {
 namespace {
 
 TEST(TrialFolder, AtomicAndRefusesToOverwrite) {
   namespace fs = std::filesystem;
-  const fs::path base = fs::temp_directory_path() / ("rk_staged_" + std::to_string(::getpid()));
+  const rk::test::TempDir tmp("staged");
+  const fs::path base = tmp.path();
   fs::remove_all(base);
   fs::create_directories(base / "keep");
   std::ofstream(base / "keep" / "precious.txt") << "x";

@@ -8,6 +8,7 @@
 #include "test_pattern.h"
 #include "video/frame_sink.h"
 #include "video/frame_source.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::video {
 namespace {
@@ -18,7 +19,8 @@ class VideoRoundTrip : public ::testing::TestWithParam<std::tuple<int, std::stri
 // Lossless: every bit of every frame comes back, 8 and 16 bit, FFV1 and PNG.
 TEST_P(VideoRoundTrip, IsBitExact) {
   auto [depth, kind] = GetParam();
-  fs::path dir = fs::temp_directory_path() / ("rk_video_" + std::to_string(depth) + kind);
+  const rk::test::TempDir tmp("video_" + std::to_string(depth) + kind);
+  fs::path dir = tmp.path();
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::string path = kind == "mkv" ? (dir / "v.mkv").string() : (dir / "%06d.png").string();

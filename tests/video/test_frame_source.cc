@@ -9,13 +9,15 @@
 #include "test_pattern.h"
 #include "video/frame_sink.h"
 #include "video/frame_source.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::video {
 namespace {
 namespace fs = std::filesystem;
 
 TEST(FrameSource, SegmentsCountOnAndTruncationIsAnError) {
-  fs::path dir = fs::temp_directory_path() / "rk_video_segments";
+  const rk::test::TempDir tmp("video_segments");
+  fs::path dir = tmp.path();
   fs::remove_all(dir);
   fs::create_directories(dir);
   std::string a = (dir / "a.mkv").string(), b = (dir / "b.mkv").string();
@@ -49,7 +51,8 @@ TEST(FrameSource, SegmentsCountOnAndTruncationIsAnError) {
 }
 
 TEST(FrameSource, NotAVideoIsInvalidData) {
-  fs::path p = fs::temp_directory_path() / "rk_not_video.mkv";
+  const rk::test::TempDir tmp("not_video");
+  fs::path p = tmp / "not_video.mkv";
   std::ofstream(p) << "this is text";
   FrameSource src({p.string()});
   cv::Mat f;

@@ -9,6 +9,7 @@
 
 #include "io/error.h"
 #include "video/frame_source.h"
+#include "rk_test/temp_dir.h"
 
 namespace rk::video {
 namespace fuzz_regression {
@@ -17,8 +18,8 @@ namespace fuzz_regression {
 // CV_IO_MAX_IMAGE_HEIGHT check), which ProbeVideo and FrameSource let through: rk-extract ended in an
 // internal error instead of "file: cannot decode image" with exit code 3.
 TEST(VideoFuzzRegression, ImageBeyondOpenCvsSizeLimitIsADataError) {
-  const std::filesystem::path dir =
-      std::filesystem::temp_directory_path() / ("rk_video_fuzz_" + std::to_string(::getpid()));
+  const rk::test::TempDir tmp("video_fuzz");
+  const std::filesystem::path dir = tmp.path();
   std::filesystem::create_directories(dir);
   std::ofstream(dir / "000000.pgm", std::ios::binary) << "P1\n3 68888888P1\n8888888888888888888888888888888838";
   const std::string pattern = (dir / "%06d.pgm").string();
