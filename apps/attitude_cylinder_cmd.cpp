@@ -14,7 +14,7 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "locate/inputs.h"
+#include "formats/turret_log.h"
 #include "video/frame_source.h"
 #include "video/stdin_video.h"
 
@@ -49,7 +49,7 @@ int RunCylinderCmd(const CylinderArgs& a, const Context& ctx) {
   const target::CylinderShape target = target::LoadCylinderShape(a.target_path);
   const attitude::CylinderPointsFile points = attitude::ReadCylinderPoints(
       io::CsvTable::Read(a.points_path, {a.bad_rows, attitude::CylinderPointsRowRule()}));
-  locate::TurretLog theo = locate::ReadTurretLog(io::CsvTable::Read(a.theodolite_path, {a.bad_rows, locate::TurretLogRowRule()}));
+  formats::TurretLog theo = formats::ReadTurretLog(io::CsvTable::Read(a.theodolite_path, {a.bad_rows, formats::TurretLogRowRule()}));
   // Frames for the image fit, read forward in decode order (rows come in frame order).
   std::unique_ptr<video::FrameSource> source;
   cv::Mat image;

@@ -15,8 +15,8 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "locate/boresight.h"
-#include "locate/inputs.h"
+#include "track/boresight.h"
+#include "formats/turret_log.h"
 #include "pose/image_points.h"
 #include "pose/station_pose.h"
 
@@ -79,11 +79,11 @@ int RunOi(const OiArgs& a, const Context& ctx) {
   const pose::ImagePoints points =
       pose::ReadImagePoints(io::CsvTable::Read(a.points, {a.bad_rows, pose::ImagePointsRowRule()}), model);
   if (points.frames.empty()) throw DataError(points.source, 0, 0, "no image points (header only)");
-  std::optional<locate::TurretLog> turret_log;
-  if (!a.turret.empty()) turret_log = locate::ReadTurretLog(io::CsvTable::Read(a.turret, {a.bad_rows, locate::TurretLogRowRule()}));
-  const locate::BoresightSource boresight =
-      fixed ? locate::BoresightSource::Fixed(fixed->az_rad, fixed->el_rad)
-            : locate::BoresightSource::FromLog(std::move(*turret_log), opt.turret_method, opt.turret_max_gap_s);
+  std::optional<formats::TurretLog> turret_log;
+  if (!a.turret.empty()) turret_log = formats::ReadTurretLog(io::CsvTable::Read(a.turret, {a.bad_rows, formats::TurretLogRowRule()}));
+  const track::BoresightSource boresight =
+      fixed ? track::BoresightSource::Fixed(fixed->az_rad, fixed->el_rad)
+            : track::BoresightSource::FromLog(std::move(*turret_log), opt.turret_method, opt.turret_max_gap_s);
 
   const pose::AttitudeOiResult res = pose::RunAttitudeOi(points, model, camera, boresight, opt);
   const std::size_t n = res.rows.size();

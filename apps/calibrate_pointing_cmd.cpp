@@ -17,8 +17,8 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "io/json_util.h"
-#include "locate/boresight.h"
-#include "locate/inputs.h"
+#include "track/boresight.h"
+#include "formats/turret_log.h"
 #include "station_option.h"
 
 namespace rk::app {
@@ -115,11 +115,11 @@ int RunPointing(const PointingCli& c, const Context& ctx) {
   }
 
   const calibrate::ImagePoints points = calibrate::ReadImagePoints(io::CsvTable::Read(c.observations, {c.bad_rows, {}}));
-  locate::TurretLog log = locate::ReadTurretLog(io::CsvTable::Read(c.turret, {c.bad_rows, locate::TurretLogRowRule()}));
+  formats::TurretLog log = formats::ReadTurretLog(io::CsvTable::Read(c.turret, {c.bad_rows, formats::TurretLogRowRule()}));
   const camera::CameraModel cam = camera::LoadCameraModel(c.camera);
   const calibrate::TargetCatalogue targets = ReadTargets(c);
-  const locate::BoresightSource turret =
-      locate::BoresightSource::FromLog(std::move(log), track::InterpMethod::kLinear, c.o.turret_max_gap_s);
+  const track::BoresightSource turret =
+      track::BoresightSource::FromLog(std::move(log), track::InterpMethod::kLinear, c.o.turret_max_gap_s);
   const auto build = [&](double tau) {
     return calibrate::BuildObservations(points, targets, turret, c.o.encoder_step_rad(), c.o.pixel_sigma_px, tau);
   };

@@ -40,7 +40,7 @@ int RunBeaconCmd(const BeaconArgs& a, const Context& ctx) {
   rk::io::CheckOutputNotInput(a.out_path, inputs);
   if (!common.report_path.empty()) rk::io::CheckOutputNotInput(common.report_path, inputs);
 
-  const rk::extract::FrameClock clock = a.in.Clock();
+  const rk::formats::FrameClock clock = a.in.Clock();
   const bool progress = rk::cli::ShowProgress(common);
   rk::cli::ProgressMeter meter(ctx.tool, "frames", VideoInputArgs::ExpectedFrames(clock), progress);
   // Each frame's row goes out as it is made when -o is stdout (docs/conventions.md "Streaming").

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "extract/frame_times.h"
+#include "formats/frame_times.h"
 #include "io/cli.h"
 #include "io/error.h"
 #include "subcommand.h"
@@ -48,12 +48,12 @@ struct VideoInputArgs {
     if (!frames_path.empty()) inputs.push_back(frames_path);
     return inputs;
   }
-  extract::FrameClock Clock() const {
-    return frames_path.empty() ? extract::FrameClock::FromRate(*fps, t0.value_or(0.0))
-                               : extract::FrameClock::FromCsv(frames_path, bad_rows);
+  formats::FrameClock Clock() const {
+    return frames_path.empty() ? formats::FrameClock::FromRate(*fps, t0.value_or(0.0))
+                               : formats::FrameClock::FromCsv(frames_path, bad_rows);
   }
   // Frames to process, for the progress display: the frames file's rows; 0 (unknown) with --fps.
-  static std::int64_t ExpectedFrames(const extract::FrameClock& clock) { return clock.from_file() ? clock.size() : 0; }
+  static std::int64_t ExpectedFrames(const formats::FrameClock& clock) { return clock.from_file() ? clock.size() : 0; }
   // The report's inputs video_<i> and frames.
   void AddReportInputs(io::Json* report) const {
     for (std::size_t i = 0; i < videos.size(); ++i) cli::AddReportInput(report, "video_" + std::to_string(i), videos[i]);

@@ -41,7 +41,7 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
     }
   }
   const target::FeatureModel model = target::LoadFeatureModel(a.target_path);
-  const extract::FrameClock clock = a.in.Clock();
+  const formats::FrameClock clock = a.in.Clock();
   const bool progress = cli::ShowProgress(ctx.common);
   cli::ProgressMeter meter(ctx.tool, "frames", VideoInputArgs::ExpectedFrames(clock), progress);
   // Each frame's rows go out as they are made when -o is stdout (docs/conventions.md "Streaming").

@@ -42,7 +42,7 @@ Command AddSilhouetteCommand(CLI::App& parent) {
             const std::vector<std::string> inputs = a->in.Inputs();
             io::CheckOutputNotInput(a->out_path, inputs);
             if (!ctx.common.report_path.empty()) io::CheckOutputNotInput(ctx.common.report_path, inputs);
-            const extract::FrameClock clock = a->in.Clock();
+            const formats::FrameClock clock = a->in.Clock();
             const bool progress = cli::ShowProgress(ctx.common);
             cli::ProgressMeter meter(ctx.tool, "frames", VideoInputArgs::ExpectedFrames(clock), progress);
             // Each frame's rows go out as they are made when -o is stdout (docs/conventions.md "Streaming").

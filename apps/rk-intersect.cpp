@@ -4,9 +4,10 @@
 #include <string>
 #include <vector>
 
+#include "formats/located.h"
+#include "formats/stations.h"
 #include "intersect/intersect.h"
 #include "intersect/station_track.h"
-#include "intersect/stations.h"
 #include "io/cli.h"
 #include "io/csv.h"
 #include "io/error.h"
@@ -15,15 +16,6 @@
 namespace {
 
 const char* const kTool = "rk-intersect";
-
-rk::io::CsvRowRule LocatedRowRule() {
-  rk::io::CsvRowRule rule;
-  rule.numbers = {"t_s"};
-  rule.optional_numbers = {"az_deg", "el_deg", "range_m", "sigma_az_deg", "sigma_el_deg", "sigma_range_m"};
-  rule.non_decreasing = "t_s";
-  rule.increasing = true;
-  return rule;
-}
 
 void CheckPaths(const std::string& out_path, const std::string& report_path, const std::vector<std::string>& inputs) {
   int n_stdin = 0;
@@ -68,12 +60,13 @@ int main(int argc, char** argv) {
     if (!at_path.empty()) inputs.push_back(at_path);
     CheckPaths(out_path, common.report_path, inputs);
 
-    const rk::intersect::StationsFile stations = rk::intersect::LoadStations(stations_path);
+    const rk::formats::StationsFile stations = rk::formats::LoadStations(stations_path);
     for (const auto& s : stations.stations) inputs.push_back(s.located);
     CheckPaths(out_path, common.report_path, inputs);
     std::vector<rk::intersect::StationTrack> tracks;
     for (const auto& s : stations.stations) {
-      tracks.emplace_back(rk::io::CsvTable::Read(s.located, {bad_rows, LocatedRowRule()}), opt.Defaults());
+      tracks.emplace_back(rk::formats::ReadLocated(rk::io::CsvTable::Read(s.located, {bad_rows, rk::formats::LocatedRowRule()})),
+                          opt.Defaults());
     }
     std::vector<double> at;
     if (!at_path.empty()) at = rk::intersect::ReadTimes(rk::io::CsvTable::Read(at_path, {bad_rows, {}}));

@@ -12,7 +12,9 @@
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
-#include "locate/inputs.h"
+#include "formats/beacon_track.h"
+#include "formats/range_log.h"
+#include "formats/turret_log.h"
 #include "locate/locate.h"
 #include "station_option.h"
 
@@ -68,14 +70,14 @@ int main(int argc, char** argv) {
       }
     }
 
-    const rk::locate::Track track = rk::locate::ReadTrack(rk::io::CsvTable::Read(track_path, {bad_rows, rk::locate::TrackRowRule()}));
+    const rk::formats::Track track = rk::formats::ReadTrack(rk::io::CsvTable::Read(track_path, {bad_rows, rk::formats::TrackRowRule()}));
     const rk::camera::CameraModel camera = rk::camera::LoadCameraModel(camera_path);
     opt.camera_source = camera_path;
     if (!pointing_path.empty()) opt.pointing = rk::camera::LoadPointingModel(pointing_path);
-    rk::locate::TurretLog turret = rk::locate::ReadTurretLog(rk::io::CsvTable::Read(turret_path, {bad_rows, rk::locate::TurretLogRowRule()}));
+    rk::formats::TurretLog turret = rk::formats::ReadTurretLog(rk::io::CsvTable::Read(turret_path, {bad_rows, rk::formats::TurretLogRowRule()}));
     const std::size_t turret_empty_samples = turret.empty_samples;
-    std::optional<rk::locate::RangeLog> range;
-    if (!range_path.empty()) range = rk::locate::ReadRangeLog(rk::io::CsvTable::Read(range_path, {bad_rows, rk::locate::RangeLogRowRule()}));
+    std::optional<rk::formats::RangeLog> range;
+    if (!range_path.empty()) range = rk::formats::ReadRangeLog(rk::io::CsvTable::Read(range_path, {bad_rows, rk::formats::RangeLogRowRule()}));
 
     const rk::locate::LocateResult result =
         rk::locate::Locate(track, camera, std::move(turret), range ? &*range : nullptr, opt);  // a long log: no copy
@@ -108,7 +110,7 @@ int main(int argc, char** argv) {
       if (camera.time_offset_s != 0.0) report["time_offset_s"] = camera.time_offset_s;
       rk::io::Json status = rk::io::Json::object();
       for (int s = 0; s < 5; ++s) {
-        status[rk::locate::TrackStatusName(static_cast<rk::locate::TrackStatus>(s))] =
+        status[rk::RowStatusName(static_cast<rk::RowStatus>(s))] =
             result.rows_by_status[s];
       }
       rk::io::Json range_status = rk::io::Json::object();

@@ -31,7 +31,7 @@ struct Trial {
 std::vector<rk::intersect::StationTrack> Tracks(const Trial& t, const rk::intersect::IntersectOptions& opt) {
   std::vector<rk::intersect::StationTrack> tracks;
   for (std::size_t s = 0; s < t.located.size(); ++s) {
-    tracks.emplace_back(rk::io::CsvTable::Parse(t.located[s], "s.csv"), opt.Defaults());
+    tracks.emplace_back(rk::formats::ReadLocated(rk::io::CsvTable::Parse(t.located[s], "s.csv")), opt.Defaults());
   }
   return tracks;
 }
@@ -40,7 +40,7 @@ std::vector<rk::intersect::StationTrack> Tracks(const Trial& t, const rk::inters
 void BM_IntersectRows(benchmark::State& state) {
   static const Trial trial(60.0);
   const rk::intersect::IntersectOptions opt;
-  const rk::intersect::StationsFile st = rk::intersect::ParseStations(trial.stations_json, "stations.json");
+  const rk::formats::StationsFile st = rk::formats::ParseStations(trial.stations_json, "stations.json");
   const std::vector<rk::intersect::StationTrack> tracks = Tracks(trial, opt);
   const std::vector<double> times = rk::intersect::OutputTimes(tracks, opt, {});
   for (auto _ : state) {
@@ -58,7 +58,7 @@ void BM_TenMinuteTrialEndToEnd(benchmark::State& state) {
   rk::intersect::IntersectOptions opt;
   opt.smooth = true;
   for (auto _ : state) {
-    const rk::intersect::StationsFile st = rk::intersect::ParseStations(trial.stations_json, "stations.json");
+    const rk::formats::StationsFile st = rk::formats::ParseStations(trial.stations_json, "stations.json");
     const std::vector<rk::intersect::StationTrack> tracks = Tracks(trial, opt);
     const std::vector<double> times = rk::intersect::OutputTimes(tracks, opt, {});
     const rk::intersect::IntersectResult r = rk::intersect::Intersect(st, tracks, times, opt);

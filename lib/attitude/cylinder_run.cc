@@ -9,10 +9,11 @@
 #include <sstream>
 
 #include "attitude/cylinder_budget.h"
+#include "formats/image_points.h"
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
 #include "io/error.h"
-#include "locate/boresight.h"
+#include "track/boresight.h"
 #include "camera/station_view.h"
 
 namespace rk::attitude {
@@ -98,81 +99,34 @@ int PointIndex(std::string_view id) {
   return -1;
 }
 
-std::string Num(double v) {
-  std::ostringstream s;
-  s.precision(9);
-  s << v;
-  return s.str();
-}
-
 }  // namespace
 
 CylinderPointsFile ReadCylinderPoints(const io::CsvTable& table) {
+  const formats::ImagePoints file = formats::ReadImagePoints(table);
   CylinderPointsFile out;
-  out.source = table.name();
-  const int c_t = table.RequireColumn("t_s");
-  const int c_id = table.RequireColumn("id");
-  const int c_x = table.RequireColumn("x_px");
-  const int c_y = table.RequireColumn("y_px");
-  const int c_frame = table.Column("frame");
-  const int c_status = table.Column("status");
-  out.has_frame = c_frame >= 0;
-  table.RequireNonDecreasing(c_t);
-  std::map<std::int64_t, std::size_t> frame_line;  // frame → first line (contiguity check)
-  std::array<std::size_t, 3> id_line{};
-  for (std::size_t r = 0; r < table.rows(); ++r) {
-    const double t = table.Double(r, c_t);
-    std::optional<std::int64_t> frame;
-    if (c_frame >= 0) {
-      frame = table.Int(r, c_frame);
-      if (*frame < 0) throw table.CellError(r, c_frame, "frame must be >= 0");
-    }
-    const bool new_group = out.frames.empty() || (frame ? out.frames.back().frame != frame : out.frames.back().t_s != t);
-    if (new_group) {
-      if (frame) {
-        const auto it = frame_line.find(*frame);
-        if (it != frame_line.end()) {
-          throw table.CellError(r, c_frame, "frame " + std::to_string(*frame) + " appears again (first at line " +
-                                                std::to_string(it->second) + "): rows of a frame must be together");
-        }
-        frame_line.emplace(*frame, table.Line(r));
+  out.source = file.source;
+  out.has_frame = file.has_frame;
+  out.frames.reserve(file.frames.size());
+  for (const formats::ImagePointFrame& in : file.frames) {
+    CylinderFramePoints f;
+    f.frame = in.frame;
+    f.t_s = in.t_s;
+    f.line = in.line;
+    for (const formats::ImagePoint& p : in.points) {
+      const int k = PointIndex(p.id);
+      if (k < 0) {
+        throw DataError(file.source, p.line, p.col_id,
+                        "unknown point id '" + p.id + "': the cylinder model has the points nose, tail1, tail2");
       }
-      CylinderFramePoints f;
-      f.frame = frame;
-      f.t_s = t;
-      f.line = table.Line(r);
-      out.frames.push_back(f);
-      id_line = {0, 0, 0};
-    }
-    CylinderFramePoints& f = out.frames.back();
-    if (t != f.t_s) {
-      throw table.CellError(r, c_t, "t_s " + Num(t) + " differs from " + Num(f.t_s) + " on line " +
-                                        std::to_string(f.line) + " of the same frame");
-    }
-    const std::string_view id = table.Cell(r, c_id);
-    const int k = PointIndex(id);
-    if (k < 0) {
-      throw table.CellError(r, c_id, "unknown point id '" + std::string(id) +
-                                         "': the cylinder model has the points nose, tail1, tail2");
-    }
-    if (id_line[static_cast<std::size_t>(k)] != 0) {
-      throw table.CellError(r, c_id, "point '" + std::string(id) + "' given twice in one frame (also line " +
-                                         std::to_string(id_line[static_cast<std::size_t>(k)]) + ")");
-    }
-    id_line[static_cast<std::size_t>(k)] = table.Line(r);
-    RowStatus st = RowStatus::kOk;
-    if (c_status >= 0 && !table.IsEmpty(r, c_status)) {
-      if (!ParseRowStatus(table.Cell(r, c_status), &st)) {
-        throw table.CellError(r, c_status, "unknown status '" + std::string(table.Cell(r, c_status)) +
-                                               "' (expected ok, reacquired, predicted, lost or invalid)");
+      // A predicted point is used, and the row says so (image_points.h); lost and invalid rows have none.
+      const bool usable = p.measured() || (p.px && p.status == RowStatus::kPredicted);
+      if (!usable) continue;
+      f.px[static_cast<std::size_t>(k)] = *p.px;
+      if (p.status == RowStatus::kPredicted || (p.status == RowStatus::kReacquired && f.status == RowStatus::kOk)) {
+        f.status = p.status;
       }
     }
-    const auto x = table.OptionalDouble(r, c_x);
-    const auto y = table.OptionalDouble(r, c_y);
-    if (x && y && st != RowStatus::kLost && st != RowStatus::kInvalid) {
-      f.px[static_cast<std::size_t>(k)] = Eigen::Vector2d(*x, *y);
-      if (st == RowStatus::kPredicted || (st == RowStatus::kReacquired && f.status == RowStatus::kOk)) f.status = st;
-    }
+    out.frames.push_back(std::move(f));
   }
   return out;
 }
@@ -490,7 +444,7 @@ class CylinderRowSolver {
 
 }  // namespace
 
-CylinderRunResult RunCylinder(const CylinderPointsFile& points, locate::TurretLog theodolite,
+CylinderRunResult RunCylinder(const CylinderPointsFile& points, formats::TurretLog theodolite,
                               const camera::CameraModel& cam, const target::CylinderShape& target,
                               const CylinderRunOptions& options, const CylinderFrameReader* frames) {
   std::string why;
@@ -503,8 +457,8 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, locate::TurretLo
   result.image_fit = frames != nullptr;
 
   // Theodolite: merge repeated times, azimuth on its unwrapped sequence (locate/boresight.h, as rk-locate).
-  const locate::BoresightSource theo =
-      locate::BoresightSource::FromLog(std::move(theodolite), options.theodolite_method, options.theodolite_max_gap_s);
+  const track::BoresightSource theo =
+      track::BoresightSource::FromLog(std::move(theodolite), options.theodolite_method, options.theodolite_max_gap_s);
   result.theodolite_duplicate_times = theo.duplicate_times();
 
   CylinderRowSolver solver(cam, target, options, frames, &result);
@@ -614,13 +568,6 @@ io::CsvWriter CylinderCsv(const CylinderRunResult& result) {
   return w;
 }
 
-io::CsvRowRule CylinderPointsRowRule() {
-  io::CsvRowRule rule;
-  rule.non_decreasing = "t_s";
-  rule.texts = {"id"};
-  rule.optional_numbers = {"x_px", "y_px"};
-  rule.integers = {"frame"};
-  return rule;
-}
+io::CsvRowRule CylinderPointsRowRule() { return formats::ImagePointsRowRule(); }
 
 }  // namespace rk::attitude

@@ -61,7 +61,7 @@
 #include "io/csv.h"
 #include "io/json_util.h"
 #include "io/row_status.h"
-#include "locate/inputs.h"
+#include "formats/turret_log.h"
 #include "track/interp.h"
 
 namespace rk::attitude {
@@ -172,7 +172,7 @@ using CylinderFrameReader = std::function<const cv::Mat&(std::int64_t frame)>;
 // Throws DataError naming the theodolite log if it covers no frame time, ProcessingError if no frame has
 // the three points, UsageError if the options fail Check() or frames are given for a points file without
 // the `frame` column.
-CylinderRunResult RunCylinder(const CylinderPointsFile& points, locate::TurretLog theodolite,
+CylinderRunResult RunCylinder(const CylinderPointsFile& points, formats::TurretLog theodolite,
                               const camera::CameraModel& camera, const target::CylinderShape& target,
                               const CylinderRunOptions& options, const CylinderFrameReader* frames = nullptr);
 

@@ -48,7 +48,7 @@ Eigen::Vector3d TargetDirection(const TargetCatalogue& c, int code, double t_s) 
 }
 
 // Boresight at t and its rate, or an error naming the observation.
-void TurretAt(const locate::BoresightSource& turret, const ImagePoints& pts, const ImagePoint& p, double t,
+void TurretAt(const track::BoresightSource& turret, const ImagePoints& pts, const ImagePoint& p, double t,
               PointingObservation* o) {
   track::InterpStatus status = track::InterpStatus::kOk;
   const std::optional<geo::AzEl> b = turret.At(t, &status);
@@ -92,7 +92,7 @@ bool SameReading(const std::optional<geo::AzEl>& a, const std::optional<geo::AzE
 struct StretchEnd {
   double edge = 0.0, window = 0.0;
 };
-StretchEnd FindStretchEnd(const locate::BoresightSource& turret, double t0, int dir, double dt) {
+StretchEnd FindStretchEnd(const track::BoresightSource& turret, double t0, int dir, double dt) {
   const std::optional<geo::AzEl> r = turret.At(t0);
   StretchEnd end{t0, 0.0};
   double t = t0, t_edge = std::numeric_limits<double>::quiet_NaN();
@@ -120,7 +120,7 @@ StretchEnd FindStretchEnd(const locate::BoresightSource& turret, double t0, int 
 }
 
 // Splits off the image points of a still cluster taken while the turret may still be creeping in its cell.
-void SplitCreep(const locate::BoresightSource& turret, double dt, double sigma_q, PointingObservations* out) {
+void SplitCreep(const track::BoresightSource& turret, double dt, double sigma_q, PointingObservations* out) {
   if (!(dt > 0.0)) return;
   const std::size_t n_clusters = out->cluster_sigma_rad.size();
   std::vector<std::size_t> first(n_clusters, out->obs.size()), last(n_clusters, 0);
@@ -161,7 +161,7 @@ double MovingReadingSigma(double sigma_q, double rate_rps, double w, double step
 
 // Groups consecutive observations with bit-identical logged angles: one dwell's encoder reading, or, during
 // a slew, the one interpolated reading of a frame in which several targets are seen.
-void AssignClusters(const locate::BoresightSource& turret, double step_rad, PointingObservations* out) {
+void AssignClusters(const track::BoresightSource& turret, double step_rad, PointingObservations* out) {
   const double log_interval_s = turret.mean_sample_interval_s();
   const double sigma_q = step_rad / std::sqrt(12.0);
   int current = -1;
@@ -192,34 +192,33 @@ void AssignClusters(const locate::BoresightSource& turret, double step_rad, Poin
 }  // namespace
 
 ImagePoints ReadImagePoints(const io::CsvTable& t) {
-  const int cf = t.Column("frame"), ct = t.RequireColumn("t_s"), cid = t.RequireColumn("id");
-  const int cx = t.RequireColumn("x_px"), cy = t.RequireColumn("y_px");
-  const int csx = t.Column("sigma_x_px"), csy = t.Column("sigma_y_px");
-  t.RequireNonDecreasing(ct);
+  const formats::ImagePoints file = formats::ReadImagePoints(t);
   ImagePoints out;
-  out.source = t.name();
-  for (std::size_t r = 0; r < t.rows(); ++r) {
-    ImagePoint p;
-    p.frame = cf >= 0 ? t.Int(r, cf) : static_cast<std::int64_t>(r);
-    p.t_s = t.Double(r, ct);
-    p.id = std::string(t.Cell(r, cid));
-    if (p.id.empty()) throw t.CellError(r, cid, "empty target id");
-    p.px = {t.Double(r, cx), t.Double(r, cy)};
-    p.line = t.Line(r);
-    p.id_column = static_cast<int>(t.CharColumn(r, cid));
-    if (csx >= 0 && csy >= 0) {
-      const auto sx = t.OptionalDouble(r, csx), sy = t.OptionalDouble(r, csy);
-      if (sx && !(*sx > 0.0)) throw t.CellError(r, csx, "sigma_x_px must be > 0");
-      if (sy && !(*sy > 0.0)) throw t.CellError(r, csy, "sigma_y_px must be > 0");
-      if (sx && sy) p.sigma_px = Eigen::Vector2d(*sx, *sy);
+  out.source = file.source;
+  std::int64_t row = 0;
+  for (const formats::ImagePointFrame& f : file.frames) {
+    for (const formats::ImagePoint& q : f.points) {
+      const std::int64_t index = row++;
+      if (!q.measured()) {  // no position to fit (image_points.h)
+        ++out.unmeasured_rows;
+        continue;
+      }
+      ImagePoint p;
+      p.frame = f.frame.value_or(index);
+      p.t_s = f.t_s;
+      p.id = q.id;
+      p.px = *q.px;
+      p.sigma_px = q.sigma_px;
+      p.line = q.line;
+      p.id_column = static_cast<int>(q.col_id);
+      out.rows.push_back(std::move(p));
     }
-    out.rows.push_back(p);
   }
   return out;
 }
 
 PointingObservations BuildObservations(const ImagePoints& pts, const TargetCatalogue& cat,
-                                       const locate::BoresightSource& turret, double encoder_step_rad,
+                                       const track::BoresightSource& turret, double encoder_step_rad,
                                        double default_sigma_px, double tau0_s) {
   const TargetIndex index(cat);
   PointingObservations out;

@@ -4,7 +4,7 @@
 //
 //   observations  frame,t_s,id,x_px,y_px[,sigma_x_px,sigma_y_px]   (SPEC.md §2.1 image points)
 //   true time     t_s + time_offset_s (camera latency, SPEC.md §3); the turret log's times are true
-//   turret        locate::BoresightSource (linear interpolation, no extrapolation) at the true time
+//   turret        track::BoresightSource (linear interpolation, no extrapolation) at the true time
 //   target        landmark: constant ENU direction; star: observed place at epoch_utc + true time
 //
 // Shared errors. A stepper turret holding still logs one encoder value for every frame of a dwell: its
@@ -39,8 +39,9 @@
 #include <vector>
 
 #include "io/csv.h"
-#include "locate/boresight.h"
+#include "formats/image_points.h"
 #include "target/calibration_targets.h"
+#include "track/boresight.h"
 
 namespace rk::calibrate {
 
@@ -56,10 +57,13 @@ struct ImagePoint {
 };
 struct ImagePoints {
   std::string source;
-  std::vector<ImagePoint> rows;
+  std::vector<ImagePoint> rows;      // the measured points (formats::ImagePoint::measured)
+  std::size_t unmeasured_rows = 0;   // rows without a position to fit (lost, invalid, predicted, empty)
 };
-// Reads and checks the observations table (t_s non-decreasing; sigma > 0 where given).
+// The observations: an image-points file (formats::ReadImagePoints: its checks and messages).
 ImagePoints ReadImagePoints(const io::CsvTable& table);
+// The cells ReadImagePoints needs of every row (--bad-rows skip).
+inline io::CsvRowRule ImagePointsRowRule() { return formats::ImagePointsRowRule(); }
 
 // The targets the observations may name, with where they came from (messages).
 struct TargetCatalogue {
@@ -103,7 +107,7 @@ struct PointingObservations {
 // an id that is neither a landmark nor a star, a star without an epoch, a target below the horizon, a
 // frame time the turret log does not cover. Rows without sigma_x_px,sigma_y_px get default_sigma_px.
 PointingObservations BuildObservations(const ImagePoints& points, const TargetCatalogue& targets,
-                                       const locate::BoresightSource& turret, double encoder_step_rad,
+                                       const track::BoresightSource& turret, double encoder_step_rad,
                                        double default_sigma_px, double tau0_s);
 
 }  // namespace rk::calibrate

@@ -15,6 +15,7 @@
 
 #include "capture/clock.h"
 #include "capture/segment_writer.h"
+#include "formats/turret_log.h"
 #include "io/csv.h"
 #include "io/error.h"
 #include "io/file_util.h"
@@ -225,7 +226,7 @@ void Recovery::CheckRange(const std::string& rel) {
 void Recovery::CheckTurret(const std::string& rel) {
   const auto text = ReadLog(rel);
   if (!text) return;
-  const auto t = CheckCsv(rel, *text, {"t_s", "az_deg", "el_deg"});
+  const auto t = CheckCsv(rel, *text, formats::TurretLogColumns());
   if (!t) return;
   try {
     const int ca = t->RequireColumn("az_deg"), ce = t->RequireColumn("el_deg");

@@ -10,7 +10,7 @@
 namespace rk::extract {
 using Clock = std::chrono::steady_clock;
 
-BeaconRunResult RunBeacon(const std::vector<std::string>& videos, const FrameClock& clock,
+BeaconRunResult RunBeacon(const std::vector<std::string>& videos, const formats::FrameClock& clock,
                           const BeaconTrackOptions& opt, const std::function<void(std::int64_t)>& progress,
                           const std::function<void(const BeaconFrameResult&)>& on_row) {
   std::string why;

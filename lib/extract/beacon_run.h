@@ -14,7 +14,7 @@
 
 #include "extract/beacon_tracker.h"
 #include "extract/frame_loop.h"
-#include "extract/frame_times.h"
+#include "formats/frame_times.h"
 #include "io/csv.h"
 
 namespace rk::extract {
@@ -31,7 +31,7 @@ struct BeaconRunResult : VideoRunStats {  // frames, size, bit depth, wall and e
 // (last) video if it has fewer frames than the frames file lists (truncated);
 // ProcessingError if the beacon was never found (after the last frame). `progress(frames)` is called
 // every frame when set, `on_row(row)` with each frame's row as soon as it is made (streaming output).
-BeaconRunResult RunBeacon(const std::vector<std::string>& videos, const FrameClock& clock,
+BeaconRunResult RunBeacon(const std::vector<std::string>& videos, const formats::FrameClock& clock,
                           const BeaconTrackOptions& opt, const std::function<void(std::int64_t)>& progress = {},
                           const std::function<void(const BeaconFrameResult&)>& on_row = {});
 

@@ -1,12 +1,13 @@
 // `rk-extract features` over the shared frame loop (frame_loop.h); see features_run.h.
 #include "extract/features_run.h"
 
+#include "formats/image_points.h"
 #include "io/error.h"
 #include "io/json_util.h"
 
 namespace rk::extract {
 
-FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const FrameClock& clock, const target::FeatureModel& model,
+FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const formats::FrameClock& clock, const target::FeatureModel& model,
                              const FeatureTrackOptions& options, const std::function<void(std::int64_t)>& progress,
                              const std::function<void(const FeatureFrameResult&)>& on_row) {
   std::string why;
@@ -34,7 +35,7 @@ FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const Frame
 }
 
 io::CsvWriter FeaturePointsCsv(const std::vector<FeatureFrameResult>& rows, const target::FeatureModel& model) {
-  io::CsvWriter w({"frame", "t_s", "id", "x_px", "y_px", "status", "sigma_px", "ncc", "radius_px"});
+  io::CsvWriter w(formats::ImagePointsColumns({"sigma_px", "ncc", "radius_px"}));
   for (const FeatureFrameResult& r : rows) AppendFeaturePointRows(&w, r, model);
   return w;
 }

@@ -15,7 +15,7 @@
 
 #include "extract/features_tracker.h"
 #include "extract/frame_loop.h"
-#include "extract/frame_times.h"
+#include "formats/frame_times.h"
 #include "io/csv.h"
 #include "target/feature_model.h"
 
@@ -31,7 +31,7 @@ struct FeatureRunResult : VideoRunStats {  // frames, size, bit depth, wall and 
 // Throws DataError for a frames file that lists fewer frames than the video has (and for a
 // truncated video), ProcessingError if the target was never identified, UsageError for bad
 // options. progress(frames) is called every 20 frames when set.
-FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const FrameClock& clock, const target::FeatureModel& model,
+FeatureRunResult RunFeatures(const std::vector<std::string>& videos, const formats::FrameClock& clock, const target::FeatureModel& model,
                              const FeatureTrackOptions& options,
                              const std::function<void(std::int64_t)>& progress = {},
                              const std::function<void(const FeatureFrameResult&)>& on_row = {});

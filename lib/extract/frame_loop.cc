@@ -11,7 +11,7 @@
 namespace rk::extract {
 using Clock = std::chrono::steady_clock;
 
-VideoRunStats ForEachFrame(const std::vector<std::string>& videos, const FrameClock& clock,
+VideoRunStats ForEachFrame(const std::vector<std::string>& videos, const formats::FrameClock& clock,
                            const std::function<void(const cv::Mat& frame, std::int64_t k, double t_s)>& process,
                            const std::function<void(std::int64_t)>& progress, std::int64_t progress_every) {
   VideoRunStats st;

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "extract/frame_times.h"
+#include "formats/frame_times.h"
 
 namespace rk::extract {
 
@@ -32,7 +32,7 @@ inline double SecondsSince(std::chrono::steady_clock::time_point t0) {
 // decoded but not processed; one warning counts them), and progress(k) every `progress_every` frames when set. Throws DataError
 // naming the frames file if it lists fewer times than the video has frames (FrameClock::TimeOf), and
 // naming the last video if that has fewer frames than the frames file lists (truncated).
-VideoRunStats ForEachFrame(const std::vector<std::string>& videos, const FrameClock& clock,
+VideoRunStats ForEachFrame(const std::vector<std::string>& videos, const formats::FrameClock& clock,
                            const std::function<void(const cv::Mat& frame, std::int64_t k, double t_s)>& process,
                            const std::function<void(std::int64_t)>& progress, std::int64_t progress_every);
 

@@ -1,12 +1,13 @@
 // `rk-extract silhouette` over the shared frame loop (frame_loop.h); see silhouette_run.h.
 #include "extract/silhouette_run.h"
 
+#include "formats/image_points.h"
 #include "io/error.h"
 #include "io/json_util.h"
 
 namespace rk::extract {
 
-SilhouetteRunResult RunSilhouette(const std::vector<std::string>& videos, const FrameClock& clock,
+SilhouetteRunResult RunSilhouette(const std::vector<std::string>& videos, const formats::FrameClock& clock,
                                   const SilhouetteOptions& opt, const std::function<void(std::int64_t)>& progress,
                                   const std::function<void(const SilhouetteFrameRow&)>& on_row) {
   std::string why;
@@ -32,7 +33,7 @@ SilhouetteRunResult RunSilhouette(const std::vector<std::string>& videos, const 
 }
 
 io::CsvWriter SilhouettePointsCsv(const std::vector<SilhouetteFrameRow>& rows) {
-  io::CsvWriter w({"frame", "t_s", "id", "x_px", "y_px", "status", "detail", "width_px", "length_px"});
+  io::CsvWriter w(formats::ImagePointsColumns({"detail", "width_px", "length_px"}));
   for (const SilhouetteFrameRow& r : rows) AppendSilhouettePointRows(&w, r);
   return w;
 }

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "extract/frame_loop.h"
-#include "extract/frame_times.h"
+#include "formats/frame_times.h"
 #include "extract/silhouette.h"
 #include "io/csv.h"
 
@@ -36,7 +36,7 @@ struct SilhouetteRunResult : VideoRunStats {  // frames, size, bit depth, wall a
 
 // Throws DataError for a truncated video (fewer frames than the frames file lists) or a frames file with
 // fewer times than frames, ProcessingError if no frame gives the three points, UsageError for bad options.
-SilhouetteRunResult RunSilhouette(const std::vector<std::string>& videos, const FrameClock& clock,
+SilhouetteRunResult RunSilhouette(const std::vector<std::string>& videos, const formats::FrameClock& clock,
                                   const SilhouetteOptions& options,
                                   const std::function<void(std::int64_t)>& progress = {},
                                   const std::function<void(const SilhouetteFrameRow&)>& on_row = {});

@@ -7,6 +7,7 @@
 #include <limits>
 
 #include "intersect/intersect_common.h"
+#include "intersect/station_frames.h"
 #include "geo/angles.h"
 #include "io/error.h"
 
@@ -122,7 +123,7 @@ void Classify(const geo::LocalEnu& origin, TrajectoryRow* tr, IntersectResult* r
 // The error when no output time has two lines of sight, saying which of three things is true: the stations'
 // rows never overlap; they do, but every output time (--at, --rate) lies outside the overlaps (or outside every
 // station's rows); or output times lie in an overlap but gaps or unusable rows leave fewer than two lines there.
-[[noreturn]] void ThrowNoOverlap(const StationsFile& stations, const std::vector<StationTrack>& tracks,
+[[noreturn]] void ThrowNoOverlap(const formats::StationsFile& stations, const std::vector<StationTrack>& tracks,
                                  const std::vector<double>& times) {
   std::string spans;
   const auto span_text = [](double a, double b) {
@@ -171,7 +172,7 @@ void Smooth(const IntersectOptions& options, IntersectResult* r);
 
 }  // namespace
 
-IntersectResult Intersect(const StationsFile& stations, const std::vector<StationTrack>& tracks,
+IntersectResult Intersect(const formats::StationsFile& stations, const std::vector<StationTrack>& tracks,
                           const std::vector<double>& times, const IntersectOptions& options) {
   RK_CHECK(stations.stations.size() == tracks.size(), "one track per station");
   IntersectResult r;

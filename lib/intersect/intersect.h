@@ -17,7 +17,7 @@
 #include "filter/singer_series.h"
 #include "intersect/solver.h"
 #include "intersect/station_track.h"
-#include "intersect/stations.h"
+#include "formats/stations.h"
 #include "io/csv.h"
 #include "io/options.h"
 #include "io/row_status.h"
@@ -92,7 +92,7 @@ std::vector<double> OutputTimes(const std::vector<StationTrack>& tracks, const I
 
 // The whole run. Throws DataError (exit 3, naming stations.json) when no time has two stations' lines of
 // sight (their times never overlap).
-IntersectResult Intersect(const StationsFile& stations, const std::vector<StationTrack>& tracks,
+IntersectResult Intersect(const formats::StationsFile& stations, const std::vector<StationTrack>& tracks,
                           const std::vector<double>& times, const IntersectOptions& options);
 
 // Reads `--at` times (column t_s, strictly increasing).

@@ -29,10 +29,12 @@
 #include <cstdint>
 #include <vector>
 
+#include "formats/stations.h"
+
 namespace rk::intersect {
 
 // Largest number of stations (the per-row station sets are bit masks).
-inline constexpr int kMaxStations = 64;
+inline constexpr int kMaxStations = static_cast<int>(formats::kMaxStations);  // stations.json's limit
 // Gauss–Newton stops when |Δp| ≤ kStepTolerance · (1 m + |p − a_i|max): ~ 200 × machine ε at 50 km.
 inline constexpr double kStepTolerance = 1e-12;
 inline constexpr int kMaxIterations = 30;

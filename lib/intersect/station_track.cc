@@ -7,7 +7,6 @@
 
 #include "intersect/intersect_common.h"
 #include "geo/angles.h"
-#include "io/row_status.h"
 #include "track/interp.h"
 
 namespace rk::intersect {
@@ -50,59 +49,34 @@ struct StationTrack::Impl {
 StationTrack::~StationTrack() = default;
 StationTrack::StationTrack(StationTrack&&) noexcept = default;
 
-StationTrack::StationTrack(const io::CsvTable& table, const TrackDefaults& defaults)
-    : impl_(std::make_unique<Impl>()), source_(table.name()) {
-  const int c_t = table.RequireColumn("t_s"), c_az = table.RequireColumn("az_deg"),
-            c_el = table.RequireColumn("el_deg");
-  const int c_r = table.Column("range_m"), c_st = table.Column("status");
-  const int c_saz = table.Column("sigma_az_deg"), c_sel = table.Column("sigma_el_deg"),
-            c_sr = table.Column("sigma_range_m"), c_corr = table.Column("corr_az_el");
-  has_range_ = c_r >= 0;
-  has_sigma_ = c_saz >= 0 && c_sel >= 0;
-  table.RequireIncreasing(c_t);
+StationTrack::StationTrack(const formats::LocatedFile& file, const TrackDefaults& defaults)
+    : impl_(std::make_unique<Impl>()), source_(file.source) {
+  has_range_ = file.has_range;
+  has_sigma_ = file.has_sigma;
   std::vector<std::optional<double>> az, el, range;
-  for (std::size_t i = 0; i < table.rows(); ++i) {
-    const double t = table.Double(i, c_t);
+  for (const formats::LocatedRecord& row : file.rows) {
+    const double t = row.t_s;
     row_t_.push_back(t);
-    bool measured = true;
-    if (c_st >= 0 && !table.IsEmpty(i, c_st)) {
-      RowStatus st;
-      if (!ParseRowStatus(table.Cell(i, c_st), &st)) throw table.CellError(i, c_st, "unknown status");
-      measured = st == RowStatus::kOk || st == RowStatus::kReacquired;
-    }
-    std::optional<double> a = table.OptionalDouble(i, c_az), e = table.OptionalDouble(i, c_el);
-    if (!measured || !a || !e) a = e = std::nullopt;
-    std::optional<double> r = has_range_ && measured ? table.OptionalDouble(i, c_r) : std::nullopt;
+    const bool status_measured = row.status == RowStatus::kOk || row.status == RowStatus::kReacquired;
+    std::optional<double> a, e;
+    if (row.measured()) a = row.az_rad, e = row.el_rad;
+    const std::optional<double> r = has_range_ && status_measured ? row.range_m : std::nullopt;
     if (a) {
-      const double ce = std::max(std::cos(geo::DegToRad(*e)), 1e-9);
+      const double ce = std::max(std::cos(*e), 1e-9);
       double saz = defaults.sigma_angle_rad / ce, sel = defaults.sigma_angle_rad;
       if (has_sigma_) {
-        const std::optional<double> sa = table.OptionalDouble(i, c_saz), se = table.OptionalDouble(i, c_sel);
-        if (sa && !(*sa > 0.0)) throw table.CellError(i, c_saz, "sigma_az_deg must be > 0");
-        if (se && !(*se > 0.0)) throw table.CellError(i, c_sel, "sigma_el_deg must be > 0");
-        if (sa) saz = geo::DegToRad(*sa);
-        if (se) sel = geo::DegToRad(*se);
+        if (row.sigma_az_rad) saz = *row.sigma_az_rad;
+        if (row.sigma_el_rad) sel = *row.sigma_el_rad;
       }
       // rk-locate's correlation of the azimuth and elevation errors (issue 28 item 6); 0 when absent.
-      double corr = 0.0;
-      if (c_corr >= 0) {
-        const std::optional<double> c = table.OptionalDouble(i, c_corr);
-        if (c && !(std::abs(*c) <= 1.0)) throw table.CellError(i, c_corr, "corr_az_el must be in [-1, 1]");
-        if (c) corr = *c;
-      }
+      const double corr = row.corr_az_el.value_or(0.0);
       t_.push_back(t), sig_az_.push_back(saz), sig_el_.push_back(sel), cov_az_el_.push_back(corr * saz * sel);
     }
     if (r) {
-      double sr = defaults.sigma_range_m;
-      if (c_sr >= 0) {
-        const std::optional<double> s = table.OptionalDouble(i, c_sr);
-        if (s && !(*s > 0.0)) throw table.CellError(i, c_sr, "sigma_range_m must be > 0");
-        if (s) sr = *s;
-      }
-      tr_.push_back(t), sig_r_.push_back(sr);
+      tr_.push_back(t), sig_r_.push_back(row.sigma_range_m.value_or(defaults.sigma_range_m));
     }
-    az.push_back(a ? std::optional<double>(geo::DegToRad(*a)) : std::nullopt);
-    el.push_back(e ? std::optional<double>(geo::DegToRad(*e)) : std::nullopt);
+    az.push_back(a);
+    el.push_back(e);
     range.push_back(r);
   }
   has_range_ = !tr_.empty();  // a range column that is always empty is no rangefinder

@@ -1,4 +1,4 @@
-// One station's located-target file (SPEC.md §2.1, as rk-locate writes it) aligned to any time: the
+// One station's located-target file (SPEC.md §2.1, formats/located.h) aligned to any time: the
 // station's azimuth and elevation (and range) interpolated linearly to t (lib/track's
 // TimeSeriesInterpolator; azimuth on its unwrapped sequence, so a pass through north is continuous), only
 // where two of its own usable rows bracket t no further apart than max_gap_frames × its median frame
@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
+#include "formats/located.h"
 #include "intersect/solver.h"
-#include "io/csv.h"
 
 namespace rk::intersect {
 
@@ -30,8 +30,8 @@ struct TrackDefaults {
 
 class StationTrack {
  public:
-  // Reads the table (DataError at file:line:col for bad values, times going backwards, unknown status).
-  StationTrack(const io::CsvTable& table, const TrackDefaults& defaults);
+  // The file as formats::ReadLocated read (and checked) it.
+  StationTrack(const formats::LocatedFile& file, const TrackDefaults& defaults);
   ~StationTrack();
   StationTrack(StationTrack&&) noexcept;
 

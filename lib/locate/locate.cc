@@ -4,10 +4,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "formats/located.h"
 #include "geo/angles.h"
 #include "geo/line_of_sight.h"
 #include "io/error.h"
-#include "locate/boresight.h"
+#include "track/boresight.h"
 
 namespace rk::locate {
 
@@ -101,10 +102,10 @@ double Rate(double t_s, const At& at) {
 // The stages of Locate (locate.h steps 0–6), one track row at a time.
 class LocateRun {
  public:
-  LocateRun(const Track& track, const camera::CameraModel& camera, TurretLog turret, const RangeLog* range,
+  LocateRun(const formats::Track& track, const camera::CameraModel& camera, formats::TurretLog turret, const formats::RangeLog* range,
             const LocateOptions& options)
       : camera_(camera), options_(options),
-        boresight_(BoresightSource::FromLog(std::move(turret), options.turret_method, options.turret_max_gap_s)) {
+        boresight_(track::BoresightSource::FromLog(std::move(turret), options.turret_method, options.turret_max_gap_s)) {
     result_.has_frame = track.has_frame;
     result_.has_station = options.station.has_value();
     result_.time_offset_s = camera.time_offset_s;
@@ -116,7 +117,7 @@ class LocateRun {
     result_.rows.reserve(track.rows.size());
   }
 
-  void Row(const TrackRow& in) {
+  void Row(const formats::TrackRow& in) {
     LocatedRow out;
     out.frame = in.frame;
     out.t_s = in.t_s + camera_.time_offset_s;
@@ -130,7 +131,7 @@ class LocateRun {
     }
     if (in.px && !b) {
       ++result_.measured_rows_turret_not_covered;
-      out.status = TrackStatus::kInvalid;
+      out.status = RowStatus::kInvalid;
     } else if (in.px) {
       LineOfSight(in, *b, &out);
     }
@@ -139,7 +140,7 @@ class LocateRun {
     result_.rows.push_back(out);
   }
 
-  LocateResult Finish(const Track& track) {
+  LocateResult Finish(const formats::Track& track) {
     if (!track.rows.empty() && result_.rows_turret_not_covered == track.rows.size()) {
       boresight_.ThrowNoFrameCovered("turret", track.source, track.rows.front().t_s + camera_.time_offset_s,
                                      track.rows.back().t_s + camera_.time_offset_s, "--turret-max-gap");
@@ -157,7 +158,7 @@ class LocateRun {
     if (options_.pointing) PointingSigma(*options_.pointing, &sources_);
   }
 
-  void Range(const RangeLog& range) {
+  void Range(const formats::RangeLog& range) {
     std::vector<double> t_r = range.t_s;
     auto r = range.range_m;
     result_.range_duplicate_times = track::MergeDuplicateTimes(&t_r, &r);
@@ -175,7 +176,7 @@ class LocateRun {
   }
 
   // Steps 2–6 for a row with a pixel and a boresight.
-  void LineOfSight(const TrackRow& in, const geo::AzEl& b, LocatedRow* out) {
+  void LineOfSight(const formats::TrackRow& in, const geo::AzEl& b, LocatedRow* out) {
     const Eigen::Vector3d ray_enu = camera_.RayEnu(*in.px, b.az_rad, b.el_rad, terms_).normalized();
     const geo::AzEl los = geo::AzElFromEnu(ray_enu);
     out->az_rad = los.az_rad;
@@ -196,7 +197,7 @@ class LocateRun {
     out->cov = Covariance(in, b, *out);
   }
 
-  LocatedCovariance Covariance(const TrackRow& in, const geo::AzEl& b, const LocatedRow& out) const {
+  LocatedCovariance Covariance(const formats::TrackRow& in, const geo::AzEl& b, const LocatedRow& out) const {
     SigmaPoint p;
     p.px = *in.px;
     p.sigma_px = in.sigma_px.value_or(Eigen::Vector2d::Constant(sources_.pixel_px));
@@ -221,7 +222,7 @@ class LocateRun {
 
   const camera::CameraModel& camera_;
   const LocateOptions& options_;
-  const BoresightSource boresight_;
+  const track::BoresightSource boresight_;
   std::optional<track::TimeSeriesInterpolator> range_interp_;
   geo::PointingTerms terms_;
   SigmaSources sources_;
@@ -231,89 +232,57 @@ class LocateRun {
 
 }  // namespace
 
-LocateResult Locate(const Track& track, const camera::CameraModel& camera, TurretLog turret,
-                    const RangeLog* range, const LocateOptions& options) {
+LocateResult Locate(const formats::Track& track, const camera::CameraModel& camera, formats::TurretLog turret,
+                    const formats::RangeLog* range, const LocateOptions& options) {
   std::string why;
   if (!options.Check(&why)) throw UsageError(why);
   LocateRun run(track, camera, std::move(turret), range, options);
-  for (const TrackRow& in : track.rows) run.Row(in);
+  for (const formats::TrackRow& in : track.rows) run.Row(in);
   return run.Finish(track);
 }
 
 namespace {
 
-// sigma_az_deg … sigma_u_m of a row (empty without a line of sight; the range ones empty without a range), then
-// corr_az_el: the correlation of its azimuth and elevation errors (the pixel, turret, pointing-model and mount
-// errors all move both angles), which rk-intersect weights the line of sight with (issue 28 item 6).
-void AddSigmas(const LocatedRow& row, io::CsvWriter* w) {
-  constexpr int kSigmaDecimals = 9;
-  constexpr int kCorrelationDecimals = 6;
-  auto sd = [&](int i) { return std::sqrt(std::max((*row.cov)(i, i), 0.0)); };
-  for (int i = 0; i < kSigmaOutputs; ++i) {
-    const bool has = row.cov && (i < 2 || row.range_m);
-    if (!has) {
-      w->AddEmpty();
-    } else {
-      w->Add(i < 2 ? geo::RadToDeg(sd(i)) : sd(i), kSigmaDecimals);
-    }
+// The file's record of a row: 1σ of az, el (range, e, n, u only with a range) from the covariance, and
+// corr_az_el, the correlation of the azimuth and elevation errors (the pixel, turret, pointing-model and
+// mount errors all move both angles), which rk-intersect weights the line of sight with (issue 28 item 6).
+formats::LocatedRecord Record(const LocatedRow& row) {
+  formats::LocatedRecord r;
+  r.frame = row.frame;
+  r.t_s = row.t_s;
+  r.az_rad = row.az_rad;
+  r.el_rad = row.el_rad;
+  r.range_m = row.range_m;
+  r.enu_m = row.p_enu_m;
+  r.status = row.status;
+  r.range_status = RangeStatusName(row.range_status);
+  r.boresight_az_rad = row.boresight_az_rad;
+  r.boresight_el_rad = row.boresight_el_rad;
+  r.geodetic = row.geodetic;
+  if (!row.cov) return r;
+  const LocatedCovariance& c = *row.cov;
+  auto sd = [&](int i) { return std::sqrt(std::max(c(i, i), 0.0)); };
+  r.sigma_az_rad = sd(0);
+  r.sigma_el_rad = sd(1);
+  if (row.range_m) {
+    r.sigma_range_m = sd(2);
+    r.sigma_enu_m = Eigen::Vector3d(sd(3), sd(4), sd(5));
   }
-  const double s = row.cov ? sd(0) * sd(1) : 0.0;
-  if (s > 0.0) {
-    w->Add(std::clamp((*row.cov)(0, 1) / s, -1.0, 1.0), kCorrelationDecimals);
-  } else {
-    w->AddEmpty();
-  }
+  const double s = sd(0) * sd(1);
+  if (s > 0.0) r.corr_az_el = std::clamp(c(0, 1) / s, -1.0, 1.0);
+  return r;
 }
 
 }  // namespace
 
 io::CsvWriter LocatedCsv(const LocateResult& result) {
-  std::vector<std::string> cols;
-  if (result.has_frame) cols.push_back("frame");
-  for (const char* c : {"t_s", "az_deg", "el_deg", "range_m", "e_m", "n_m", "u_m", "status", "range_status",
-                        "boresight_az_deg", "boresight_el_deg", "sigma_az_deg", "sigma_el_deg", "sigma_range_m",
-                        "sigma_e_m", "sigma_n_m", "sigma_u_m", "corr_az_el"}) {
-    cols.push_back(c);
-  }
-  if (result.has_station) {
-    for (const char* c : {"lat_deg", "lon_deg", "h_m"}) cols.push_back(c);
-  }
-  io::CsvWriter w(cols);
-  constexpr int kAngleDecimals = 9;   // 1e-9° = 3.6e-6″
-  constexpr int kLengthDecimals = 6;  // µm
-  constexpr int kGeodeticDecimals = 10;  // 1e-10° ≈ 11 µm
-  auto deg = [](const std::optional<double>& rad) {
-    return rad ? std::optional<double>(geo::RadToDeg(*rad)) : std::nullopt;
-  };
-  for (const LocatedRow& row : result.rows) {
-    if (result.has_frame) {
-      if (row.frame) {
-        w.Add(*row.frame);
-      } else {
-        w.AddEmpty();
-      }
-    }
-    w.Add(row.t_s, 9);
-    w.Add(deg(row.az_rad), kAngleDecimals);
-    w.Add(deg(row.el_rad), kAngleDecimals);
-    w.Add(row.range_m, kLengthDecimals);
-    for (int i = 0; i < 3; ++i) {
-      w.Add(row.p_enu_m ? std::optional<double>((*row.p_enu_m)(i)) : std::nullopt, kLengthDecimals);
-    }
-    w.Add(TrackStatusName(row.status));
-    w.Add(RangeStatusName(row.range_status));
-    w.Add(deg(row.boresight_az_rad), kAngleDecimals);
-    w.Add(deg(row.boresight_el_rad), kAngleDecimals);
-    AddSigmas(row, &w);
-    if (result.has_station) {
-      const auto& g = row.geodetic;
-      w.Add(g ? std::optional<double>(g->lat_deg) : std::nullopt, kGeodeticDecimals);
-      w.Add(g ? std::optional<double>(g->lon_deg) : std::nullopt, kGeodeticDecimals);
-      w.Add(g ? std::optional<double>(g->h_m) : std::nullopt, kLengthDecimals);
-    }
-    w.EndRow();
-  }
-  return w;
+  formats::LocatedLayout layout;
+  layout.frame = result.has_frame;
+  layout.locate_extras = layout.sigma_enu = layout.corr = true;
+  layout.geodetic = result.has_station;
+  formats::LocatedWriter w(layout);
+  for (const LocatedRow& row : result.rows) w.Add(Record(row));
+  return w.Take();
 }
 
 }  // namespace rk::locate

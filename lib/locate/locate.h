@@ -39,7 +39,9 @@
 #include "camera/pointing_model.h"
 #include "geo/wgs84.h"
 #include "io/options.h"
-#include "locate/inputs.h"
+#include "formats/beacon_track.h"
+#include "formats/range_log.h"
+#include "formats/turret_log.h"
 #include "locate/locate_sigma.h"
 #include "track/interp.h"
 
@@ -82,7 +84,7 @@ std::string RangeStatusName(RangeStatus status);  // ok gap device_error outside
 struct LocatedRow {
   std::optional<std::int64_t> frame;
   double t_s = 0.0;
-  TrackStatus status = TrackStatus::kLost;
+  RowStatus status = RowStatus::kLost;
   std::optional<double> az_rad, el_rad;                      // line of sight
   std::optional<double> boresight_az_rad, boresight_el_rad;  // interpolated turret
   std::optional<double> range_m;
@@ -100,7 +102,7 @@ struct LocateResult {
   bool has_station = false;  // lat_deg, lon_deg, h_m columns
   double time_offset_s = 0.0;  // the camera's, added to every row's t_s
   // Counters (reports, warnings).
-  std::array<std::size_t, 5> rows_by_status{};        // indexed by TrackStatus
+  std::array<std::size_t, 5> rows_by_status{};        // indexed by RowStatus
   std::array<std::size_t, 6> rows_by_range_status{};  // indexed by RangeStatus
   std::size_t rows_with_los = 0;                      // az/el computed
   std::size_t rows_with_range = 0;                    // range and ENU computed
@@ -117,9 +119,9 @@ struct LocateResult {
 
 // Throws rk::Error: DataError naming the turret log if it covers no frame
 // time at all, or the camera for a malformed calibration.sigma; UsageError if options fail Check().
-// The turret log's columns are taken over (std::move a long log: BoresightSource::FromLog).
-LocateResult Locate(const Track& track, const camera::CameraModel& camera, TurretLog turret,
-                    const RangeLog* range, const LocateOptions& options);
+// The turret log's columns are taken over (std::move a long log: track::BoresightSource::FromLog).
+LocateResult Locate(const formats::Track& track, const camera::CameraModel& camera, formats::TurretLog turret,
+                    const formats::RangeLog* range, const LocateOptions& options);
 
 // Located-target CSV (SPEC.md §2.1) with extra columns:
 //   frame (if the track had it),t_s,az_deg,el_deg,range_m,e_m,n_m,u_m,status,

@@ -1,17 +1,7 @@
-// Image points of target features (SPEC.md §2.1 "image points"), long format, one row per
-// point per frame:
-//   frame,t_s,id,x_px,y_px[,status][,sigma_px][,...]
-// Written by `rk-extract features`, read by `rk-attitude oi`. Pixels per SPEC.md §3 ((0, 0) =
-// centre of the top-left pixel). Required columns: t_s, id, x_px, y_px; `frame`, `status`
-// (ok, reacquired, predicted, lost, invalid) and `sigma_px` (1σ of each coordinate, px) are
-// optional; other columns are ignored.
-//
-// Reading groups the rows into frames: by `frame` when the column exists (rows of a frame must
-// be contiguous and share one t_s), otherwise by equal t_s. A point is usable when x_px and
-// y_px are given and its status (if any) is ok or reacquired: a `predicted` position is not a
-// measurement. Errors (DataError at file:line:col): an id not in the target model, an id twice
-// in one frame, time going backwards, a frame split or with two times, a status not in the
-// SPEC vocabulary, sigma_px ≤ 0.
+// Image points of target features (SPEC.md §2.1 "image points", read by formats::ReadImagePoints) mapped to
+// a target model's ids for rk-attitude oi: each frame's measured points (formats::ImagePoint::measured).
+// A point's id must be in the target model (DataError at file:line:col); sigma_px (or sigma_x_px,sigma_y_px:
+// their mean) is the 1σ of each coordinate.
 #pragma once
 
 #include <Eigen/Core>
@@ -20,8 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "formats/image_points.h"
 #include "io/csv.h"
-#include "io/row_status.h"
 #include "target/feature_model.h"
 
 namespace rk::pose {
@@ -51,6 +41,6 @@ struct ImagePoints {
 
 ImagePoints ReadImagePoints(const io::CsvTable& table, const target::FeatureModel& model);
 // The cells ReadImagePoints needs of every row (for io::CsvReadOptions::rule, --bad-rows skip).
-io::CsvRowRule ImagePointsRowRule();
+inline io::CsvRowRule ImagePointsRowRule() { return formats::ImagePointsRowRule(); }
 
 }  // namespace rk::pose

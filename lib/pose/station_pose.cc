@@ -133,7 +133,7 @@ PnpOptions SolverOptions(const AttitudeOiOptions& options) {
 class OiRun {
  public:
   OiRun(const ImagePoints& points, const target::FeatureModel& model, const camera::CameraModel& camera,
-        const locate::BoresightSource& boresight, const AttitudeOiOptions& options)
+        const track::BoresightSource& boresight, const AttitudeOiOptions& options)
       : points_(points), model_(model), camera_(camera), boresight_(boresight), options_(options),
         solver_(SolverOptions(options)), cam_view_(camera) {
     res_.has_frame = points.has_frame;
@@ -369,7 +369,7 @@ class OiRun {
   const ImagePoints& points_;
   const target::FeatureModel& model_;
   const camera::CameraModel& camera_;
-  const locate::BoresightSource& boresight_;
+  const track::BoresightSource& boresight_;
   const AttitudeOiOptions& options_;
   PnpSolver solver_;
   AttitudeOiResult res_;
@@ -385,7 +385,7 @@ class OiRun {
 }  // namespace
 
 AttitudeOiResult RunAttitudeOi(const ImagePoints& points, const target::FeatureModel& model,
-                               const camera::CameraModel& camera, const locate::BoresightSource& boresight,
+                               const camera::CameraModel& camera, const track::BoresightSource& boresight,
                                const AttitudeOiOptions& options) {
   std::string why;
   if (!options.Check(&why)) throw UsageError(why);

@@ -45,7 +45,7 @@
 #include "geo/line_of_sight.h"
 #include "io/csv.h"
 #include "io/row_status.h"
-#include "locate/boresight.h"
+#include "track/boresight.h"
 #include "pose/image_points.h"
 #include "geo/pointing.h"
 #include "pose/pnp.h"
@@ -54,7 +54,7 @@ namespace rk::pose {
 
 struct AttitudeOiOptions {
   PnpOptions pnp;
-  // Boresight from the turret log (the caller builds the locate::BoresightSource with these).
+  // Boresight from the turret log (the caller builds the track::BoresightSource with these).
   track::InterpMethod turret_method = track::InterpMethod::kCubic;  // linear or cubic
   double turret_max_gap_s = 0.1;    // longest turret-log interval interpolated across (s), > 0
   double turret_sigma_deg = 0.003 / std::sqrt(12.0);  // 1σ of A and E (deg): 0.003° encoder step / √12, ≥ 0
@@ -117,7 +117,7 @@ struct AttitudeOiResult {
 // turret log if it covers no frame time; ProcessingError if no frame gets a pose; UsageError
 // for bad options.
 AttitudeOiResult RunAttitudeOi(const ImagePoints& points, const target::FeatureModel& model,
-                               const camera::CameraModel& camera, const locate::BoresightSource& boresight,
+                               const camera::CameraModel& camera, const track::BoresightSource& boresight,
                                const AttitudeOiOptions& options);
 
 // Pose CSV (SPEC.md §2.1 `t_s,e_m,n_m,u_m,yaw_deg,pitch_deg,roll_deg,status` + reproj_rms_px)

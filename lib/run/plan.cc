@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "formats/stations.h"
 #include "trial/layout.h"
 
 namespace rk::run {
@@ -345,24 +346,29 @@ class PlanBuilder {
   void Intersect() {
     const std::string dir = std::string(trial::kTrajectoryUnit) + "/";
     Step s = Make(trial::kTrajectoryUnit, "intersect");
-    Json stations = Json::array();
+    formats::StationsFile stations;
+    auto position = [](const Json& j) {
+      return geo::Geodetic{j.at("lat_deg").get<double>(), j.at("lon_deg").get<double>(), j.at("h_m").get<double>()};
+    };
     for (const Located& l : located_) {
       const std::string station = l.unit.substr(0, l.unit.find('/'));
       const auto st = std::find_if(m_.stations.begin(), m_.stations.end(),
                                    [&](const trial::StationEntry& e) { return e.name == station; });
+      formats::StationSpec spec;
       // rk-intersect's station names are letters, digits, _ . - (SPEC §7): the unit 'S/C' as 'S.C'.
-      std::string name = l.unit;
-      std::replace(name.begin(), name.end(), '/', '.');
-      stations.push_back({{"name", name},
-                          {"lat_deg", st->station.at("lat_deg")},
-                          {"lon_deg", st->station.at("lon_deg")},
-                          {"h_m", st->station.at("h_m")},
-                          {"located", "../" + l.located}});
+      spec.name = l.unit;
+      std::replace(spec.name.begin(), spec.name.end(), '/', '.');
+      spec.position = position(st->station);
+      spec.located = "../" + l.located;
+      stations.stations.push_back(spec);
       const auto from = std::find_if(steps_.begin(), steps_.end(), [&](const Step& x) { return x.id == l.step; });
       Depend(&s, *from);
     }
-    Json j = {{"stations", stations}};
-    if (!m_.origin.is_null()) j["origin"] = m_.origin;
+    if (!m_.origin.is_null()) {
+      stations.origin = position(m_.origin);
+      stations.origin_given = true;
+    }
+    const Json j = formats::StationsJson(stations);
     if (located_.size() < 2) {
       NotApplicable(&s, "needs the located targets of two beacon cameras, the plan has " +
                             std::to_string(located_.size()));

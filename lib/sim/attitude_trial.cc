@@ -6,6 +6,8 @@
 #include <limits>
 
 #include "camera/camera_model.h"
+#include "formats/image_points.h"
+#include "formats/turret_log.h"
 #include "geo/angles.h"
 #include "io/utc_time.h"
 #include "io/csv.h"
@@ -74,7 +76,7 @@ void WriteAttitudeTruth(const AttitudeSimulator& sim, const TrialFolder& dir, At
   io::CsvWriter frames_csv({"frame", "t_s"});
   io::CsvWriter pose_csv({"frame", "t_s", "e_m", "n_m", "u_m", "yaw_deg", "pitch_deg", "roll_deg", "range_m",
                           "boresight_az_deg", "boresight_el_deg"});
-  io::CsvWriter points_csv({"frame", "t_s", "id", "x_px", "y_px", "status", "radius_px"});
+  io::CsvWriter points_csv(formats::ImagePointsColumns({"radius_px"}));
   sum.min_range_m = sum.min_marker_radius_px = sum.min_separation_px = std::numeric_limits<double>::infinity();
   // Attitude spans on unwrapped sequences (yaw and roll may wrap).
   double yaw_lo = 1e300, yaw_hi = -1e300, pit_lo = 1e300, pit_hi = -1e300, rol_lo = 1e300, rol_hi = -1e300;
@@ -131,7 +133,7 @@ void WriteAttitudeTruth(const AttitudeSimulator& sim, const TrialFolder& dir, At
 
 // The turret log, recorded (trial root) and true (truth/); its row count in `sum`.
 void WriteTurretLogs(const AttitudeSimulator& sim, const TrialFolder& dir, AttitudeTrialSummary* out) {
-  io::CsvWriter turret_csv({"t_s", "az_deg", "el_deg"}), turret_truth({"t_s", "az_deg", "el_deg"});
+  io::CsvWriter turret_csv(formats::TurretLogColumns()), turret_truth(formats::TurretLogColumns());
   for (const AttitudeTurretSample& s : sim.TurretLog()) {
     turret_csv.Add(s.t_s, kTimeDecimals).Add(geo::RadToDeg(s.az_rad), kAngleDecimals).Add(geo::RadToDeg(s.el_rad), kAngleDecimals).EndRow();
     turret_truth.Add(s.t_s, kTimeDecimals)

@@ -6,6 +6,7 @@
 
 #include "camera/camera_model.h"
 #include "camera/pointing_model.h"
+#include "formats/turret_log.h"
 #include "geo/angles.h"
 #include "io/utc_time.h"
 #include "io/csv.h"
@@ -121,7 +122,7 @@ void WriteFrameTruth(const BeaconSimulator& sim, const fs::path& root, TrialSumm
 // counts in `sum`.
 void WriteLogs(const BeaconSimulator& sim, const fs::path& root, bool range, TrialSummary* out) {
   TrialSummary& sum = *out;
-  io::CsvWriter turret_csv({"t_s", "az_deg", "el_deg"}), turret_truth({"t_s", "az_deg", "el_deg"});
+  io::CsvWriter turret_csv(formats::TurretLogColumns()), turret_truth(formats::TurretLogColumns());
   for (const TurretSample& s : sim.TurretLog()) {
     turret_csv.Add(s.t_s, kTimeDecimals).Add(geo::RadToDeg(s.az_rad), kAngleDecimals).Add(geo::RadToDeg(s.el_rad), kAngleDecimals).EndRow();
     turret_truth.Add(s.t_s, kTimeDecimals)

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <random>
 
+#include "formats/located.h"
+#include "formats/stations.h"
 #include "geo/angles.h"
 #include "geo/wgs84.h"
 #include "io/file_util.h"
@@ -159,40 +161,41 @@ void MultistationScenario::Measure(std::size_t s, std::uint64_t index) {
 
 io::CsvWriter MultistationScenario::LocatedCsv(std::size_t s) const {
   const SimStation& st = stations_[s];
-  io::CsvWriter w({"t_s", "az_deg", "el_deg", "range_m", "e_m", "n_m", "u_m", "status", "sigma_az_deg",
-                   "sigma_el_deg", "sigma_range_m"});
+  formats::LocatedLayout layout;
+  layout.sigma_angle_decimals = 12;
+  layout.sigma_length_decimals = kMetreDecimals;
+  formats::LocatedWriter w(layout);
   for (std::size_t i = 0; i < st.t_s.size(); ++i) {
-    w.Add(st.t_s[i], kTimeDecimals).Add(st.az_deg[i], kAngleDecimals).Add(st.el_deg[i], kAngleDecimals);
+    formats::LocatedRecord r;
+    r.t_s = st.t_s[i];
+    const double a = geo::DegToRad(st.az_deg[i]), e = geo::DegToRad(st.el_deg[i]);
+    r.az_rad = a;
+    r.el_rad = e;
     if (st.has_range) {
-      const double a = geo::DegToRad(st.az_deg[i]), e = geo::DegToRad(st.el_deg[i]), r = st.range_m[i];
-      w.Add(r, kMetreDecimals).Add(r * std::sin(a) * std::cos(e), kMetreDecimals);
-      w.Add(r * std::cos(a) * std::cos(e), kMetreDecimals).Add(r * std::sin(e), kMetreDecimals);
-    } else {
-      w.AddEmpty().AddEmpty().AddEmpty().AddEmpty();
+      const double range = st.range_m[i];
+      r.range_m = range;
+      r.enu_m = Eigen::Vector3d(range * std::sin(a) * std::cos(e), range * std::cos(a) * std::cos(e), range * std::sin(e));
+      r.sigma_range_m = o_.sigma_range_m;
     }
-    w.Add("ok").Add(st.sigma_az_deg[i], 12).Add(st.sigma_el_deg[i], 12);
-    if (st.has_range) {
-      w.Add(o_.sigma_range_m, kMetreDecimals);
-    } else {
-      w.AddEmpty();
-    }
-    w.EndRow();
+    r.sigma_az_rad = geo::DegToRad(st.sigma_az_deg[i]);
+    r.sigma_el_rad = geo::DegToRad(st.sigma_el_deg[i]);
+    w.Add(r);
   }
-  return w;
+  return w.Take();
 }
 
 io::Json MultistationScenario::StationsJson() const {
-  io::Json j;
-  j["origin"] = {{"lat_deg", o_.origin_lat_deg}, {"lon_deg", o_.origin_lon_deg}, {"h_m", o_.origin_h_m}};
-  j["stations"] = io::Json::array();
+  formats::StationsFile f;
+  f.origin = {o_.origin_lat_deg, o_.origin_lon_deg, o_.origin_h_m};
+  f.origin_given = true;
   for (const SimStation& st : stations_) {
-    j["stations"].push_back({{"name", st.name},
-                             {"lat_deg", st.lat_deg},
-                             {"lon_deg", st.lon_deg},
-                             {"h_m", st.h_m},
-                             {"located", st.name + "/located.csv"}});
+    formats::StationSpec spec;
+    spec.name = st.name;
+    spec.position = {st.lat_deg, st.lon_deg, st.h_m};
+    spec.located = st.name + "/located.csv";
+    f.stations.push_back(spec);
   }
-  return j;
+  return formats::StationsJson(f);
 }
 
 io::CsvWriter MultistationScenario::TruthCsv() const {

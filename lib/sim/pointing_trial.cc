@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "camera/pointing_model.h"
+#include "formats/turret_log.h"
 #include "geo/angles.h"
 #include "geo/wgs84.h"
 #include "io/csv.h"
@@ -36,7 +37,7 @@ void WritePointingTargets(const PointingSession& s, const TrialFolder& dir) {
 }
 
 void WritePointingLogs(const PointingSession& s, const TrialFolder& dir) {
-  io::CsvWriter turret({"t_s", "az_deg", "el_deg"});
+  io::CsvWriter turret(formats::TurretLogColumns());
   for (std::size_t k = 0; k < s.turret_t_s.size(); ++k) {
     turret.Add(s.turret_t_s[k], kTimeDecimals).Add(s.turret_az_deg[k], kAngleDecimals).Add(s.turret_el_deg[k], kAngleDecimals).EndRow();
   }
@@ -55,7 +56,7 @@ void WriteValidation(const PointingSession& s, const TrialFolder& dir) {
   const ValidationTrack& v = s.validation;
   if (v.frame_t_s.empty()) return;
   dir.MakeSubfolder("validation");
-  io::CsvWriter turret({"t_s", "az_deg", "el_deg"});
+  io::CsvWriter turret(formats::TurretLogColumns());
   for (std::size_t k = 0; k < v.turret_t_s.size(); ++k) {
     turret.Add(v.turret_t_s[k], kTimeDecimals).Add(v.turret_az_deg[k], kAngleDecimals).Add(v.turret_el_deg[k], kAngleDecimals).EndRow();
   }

@@ -6,6 +6,7 @@
 #include <limits>
 
 #include "camera/camera_model.h"
+#include "formats/turret_log.h"
 #include "geo/angles.h"
 #include "io/utc_time.h"
 #include "io/csv.h"
@@ -123,7 +124,7 @@ TheodoliteTrialSummary WriteTheodoliteTrial(const TheodoliteSimulator& sim, cons
   truth_points.Write(dir.Path("truth/points.csv"));
   axis_csv.Write(dir.Path("truth/axis.csv"));
 
-  io::CsvWriter theo_csv({"t_s", "az_deg", "el_deg"}), theo_truth({"t_s", "az_deg", "el_deg"});
+  io::CsvWriter theo_csv(formats::TurretLogColumns()), theo_truth(formats::TurretLogColumns());
   for (const TheodoliteSample& s : sim.TheodoliteLog()) {
     theo_csv.Add(s.t_s, kTimeDecimals).Add(RadToDeg(s.az_rad), kAngleDecimals).Add(RadToDeg(s.el_rad), kAngleDecimals).EndRow();
     theo_truth.Add(s.t_s, kTimeDecimals)

@@ -27,7 +27,7 @@ constexpr double kExactDeg = 1e-4;
 struct Trial {
   sim::TheodoliteSimulator sim;
   CylinderPointsFile points;
-  locate::TurretLog theo;
+  formats::TurretLog theo;
   target::CylinderShape shape;
 };
 
@@ -43,8 +43,8 @@ std::string PointsCsv(const sim::TheodoliteSimulator& sim) {
   return s.str();
 }
 
-locate::TurretLog TheoLog(const sim::TheodoliteSimulator& sim) {
-  locate::TurretLog log;
+formats::TurretLog TheoLog(const sim::TheodoliteSimulator& sim) {
+  formats::TurretLog log;
   log.source = "theo.csv";
   for (const auto& s : sim.TheodoliteLog()) {
     log.t_s.push_back(s.t_s);
@@ -57,7 +57,7 @@ locate::TurretLog TheoLog(const sim::TheodoliteSimulator& sim) {
 Trial MakeTrial(sim::TheodoliteSimOptions o) {
   sim::TheodoliteSimulator sim(o);
   CylinderPointsFile pts = ReadCylinderPoints(io::CsvTable::Parse(PointsCsv(sim), "points.csv"));
-  locate::TurretLog theo = TheoLog(sim);
+  formats::TurretLog theo = TheoLog(sim);
   return Trial{std::move(sim), std::move(pts), std::move(theo), o.shape};
 }
 
@@ -223,9 +223,9 @@ TEST(CylinderRun, StatusesForBadRows) {
     out << fr << "," << t << "," << id << "," << p.x() << "," << p.y() << "\n";
   }
   const CylinderPointsFile pts = ReadCylinderPoints(io::CsvTable::Parse(out.str(), "points.csv"));
-  locate::TurretLog theo = TheoLog(sim);
+  formats::TurretLog theo = TheoLog(sim);
   // A theodolite gap of 0.24 s (> the 0.2 s limit) around frame 15: drop the log samples within ±0.11 s.
-  locate::TurretLog gap;
+  formats::TurretLog gap;
   gap.source = theo.source;
   const double t15 = sim.frames()[15].t_s;
   for (std::size_t i = 0; i < theo.t_s.size(); ++i) {
@@ -262,7 +262,7 @@ TEST(CylinderRun, NoCoverageAndNoPointsAreErrors) {
   sim::TheodoliteSimOptions o;
   o.duration_s = 0.2;
   const Trial t = MakeTrial(o);
-  locate::TurretLog late = t.theo;
+  formats::TurretLog late = t.theo;
   for (double& x : late.t_s) x += 100.0;
   try {
     RunCylinder(t.points, late, t.sim.options().camera, t.shape, CylinderRunOptions{});

@@ -12,7 +12,7 @@
 #include "calibrate/pointing_observations.h"
 #include "calibrate/pointing_solve.h"
 #include "geo/angles.h"
-#include "locate/boresight.h"
+#include "track/boresight.h"
 #include "sim/pointing_scenario.h"
 
 namespace rk::calibrate::testing {
@@ -21,7 +21,7 @@ namespace rk::calibrate::testing {
 struct SessionInputs {
   ImagePoints points;
   TargetCatalogue targets;
-  locate::BoresightSource turret = locate::BoresightSource::Fixed(0, 0);
+  track::BoresightSource turret = track::BoresightSource::Fixed(0, 0);
 };
 
 inline SessionInputs InputsOf(const sim::PointingSession& s) {
@@ -42,14 +42,14 @@ inline SessionInputs InputsOf(const sim::PointingSession& s) {
   in.targets.stars = s.stars;
   in.targets.station = s.station;
   in.targets.epoch_utc = s.epoch;
-  locate::TurretLog log;
+  formats::TurretLog log;
   log.source = "turret.csv";
   log.t_s = s.turret_t_s;
   for (std::size_t k = 0; k < s.turret_t_s.size(); ++k) {
     log.az_rad.push_back(geo::DegToRad(s.turret_az_deg[k]));
     log.el_rad.push_back(geo::DegToRad(s.turret_el_deg[k]));
   }
-  in.turret = locate::BoresightSource::FromLog(log, track::InterpMethod::kLinear, 1.0);
+  in.turret = track::BoresightSource::FromLog(log, track::InterpMethod::kLinear, 1.0);
   return in;
 }
 

@@ -1,6 +1,6 @@
 // rk-calibrate pointing's turret-reading error model (pointing_observations.h "Shared errors") on a
 // hand-made quantised turret log: a dwell, a cosine S-curve slew of 1° in azimuth over 1 s, a second dwell;
-// and the log accessors it uses (TimeSeriesInterpolator::Bracket, BoresightSource::SampleWeight and
+// and the log accessors it uses (TimeSeriesInterpolator::Bracket, track::BoresightSource::SampleWeight and
 // mean_sample_interval_s).
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 
 #include "calibrate/pointing_observations.h"
 #include "geo/angles.h"
-#include "locate/boresight.h"
+#include "track/boresight.h"
 
 namespace rk::calibrate {
 namespace {
@@ -31,8 +31,8 @@ double CommandedAzDeg(double t) {
 
 double Quantise(double deg) { return std::round(deg / kStepDeg) * kStepDeg; }
 
-locate::BoresightSource HandMadeLog() {
-  locate::TurretLog log;
+track::BoresightSource HandMadeLog() {
+  formats::TurretLog log;
   log.source = "turret.csv";
   for (int k = 0; k <= static_cast<int>(kEndS * kLogRateHz); ++k) {
     const double t = k / kLogRateHz;
@@ -40,10 +40,10 @@ locate::BoresightSource HandMadeLog() {
     log.az_rad.push_back(geo::DegToRad(Quantise(CommandedAzDeg(t))));
     log.el_rad.push_back(geo::DegToRad(Quantise(kElDeg)));
   }
-  return locate::BoresightSource::FromLog(log, track::InterpMethod::kLinear, 1.0);
+  return track::BoresightSource::FromLog(log, track::InterpMethod::kLinear, 1.0);
 }
 
-PointingObservations ObservationsAt(const locate::BoresightSource& turret, const std::vector<double>& times) {
+PointingObservations ObservationsAt(const track::BoresightSource& turret, const std::vector<double>& times) {
   ImagePoints pts;
   pts.source = "points.csv";
   for (std::size_t i = 0; i < times.size(); ++i) {
@@ -63,16 +63,16 @@ PointingObservations ObservationsAt(const locate::BoresightSource& turret, const
 }
 
 TEST(PointingReadings, LogAccessorsGiveTheSampleIntervalAndWeight) {
-  const locate::BoresightSource turret = HandMadeLog();
+  const track::BoresightSource turret = HandMadeLog();
   EXPECT_NEAR(turret.mean_sample_interval_s(), 1.0 / kLogRateHz, kWeightTol);
   EXPECT_NEAR(turret.SampleWeight(3.51), 0.5, kWeightTol);
   EXPECT_NEAR(turret.SampleWeight(1.005), 0.25, kWeightTol);
   EXPECT_TRUE(std::isnan(turret.SampleWeight(kEndS + 1.0)));
-  EXPECT_TRUE(std::isnan(locate::BoresightSource::Fixed(0, 0).mean_sample_interval_s()));
+  EXPECT_TRUE(std::isnan(track::BoresightSource::Fixed(0, 0).mean_sample_interval_s()));
 }
 
 TEST(PointingReadings, DwellSlewAndCreepGetTheirOwnErrors) {
-  const locate::BoresightSource turret = HandMadeLog();
+  const track::BoresightSource turret = HandMadeLog();
   // 1.0, 1.5: first dwell; 3.51: mid-slew (about 10 steps per log interval), halfway between samples;
   // 3.97: the slew's slow end (about 1 step per interval); 4.01: the log already reads the second dwell's
   // value but the turret crept into that cell 20 ms before; 4.5, 5.0: second dwell.

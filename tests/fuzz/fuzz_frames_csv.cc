@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string>
 
-#include "extract/frame_times.h"
+#include "formats/frame_times.h"
 #include "fuzz_util.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -12,7 +12,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::int64_t frames = data[0];
   const std::string path = rk::fuzz::WriteScratch("frames.csv", rk::fuzz::AsText(data + 1, size - 1));
   rk::fuzz::ExpectOnlyInputErrors([&] {
-    const rk::extract::FrameClock clock = rk::extract::FrameClock::FromCsv(path);
+    const rk::formats::FrameClock clock = rk::formats::FrameClock::FromCsv(path);
     if (!clock.from_file() || clock.size() < 1) std::abort();
     double previous = -1e308;
     for (std::int64_t f = 0; f < frames; ++f) {

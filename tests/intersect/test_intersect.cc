@@ -23,15 +23,15 @@ namespace rk::intersect {
 namespace {
 
 struct Inputs {
-  StationsFile stations;
+  formats::StationsFile stations;
   std::vector<StationTrack> tracks;
 };
 
 Inputs Load(const sim::MultistationScenario& sim, const IntersectOptions& opt) {
   Inputs r;
-  r.stations = ParseStations(sim.StationsJson().dump(2), "mem/stations.json");
+  r.stations = formats::ParseStations(sim.StationsJson().dump(2), "mem/stations.json");
   for (std::size_t s = 0; s < sim.stations().size(); ++s) {
-    r.tracks.emplace_back(io::CsvTable::Parse(sim.LocatedCsv(s).str(), sim.stations()[s].name + ".csv"),
+    r.tracks.emplace_back(formats::ReadLocated(io::CsvTable::Parse(sim.LocatedCsv(s).str(), sim.stations()[s].name + ".csv")),
                           opt.Defaults());
   }
   return r;
@@ -207,7 +207,7 @@ TEST(Intersect, ReversalDuringAStationsGapIsNotInterpolated) {
   const sim::MultistationScenario sim(so);
   IntersectOptions opt;
   Inputs in;
-  in.stations = ParseStations(sim.StationsJson().dump(2), "mem/stations.json");
+  in.stations = formats::ParseStations(sim.StationsJson().dump(2), "mem/stations.json");
   for (std::size_t s = 0; s < sim.stations().size(); ++s) {
     std::string csv;
     std::istringstream lines(sim.LocatedCsv(s).str());
@@ -217,7 +217,7 @@ TEST(Intersect, ReversalDuringAStationsGapIsNotInterpolated) {
       if (s == 1 && data && t > gap0 && t < gap1) continue;  // station 2 loses the target
       csv += line + "\n";
     }
-    in.tracks.emplace_back(io::CsvTable::Parse(csv, sim.stations()[s].name + ".csv"), opt.Defaults());
+    in.tracks.emplace_back(formats::ReadLocated(io::CsvTable::Parse(csv, sim.stations()[s].name + ".csv")), opt.Defaults());
   }
   const IntersectResult r = Intersect(in.stations, in.tracks, OutputTimes(in.tracks, opt, {}), opt);
   const std::size_t S = in.tracks.size();
@@ -236,7 +236,7 @@ TEST(Intersect, ReversalDuringAStationsGapIsNotInterpolated) {
   }
   EXPECT_GT(in_gap, 100u);
   // Stations 1 and 2 only: the gap's rows have one line of sight and are lost.
-  StationsFile two = in.stations;
+  formats::StationsFile two = in.stations;
   two.stations.resize(2);
   std::vector<StationTrack> tracks2;
   for (std::size_t s = 0; s < 2; ++s) tracks2.push_back(std::move(in.tracks[s]));  // `in` is not used after
@@ -278,7 +278,7 @@ TEST(Intersect, RowsOutsideOverlapAreLostAndRangeSavesOneStation) {
 TEST(Intersect, StationsJsonErrorsNameLineAndColumn) {
   auto message = [](const std::string& text) {
     try {
-      ParseStations(text, "st.json");
+      formats::ParseStations(text, "st.json");
     } catch (const Error& e) {
       EXPECT_EQ(e.code(), ExitCode::kInvalidData);
       return std::string(e.what());
@@ -297,7 +297,7 @@ TEST(Intersect, StationsJsonErrorsNameLineAndColumn) {
                 .rfind("st.json:3:27: stations[1].lat_deg must be a number", 0),
             0u);
   EXPECT_EQ(message("{\"stations\": [\n {\"name\": \"a\", \"lat_deg\": 1,,}]}").rfind("st.json:2:", 0), 0u);
-  const StationsFile f = ParseStations(
+  const formats::StationsFile f = formats::ParseStations(
       "{\"stations\": [{\"name\": \"a\", \"lat_deg\": 1, \"lon_deg\": 2, \"h_m\": 3, \"located\": \"a/l.csv\"},"
       "{\"name\": \"b\", \"lat_deg\": 1, \"lon_deg\": 2.1, \"h_m\": 0, \"located\": \"/abs/b.csv\"}]}",
       "dir/st.json");
@@ -338,7 +338,7 @@ TEST(Intersect, SmoothGivesVelocityAndAcceleration) {
 // and a value outside [−1, 1] is refused at its cell.
 TEST(Intersect, StationTrackReadsTheAzElCorrelation) {
   const std::string head = "t_s,az_deg,el_deg,sigma_az_deg,sigma_el_deg,corr_az_el\n";
-  const StationTrack t(io::CsvTable::Parse(head + "0,10,20,0.001,0.002,0.5\n1,10,20,0.001,0.002,-0.3\n", "a.csv"),
+  const StationTrack t(formats::ReadLocated(io::CsvTable::Parse(head + "0,10,20,0.001,0.002,0.5\n1,10,20,0.001,0.002,-0.3\n", "a.csv")),
                        TrackDefaults{});
   LineObservation o;
   ASSERT_TRUE(t.At(0.0, &o));
@@ -346,12 +346,12 @@ TEST(Intersect, StationTrackReadsTheAzElCorrelation) {
   ASSERT_TRUE(t.At(0.5, &o));
   // Equal σ at both rows: covariance (0.25·0.5 + 0.25·(−0.3))·σaσe over the interpolated σaσe = 0.5·σaσe.
   EXPECT_NEAR(o.corr_az_el, (0.25 * 0.5 + 0.25 * -0.3) / 0.5, 1e-12);
-  const StationTrack none(io::CsvTable::Parse("t_s,az_deg,el_deg\n0,10,20\n1,10,20\n", "b.csv"),
+  const StationTrack none(formats::ReadLocated(io::CsvTable::Parse("t_s,az_deg,el_deg\n0,10,20\n1,10,20\n", "b.csv")),
                           TrackDefaults{5e-5, 1.0, 1.5});
   ASSERT_TRUE(none.At(0.5, &o));
   EXPECT_EQ(o.corr_az_el, 0.0);
   try {
-    StationTrack bad(io::CsvTable::Parse(head + "0,10,20,0.001,0.002,1.5\n", "c.csv"), TrackDefaults{});
+    StationTrack bad(formats::ReadLocated(io::CsvTable::Parse(head + "0,10,20,0.001,0.002,1.5\n", "c.csv")), TrackDefaults{});
     FAIL() << "a correlation of 1.5 was accepted";
   } catch (const rk::Error& e) {
     EXPECT_NE(std::string(e.what()).find("c.csv:2:"), std::string::npos) << e.what();

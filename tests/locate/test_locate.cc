@@ -1,7 +1,7 @@
 // rk-locate pipeline against a simulated station: exact geometry (distortion,
 // mount misalignment, high elevation, azimuth through north), range
 // interpolation accuracy with rangefinder noise, gaps and device errors,
-// turret coverage. The input readers (locate/inputs.h): test_inputs.cc.
+// turret coverage. The input readers (lib/formats): tests/formats/test_locate_inputs.cc.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,7 +12,9 @@
 #include "geo/line_of_sight.h"
 #include "io/csv.h"
 #include "io/error.h"
-#include "locate/inputs.h"
+#include "formats/beacon_track.h"
+#include "formats/range_log.h"
+#include "formats/turret_log.h"
 #include "locate/locate.h"
 #include "sim/trajectory.h"
 #include "sim/turret_servo.h"
@@ -49,7 +51,7 @@ TEST_P(StationGeometry, LocatesProjectedTargetExactly) {
     const Eigen::Vector3d m_turret(0.03 * std::sin(1.3 * t), -0.02 + 0.015 * t, 1.0);
     return Eigen::Vector3d(geo::RotationEnuFromTurret(b.az_rad, b.el_rad) * m_turret.normalized());
   };
-  TurretLog turret;
+  formats::TurretLog turret;
   turret.source = "turret.csv";
   for (int i = 0; i <= 100; ++i) {
     const double t = 0.02 * i;
@@ -58,7 +60,7 @@ TEST_P(StationGeometry, LocatesProjectedTargetExactly) {
     turret.az_rad.push_back(geo::WrapTwoPi(b.az_rad));  // as logged: [0, 360)
     turret.el_rad.push_back(b.el_rad);
   }
-  Track track;
+  formats::Track track;
   track.source = "track.csv";
   std::vector<Eigen::Vector3d> truth;
   for (int k = 0; k < 39; ++k) {
@@ -68,7 +70,7 @@ TEST_P(StationGeometry, LocatesProjectedTargetExactly) {
     ASSERT_TRUE(px.has_value());
     ASSERT_GT((*px)(0), 0.0);
     ASSERT_LT((*px)(0), cam.width_px - 1.0);
-    TrackRow row;
+    formats::TrackRow row;
     row.t_s = t;
     row.frame = k;
     row.px = *px;
@@ -88,7 +90,7 @@ TEST_P(StationGeometry, LocatesProjectedTargetExactly) {
     EXPECT_GE(*row.az_rad, 0.0);
     EXPECT_LT(*row.az_rad, geo::kTwoPi);
     if (*row.boresight_az_rad < 0.1) crossed_north = true;
-    EXPECT_EQ(row.status, TrackStatus::kOk);
+    EXPECT_EQ(row.status, RowStatus::kOk);
     EXPECT_EQ(row.range_status, RangeStatus::kNoLog);
     EXPECT_FALSE(row.range_m.has_value());
   }
@@ -111,9 +113,9 @@ TEST(StationGeometry, SmallAngleFormWouldFailAtHighElevation) {
 }
 
 struct RangeScenario {
-  Track track;
-  TurretLog turret;
-  RangeLog range;
+  formats::Track track;
+  formats::TurretLog turret;
+  formats::RangeLog range;
   std::vector<double> true_range_m;
   std::vector<Eigen::Vector3d> true_p_enu;
 };
@@ -147,7 +149,7 @@ RangeScenario MakeRangeScenario(std::uint64_t seed) {
   for (int k = 0; k < 240; ++k) {
     const double t = 0.05 * k;
     const geo::AzEl b = servo.Boresight(t);
-    TrackRow row;
+    formats::TrackRow row;
     row.t_s = t;
     row.px = *cam.ProjectEnu(traj.PositionEnu(t), b.az_rad, b.el_rad);
     s.track.rows.push_back(row);
@@ -201,7 +203,7 @@ TEST(LocateRange, GapsAndDeviceErrorsGiveEmptyRange) {
   // Device error at index 20 (t = 4.07 s); samples 6.27 .. 6.87 s missing: a 1 s hole.
   s.range.range_m[20] = std::nullopt;
   for (std::size_t i = 31; i < 35; ++i) s.range.range_m[i] = std::nullopt;
-  RangeLog holed = s.range;
+  formats::RangeLog holed = s.range;
   holed.t_s.clear();
   holed.range_m.clear();
   for (std::size_t i = 0; i < s.range.t_s.size(); ++i) {
@@ -212,7 +214,7 @@ TEST(LocateRange, GapsAndDeviceErrorsGiveEmptyRange) {
   const LocateResult result = Locate(s.track, cam, s.turret, &holed, LocateOptions{});
   for (const LocatedRow& row : result.rows) {
     ASSERT_TRUE(row.az_rad.has_value());
-    EXPECT_EQ(row.status, TrackStatus::kOk);
+    EXPECT_EQ(row.status, RowStatus::kOk);
     if (row.t_s > 3.87 + 1e-9 && row.t_s < 4.27 - 1e-9) {
       EXPECT_EQ(row.range_status, RangeStatus::kDeviceError) << row.t_s;
       EXPECT_FALSE(row.range_m.has_value());
@@ -234,25 +236,25 @@ TEST(LocateTurret, PartialCoverageMarksMeasuredRowsInvalid) {
   const camera::CameraModel cam = camera::DefaultCamera();
   RangeScenario s = MakeRangeScenario(3);
   s.track.rows[5].px.reset();
-  s.track.rows[5].status = TrackStatus::kLost;
+  s.track.rows[5].status = RowStatus::kLost;
   s.track.rows[200].px.reset();
-  s.track.rows[200].status = TrackStatus::kLost;
+  s.track.rows[200].status = RowStatus::kLost;
   // Turret log only up to 8 s.
-  TurretLog part = s.turret;
+  formats::TurretLog part = s.turret;
   part.t_s.resize(401);
   part.az_rad.resize(401);
   part.el_rad.resize(401);
   const LocateResult r = Locate(s.track, cam, part, nullptr, LocateOptions{});
-  EXPECT_EQ(r.rows[5].status, TrackStatus::kLost);
+  EXPECT_EQ(r.rows[5].status, RowStatus::kLost);
   EXPECT_FALSE(r.rows[5].az_rad.has_value());
-  EXPECT_EQ(r.rows[200].status, TrackStatus::kLost);  // no measurement: stays lost
-  EXPECT_EQ(r.rows[199].status, TrackStatus::kInvalid);
+  EXPECT_EQ(r.rows[200].status, RowStatus::kLost);  // no measurement: stays lost
+  EXPECT_EQ(r.rows[199].status, RowStatus::kInvalid);
   EXPECT_FALSE(r.rows[199].az_rad.has_value());
-  EXPECT_EQ(r.rows[100].status, TrackStatus::kOk);
+  EXPECT_EQ(r.rows[100].status, RowStatus::kOk);
   EXPECT_EQ(r.rows_turret_not_covered, 79u);  // frames at 8.05 .. 11.95 s
   EXPECT_EQ(r.measured_rows_turret_not_covered, 78u);
 
-  TurretLog late = s.turret;
+  formats::TurretLog late = s.turret;
   for (double& t : late.t_s) t += 100.0;
   try {
     Locate(s.track, cam, late, nullptr, LocateOptions{});
@@ -262,11 +264,11 @@ TEST(LocateTurret, PartialCoverageMarksMeasuredRowsInvalid) {
     EXPECT_NE(std::string(e.what()).find("turret.csv"), std::string::npos) << e.what();
   }
   // A turret gap longer than the limit makes the frames inside it invalid.
-  TurretLog holed = s.turret;
+  formats::TurretLog holed = s.turret;
   for (std::size_t i = 100; i < 110; ++i) holed.az_rad[i] = std::nan("");  // empty samples
   const LocateResult rh = Locate(s.track, cam, holed, nullptr, LocateOptions{});
-  EXPECT_EQ(rh.rows[41].status, TrackStatus::kInvalid);  // t = 2.05 s
-  EXPECT_EQ(rh.rows[30].status, TrackStatus::kOk);
+  EXPECT_EQ(rh.rows[41].status, RowStatus::kInvalid);  // t = 2.05 s
+  EXPECT_EQ(rh.rows[30].status, RowStatus::kOk);
 }
 
 }  // namespace

@@ -100,8 +100,8 @@ TEST(LocateSigma, AutodiffJacobianMatchesNumerical) {
 }
 
 // A still turret logged at 50 Hz and a track at 20 Hz.
-TurretLog StillTurret(double az_deg, double el_deg, double t0, double t1) {
-  TurretLog log;
+formats::TurretLog StillTurret(double az_deg, double el_deg, double t0, double t1) {
+  formats::TurretLog log;
   log.source = "turret.csv";
   for (double t = t0; t <= t1 + 1e-9; t += 0.02) {
     log.t_s.push_back(t);
@@ -113,15 +113,15 @@ TurretLog StillTurret(double az_deg, double el_deg, double t0, double t1) {
 
 TEST(LocateTimeOffset, InterpolatesAtMidExposureAndWritesThatTime) {
   camera::CameraModel cam = camera::DefaultCamera();
-  TurretLog log;
+  formats::TurretLog log;
   log.source = "turret.csv";
   for (int i = 0; i <= 100; ++i) {  // azimuth ramps at 1°/s
     log.t_s.push_back(0.02 * i);
     log.az_rad.push_back(geo::DegToRad(10.0 + 0.02 * i));
     log.el_rad.push_back(geo::DegToRad(5.0));
   }
-  Track track;
-  track.rows.push_back({std::nullopt, 1.0, Eigen::Vector2d(1223.5, 1023.5), TrackStatus::kOk, std::nullopt});
+  formats::Track track;
+  track.rows.push_back({std::nullopt, 1.0, Eigen::Vector2d(1223.5, 1023.5), RowStatus::kOk, std::nullopt});
   cam.time_offset_s = 0.035;
   const LocateResult r = Locate(track, cam, log, nullptr, LocateOptions{});
   ASSERT_EQ(r.rows.size(), 1u);
@@ -201,8 +201,8 @@ McRun RunOnce(std::mt19937_64& rng, const McConfig& c, bool station_errors, bool
   const double A_log = q * std::round(A / q), E_log = q * std::round(E / q);
   const Eigen::Matrix3d R_enu_cam =
       geo::RotationEnuFromTurret(A, E, truth_terms) * truth_cam.RotationTurretFromCamera();
-  TurretLog log = StillTurret(geo::RadToDeg(A_log), geo::RadToDeg(E_log), 0.0, 1.2);
-  Track track;
+  formats::TurretLog log = StillTurret(geo::RadToDeg(A_log), geo::RadToDeg(E_log), 0.0, 1.2);
+  formats::Track track;
   std::vector<Eigen::Vector3d> dirs;
   const Eigen::Vector2d start(400 + 1600 * u01(rng), 300 + 1400 * u01(rng)), vel(300 * n01(rng), 300 * n01(rng));
   for (int k = 0; k < c.frames; ++k) {
@@ -211,7 +211,7 @@ McRun RunOnce(std::mt19937_64& rng, const McConfig& c, bool station_errors, bool
     const Eigen::Vector3d dir = R_enu_cam * truth_cam.NormalisedRay(px_true).normalized();
     dirs.push_back(dir);
     const Eigen::Vector2d noisy = px_true + c.sigma_px * Eigen::Vector2d(n01(rng), n01(rng));
-    track.rows.push_back({k, t_s, noisy, TrackStatus::kOk, std::nullopt});
+    track.rows.push_back({k, t_s, noisy, RowStatus::kOk, std::nullopt});
   }
   LocateOptions o;
   o.sigma_px = c.sigma_px;

@@ -14,7 +14,7 @@
 #include "geo/body_attitude.h"
 #include "io/csv.h"
 #include "io/error.h"
-#include "locate/boresight.h"
+#include "track/boresight.h"
 #include "pose/image_points.h"
 #include "pose/station_pose.h"
 #include "target/feature_model.h"
@@ -202,8 +202,8 @@ Scene MakeScene(int frames, double yaw0_deg, double roll0_deg) {
 AttitudeOiResult RunScene(const Scene& s, const std::string& points_csv, AttitudeOiOptions opt = {}) {
   const io::CsvTable pts = io::CsvTable::Parse(points_csv, "points.csv");
   const ImagePoints ip = ReadImagePoints(pts, s.model);
-  const locate::TurretLog log = locate::ReadTurretLog(io::CsvTable::Parse(s.turret_csv, "turret.csv"));
-  const locate::BoresightSource b = locate::BoresightSource::FromLog(log, track::InterpMethod::kCubic, 0.1);
+  const formats::TurretLog log = formats::ReadTurretLog(io::CsvTable::Parse(s.turret_csv, "turret.csv"));
+  const track::BoresightSource b = track::BoresightSource::FromLog(log, track::InterpMethod::kCubic, 0.1);
   return RunAttitudeOi(ip, s.model, s.cam, b, opt);
 }
 
@@ -265,7 +265,7 @@ TEST(AttitudeOi, SigmaColumnsMatchTheScatter) {
   opt.sigma_px = 0.3;
   opt.turret_sigma_deg = 0.0;
   const AttitudeOiResult r =
-      RunAttitudeOi(ip, s.model, s.cam, locate::BoresightSource::Fixed(tr.boresight.az_rad, tr.boresight.el_rad), opt);
+      RunAttitudeOi(ip, s.model, s.cam, track::BoresightSource::Fixed(tr.boresight.az_rad, tr.boresight.el_rad), opt);
   Eigen::Matrix<double, 6, 1> sq = Eigen::Matrix<double, 6, 1>::Zero(), sig = sq;
   for (const PoseRow& row : r.rows) {
     ASSERT_TRUE(row.has_pose);
@@ -392,10 +392,10 @@ TEST(AttitudeOi, BadInputIsDataError) {
   bad.replace(bad.find(",fin,"), 5, ",wing3,");
   EXPECT_NE(error_of(bad).find("3 points.csv:"), std::string::npos);
   EXPECT_NE(error_of(bad).find("'wing3' is not in the target model"), std::string::npos);
-  // The same id twice in a frame.
+  // The same id twice in a frame (formats::ReadImagePoints, the message of every image-points reader).
   bad = good;
   bad.replace(bad.find(",fin,"), 5, ",tail,");
-  EXPECT_NE(error_of(bad).find("appears twice"), std::string::npos);
+  EXPECT_NE(error_of(bad).find("given twice in one frame"), std::string::npos);
   // A pixel outside the image (wrong camera model).
   bad = good;
   const std::size_t at = bad.find(",nose,") + 6;

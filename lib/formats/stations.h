@@ -1,4 +1,4 @@
-// stations.json of rk-intersect (SPEC.md §7): the origin of the output ENU frame and, per station, its
+// stations.json of rk-intersect (SPEC.md §7; written by rk-run's plan and rk-sim multistation, read by rk-intersect): the origin of the output ENU frame and, per station, its
 // WGS-84 position and located-target file. Every error names stations.json with the line and column of the
 // offending value (or of the object that lacks it): exit 3; an unreadable file: exit 4.
 #pragma once
@@ -7,9 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "intersect/station_frames.h"
+#include "geo/wgs84.h"
+#include "io/json_util.h"
 
-namespace rk::intersect {
+namespace rk::formats {
+
+// Most stations one file may hold (rk-intersect's solver marks the stations of a row in a 64-bit mask).
+inline constexpr std::size_t kMaxStations = 64;
 
 struct StationSpec {
   std::string name;     // unique, [A-Za-z0-9_.-]+ (it names the station's residual columns)
@@ -28,5 +32,8 @@ struct StationsFile {
 StationsFile LoadStations(const std::string& path);
 // The same from text already read (`path` names it and anchors relative paths).
 StationsFile ParseStations(const std::string& text, const std::string& path);
+// The JSON of a stations file: "origin" when origin_given, each station's name, position and `located` as
+// given (a writer puts the path relative to the file's folder). Keys in nlohmann's order (sorted).
+io::Json StationsJson(const StationsFile& f);
 
-}  // namespace rk::intersect
+}  // namespace rk::formats

@@ -1,5 +1,5 @@
 // Turret boresight at frame times; see boresight.h.
-#include "locate/boresight.h"
+#include "track/boresight.h"
 
 #include <algorithm>
 #include <cmath>
@@ -9,7 +9,7 @@
 #include "geo/angles.h"
 #include "io/error.h"
 
-namespace rk::locate {
+namespace rk::track {
 
 BoresightSource BoresightSource::Fixed(double az_rad, double el_rad) {
   BoresightSource b;
@@ -19,7 +19,7 @@ BoresightSource BoresightSource::Fixed(double az_rad, double el_rad) {
   return b;
 }
 
-BoresightSource BoresightSource::FromLog(TurretLog log, track::InterpMethod method, double max_gap_s) {
+BoresightSource BoresightSource::FromLog(formats::TurretLog log, track::InterpMethod method, double max_gap_s) {
   if (!(max_gap_s > 0.0)) throw UsageError("--turret-max-gap must be > 0 s");
   BoresightSource b;
   b.fixed_ = false;
@@ -99,4 +99,4 @@ void BoresightSource::ThrowNoFrameCovered(const std::string& kind, const std::st
   throw DataError(source_, 0, 0, s.str());
 }
 
-}  // namespace rk::locate
+}  // namespace rk::track

@@ -1,5 +1,5 @@
-// rk-locate's input readers (locate/inputs.h): track statuses, range log statuses and values, turret
-// log elevation range.
+// The beacon track, range log and turret log readers (formats/beacon_track.h, range_log.h, turret_log.h):
+// track statuses, range log statuses and values, turret log elevation range.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -7,9 +7,11 @@
 #include "geo/angles.h"
 #include "io/csv.h"
 #include "io/error.h"
-#include "locate/inputs.h"
+#include "formats/beacon_track.h"
+#include "formats/range_log.h"
+#include "formats/turret_log.h"
 
-namespace rk::locate {
+namespace rk::formats {
 namespace {
 
 TEST(LocateInputs, TrackWithoutStatusColumn) {
@@ -17,9 +19,9 @@ TEST(LocateInputs, TrackWithoutStatusColumn) {
       io::CsvTable::Parse("# truth\nframe,t_s,x_px,y_px,visible\n0,0.0,10,20,1\n1,0.05,,,0\n", "b.csv");
   const Track track = ReadTrack(t);
   ASSERT_EQ(track.rows.size(), 2u);
-  EXPECT_EQ(track.rows[0].status, TrackStatus::kOk);
+  EXPECT_EQ(track.rows[0].status, RowStatus::kOk);
   EXPECT_TRUE(track.rows[0].px.has_value());
-  EXPECT_EQ(track.rows[1].status, TrackStatus::kLost);
+  EXPECT_EQ(track.rows[1].status, RowStatus::kLost);
   EXPECT_FALSE(track.rows[1].px.has_value());
 }
 
@@ -27,10 +29,10 @@ TEST(LocateInputs, TrackStatuses) {
   const auto t = io::CsvTable::Parse(
       "frame,t_s,x_px,y_px,status\n0,0,1,2,ok\n1,0.1,1,2,reacquired\n2,0.2,1,2,lost\n3,0.3,,,ok\n", "tr.csv");
   const Track track = ReadTrack(t);
-  EXPECT_EQ(track.rows[1].status, TrackStatus::kReacquired);
-  EXPECT_EQ(track.rows[2].status, TrackStatus::kLost);
+  EXPECT_EQ(track.rows[1].status, RowStatus::kReacquired);
+  EXPECT_EQ(track.rows[2].status, RowStatus::kLost);
   EXPECT_FALSE(track.rows[2].px.has_value());
-  EXPECT_EQ(track.rows[3].status, TrackStatus::kLost);
+  EXPECT_EQ(track.rows[3].status, RowStatus::kLost);
   const auto bad = io::CsvTable::Parse("t_s,x_px,y_px,status\n0,1,2,found\n", "tr.csv");
   try {
     ReadTrack(bad);
@@ -65,4 +67,4 @@ TEST(LocateInputs, TurretLogElevationRange) {
 }
 
 }  // namespace
-}  // namespace rk::locate
+}  // namespace rk::formats

@@ -1,4 +1,5 @@
-// Frame times of a recording (SPEC.md §2.1 "video frame times"): either a
+// Frame times of a recording (SPEC.md §2.1 "video frame times", written by rk-sim and rk-capture, read by every
+// tool that takes --video): either a
 // frames.csv with columns frame,t_s (frame = 0-based decode index counting on
 // across segments, t_s non-decreasing), or a constant rate t = t0 + frame / fps.
 #pragma once
@@ -9,7 +10,7 @@
 
 #include "io/csv.h"
 
-namespace rk::extract {
+namespace rk::formats {
 
 class FrameClock {
  public:
@@ -40,4 +41,4 @@ class FrameClock {
   double t0_s_ = 0.0;
 };
 
-}  // namespace rk::extract
+}  // namespace rk::formats

@@ -2,7 +2,7 @@
 // "the camera's extrinsics are updated each frame from the turret angles"): used by rk-locate,
 // rk-attitude oi and rk-attitude cylinder alike.
 //
-// From a turret log (SPEC.md §2.1 `t_s,az_deg,el_deg`, read by locate::ReadTurretLog): samples
+// From a turret log (SPEC.md §2.1 `t_s,az_deg,el_deg`, read by formats::ReadTurretLog): samples
 // with repeated time stamps are merged (track::MergeDuplicateTimes), azimuth is interpolated on
 // its unwrapped sequence and wrapped back to [0, 2π) (a pass through north is continuous),
 // elevation directly, by track::TimeSeriesInterpolator (linear or 4-point cubic). No
@@ -15,17 +15,17 @@
 #include <string>
 
 #include "geo/line_of_sight.h"
-#include "locate/inputs.h"
+#include "formats/turret_log.h"
 #include "track/interp.h"
 
-namespace rk::locate {
+namespace rk::track {
 
 class BoresightSource {
  public:
   static BoresightSource Fixed(double az_rad, double el_rad);
   // Takes the log's columns over (pass an rvalue for a long log: no copy; the times are shared by both
   // axes when neither has an empty sample). Throws UsageError if max_gap_s is not > 0.
-  static BoresightSource FromLog(TurretLog log, track::InterpMethod method, double max_gap_s);
+  static BoresightSource FromLog(formats::TurretLog log, track::InterpMethod method, double max_gap_s);
 
   // Boresight at t, or nullopt (with the reason in *status when given).
   std::optional<geo::AzEl> At(double t_s, track::InterpStatus* status = nullptr) const;
@@ -59,4 +59,4 @@ class BoresightSource {
   std::size_t duplicates_ = 0;
 };
 
-}  // namespace rk::locate
+}  // namespace rk::track

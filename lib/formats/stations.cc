@@ -1,5 +1,5 @@
-// stations.json reader; see stations.h.
-#include "intersect/stations.h"
+// stations.json reader and writer; see stations.h.
+#include "formats/stations.h"
 
 #include <cctype>
 #include <cmath>
@@ -7,100 +7,26 @@
 
 #include "io/error.h"
 #include "io/file_util.h"
+#include "io/json_positions.h"
 #include "io/json_util.h"
 
-namespace rk::intersect {
+namespace rk::formats {
 namespace {
-
-// Byte offsets of JSON values in the text, found by a small scanner over text nlohmann has already
-// accepted (nlohmann keeps no positions): a path of object keys and array indices → offset of that value.
-class JsonLocator {
- public:
-  explicit JsonLocator(const std::string& text) : s_(text) {}
-
-  // Offset of the value at `path` (keys as strings, indices as "#<i>"), or of the deepest part found.
-  std::size_t Find(const std::vector<std::string>& path) const {
-    std::size_t at = SkipWs(0), found = at;
-    for (const std::string& step : path) {
-      if (at >= s_.size()) break;
-      const std::size_t next = Child(at, step);
-      if (next == std::string::npos) break;
-      at = found = next;
-    }
-    return found;
-  }
-
-  // 1-based line and column of an offset.
-  void LineCol(std::size_t offset, std::size_t* line, std::size_t* col) const {
-    *line = 1, *col = 1;
-    for (std::size_t i = 0; i < offset && i < s_.size(); ++i) {
-      if (s_[i] == '\n') {
-        ++*line, *col = 1;
-      } else {
-        ++*col;
-      }
-    }
-  }
-
- private:
-  std::size_t SkipWs(std::size_t i) const {
-    while (i < s_.size() && std::isspace(static_cast<unsigned char>(s_[i]))) ++i;
-    return i;
-  }
-  std::size_t SkipString(std::size_t i) const {  // at '"' → after the closing '"'
-    for (++i; i < s_.size() && s_[i] != '"'; ++i) {
-      if (s_[i] == '\\') ++i;
-    }
-    return i + 1;
-  }
-  std::size_t SkipValue(std::size_t i) const {  // at a value → after it
-    if (s_[i] == '"') return SkipString(i);
-    if (s_[i] != '{' && s_[i] != '[') {
-      while (i < s_.size() && s_[i] != ',' && s_[i] != '}' && s_[i] != ']' && !std::isspace(static_cast<unsigned char>(s_[i]))) ++i;
-      return i;
-    }
-    int depth = 0;
-    for (; i < s_.size(); ++i) {
-      if (s_[i] == '"') {
-        i = SkipString(i) - 1;
-      } else if (s_[i] == '{' || s_[i] == '[') {
-        ++depth;
-      } else if ((s_[i] == '}' || s_[i] == ']') && --depth == 0) {
-        return i + 1;
-      }
-    }
-    return i;
-  }
-  // Offset of member `step` of the object / array starting at `at`, npos if absent.
-  std::size_t Child(std::size_t at, const std::string& step) const {
-    const bool array = s_[at] == '[';
-    if (!array && s_[at] != '{') return std::string::npos;
-    const long want = array && step.size() > 1 && step[0] == '#' ? std::stol(step.substr(1)) : -1;
-    std::size_t i = SkipWs(at + 1);
-    for (long index = 0; i < s_.size() && s_[i] != '}' && s_[i] != ']'; ++index) {
-      std::string key;
-      if (!array) {
-        const std::size_t end = SkipString(i);
-        key = s_.substr(i + 1, end - i - 2);
-        i = SkipWs(SkipWs(end) + 1);  // past ':'
-      }
-      if ((array && index == want) || (!array && key == step)) return i;
-      i = SkipWs(SkipValue(i));
-      if (i < s_.size() && s_[i] == ',') i = SkipWs(i + 1);
-    }
-    return std::string::npos;
-  }
-
-  const std::string& s_;
-};
 
 struct Context {
   const std::string& path;
-  const JsonLocator& loc;
+  const io::JsonPositions& pos;
+  // `where`: object keys and array indices as "#<i>", e.g. {"stations", "#1", "name"}.
   [[nodiscard]] Error At(const std::vector<std::string>& where, const std::string& what) const {
-    std::size_t line = 0, col = 0;
-    loc.LineCol(loc.Find(where), &line, &col);
-    return DataError(path, line, col, what);
+    const io::TextPosition p = pos.At(Pointer(where));
+    return DataError(path, p.line, p.column, what);
+  }
+  static std::string Pointer(const std::vector<std::string>& where) {
+    std::string pointer;
+    for (const std::string& step : where) {
+      pointer += "/" + (step.size() > 1 && step[0] == '#' ? step.substr(1) : io::PointerToken(step));
+    }
+    return pointer;
   }
 };
 
@@ -153,7 +79,9 @@ StationSpec Station(const Context& ctx, const io::Json& st, std::size_t i, const
   s.position = Position(ctx, st, where);
   const std::filesystem::path located = st["located"].get<std::string>();
   s.located = located.is_absolute() || dir.empty() ? located.string() : (dir / located).string();
-  ctx.loc.LineCol(ctx.loc.Find(where), &s.line, &s.column);
+  const io::TextPosition p = ctx.pos.At(Context::Pointer(where));
+  s.line = p.line;
+  s.column = p.column;
   return s;
 }
 
@@ -161,8 +89,8 @@ StationSpec Station(const Context& ctx, const io::Json& st, std::size_t i, const
 
 StationsFile ParseStations(const std::string& text, const std::string& path) {
   const io::Json j = io::ParseJson(text, path);
-  const JsonLocator loc(text);
-  const Context ctx{path, loc};
+  const io::JsonPositions pos(text);
+  const Context ctx{path, pos};
   if (!j.is_object()) throw ctx.At({}, "expected an object with \"stations\"");
   StationsFile f;
   f.path = path;
@@ -172,9 +100,7 @@ StationsFile ParseStations(const std::string& text, const std::string& path) {
   const std::filesystem::path dir = path == "-" ? std::filesystem::path() : std::filesystem::path(path).parent_path();
   const io::Json& list = j["stations"];
   if (list.size() < 2) throw ctx.At({"stations"}, "rk-intersect needs at least two stations (got " + std::to_string(list.size()) + ")");
-  if (list.size() > static_cast<std::size_t>(kMaxStations)) {
-    throw ctx.At({"stations"}, "at most " + std::to_string(kMaxStations) + " stations");
-  }
+  if (list.size() > kMaxStations) throw ctx.At({"stations"}, "at most " + std::to_string(kMaxStations) + " stations");
   for (std::size_t i = 0; i < list.size(); ++i) {
     f.stations.push_back(Station(ctx, list[i], i, dir));
     for (std::size_t k = 0; k < i; ++k) {
@@ -193,4 +119,20 @@ StationsFile ParseStations(const std::string& text, const std::string& path) {
 
 StationsFile LoadStations(const std::string& path) { return ParseStations(io::ReadFile(path), path); }
 
-}  // namespace rk::intersect
+io::Json StationsJson(const StationsFile& f) {
+  io::Json j = io::Json::object();
+  auto position = [](const geo::Geodetic& g) {
+    return io::Json{{"lat_deg", g.lat_deg}, {"lon_deg", g.lon_deg}, {"h_m", g.h_m}};
+  };
+  if (f.origin_given) j["origin"] = position(f.origin);
+  j["stations"] = io::Json::array();
+  for (const StationSpec& s : f.stations) {
+    io::Json st = position(s.position);
+    st["name"] = s.name;
+    st["located"] = s.located;
+    j["stations"].push_back(st);
+  }
+  return j;
+}
+
+}  // namespace rk::formats

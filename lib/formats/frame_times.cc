@@ -1,5 +1,5 @@
 // Frame times from frames.csv or from a constant rate; see frame_times.h.
-#include "extract/frame_times.h"
+#include "formats/frame_times.h"
 
 #include <cmath>
 #include <limits>
@@ -7,7 +7,7 @@
 #include "io/csv.h"
 #include "io/error.h"
 
-namespace rk::extract {
+namespace rk::formats {
 
 FrameClock FrameClock::FromCsv(const std::string& path, io::BadRows bad_rows) {
   io::CsvReadOptions read;
@@ -69,4 +69,4 @@ double FrameClock::TimeOf(std::int64_t frame) const {
   return t_s_[static_cast<std::size_t>(frame)];
 }
 
-}  // namespace rk::extract
+}  // namespace rk::formats
