@@ -99,8 +99,7 @@ Command AddBudgetCommand(CLI::App& parent) {
   c->add_flag("--table", a->table, "Print a fixed-width table to stdout (to stderr when -o is '-')");
 
   return {c, [a, c](const Context& ctx) -> int {
-            io::CheckOutputNotInput(a->out_path, {a->budget_path});
-            if (!ctx.common.report_path.empty()) io::CheckOutputNotInput(ctx.common.report_path, {a->budget_path});
+            cli::CheckStreams(ctx.common, {{"--budget", a->budget_path}}, {{"-o", a->out_path, true}});
             const io::Json j = io::LoadJson(a->budget_path);
             const std::string& where = a->budget_path;
             if (!j.is_object()) throw DataError(where, 0, 0, "a budget must be a JSON object");

@@ -39,21 +39,10 @@ analysis::CompareOptions CompareOptionsOf(const CompareArgs& a) {
 
 // One stdin input; -o, --errors, --table and --report: no output an input, no two on stdout.
 void CheckComparePaths(const CompareArgs& a, const Context& ctx) {
-  if (io::IsStdStream(a.est_path) && io::IsStdStream(a.ref_path)) {
-    throw UsageError("only one input can be read from stdin ('-')");
-  }
-  if (!a.errors_path.empty() && io::IsStdStream(a.errors_path) && io::IsStdStream(a.out_path)) {
-    throw UsageError("--errors and -o cannot both be stdout");
-  }
+  cli::CheckStreams(ctx.common, {{"--estimate", a.est_path}, {"--reference", a.ref_path}},
+                    {{"--errors", a.errors_path}, {"-o", a.out_path, true}});
   if (a.table && io::IsStdStream(a.errors_path)) {
     throw UsageError("--table cannot share stdout with --errors -; write --errors to a file");
-  }
-  const std::vector<std::string> inputs = {a.est_path, a.ref_path};
-  io::CheckOutputNotInput(a.out_path, inputs);
-  if (!a.errors_path.empty()) io::CheckOutputNotInput(a.errors_path, inputs);
-  if (!ctx.common.report_path.empty()) io::CheckOutputNotInput(ctx.common.report_path, inputs);
-  if (!a.errors_path.empty() && a.errors_path == a.out_path && !io::IsStdStream(a.out_path)) {
-    throw UsageError("--errors and -o name the same file " + a.out_path);
   }
 }
 

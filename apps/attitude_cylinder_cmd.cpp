@@ -33,16 +33,11 @@ int RunCylinderCmd(const CylinderArgs& a, const Context& ctx) {
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
   video::RefuseStdinVideo(a.videos);
-  std::vector<std::string> inputs = {a.points_path, a.theodolite_path, a.camera_path, a.target_path};
-  if (!a.pointing_path.empty()) inputs.push_back(a.pointing_path);
-  inputs.insert(inputs.end(), a.videos.begin(), a.videos.end());
-  int stdin_inputs = 0;
-  for (const std::string& p : inputs) stdin_inputs += io::IsStdStream(p) ? 1 : 0;
-  if (stdin_inputs > 1) throw UsageError("only one input can be read from stdin ('-')");
-  io::CheckOutputNotInput(a.out_path, inputs);
-  if (!ctx.common.report_path.empty()) io::CheckOutputNotInput(ctx.common.report_path, inputs);
-  if (!ctx.common.report_path.empty() && ctx.common.report_path == a.out_path && !io::IsStdStream(a.out_path))
-    throw UsageError("--report and -o name the same file " + a.out_path);
+  std::vector<cli::NamedPath> inputs = {{"--points", a.points_path}, {"--theodolite", a.theodolite_path},
+                                         {"--camera", a.camera_path}, {"--target", a.target_path},
+                                         {"--pointing", a.pointing_path}};
+  for (const std::string& v : a.videos) inputs.push_back({"--video", v});
+  cli::CheckStreams(ctx.common, inputs, {{"-o", a.out_path}});
 
   const camera::CameraModel cam = camera::LoadCameraModel(a.camera_path);
   if (!a.pointing_path.empty()) opt.pointing = camera::LoadPointingModel(a.pointing_path).terms;
@@ -85,25 +80,8 @@ int RunCylinderCmd(const CylinderArgs& a, const Context& ctx) {
   meter.Finish();
   attitude::CylinderCsv(res).Write(a.out_path);
 
-  using S = attitude::CylinderSolutionStatus;
-  const auto n = [&](S s) { return res.rows_by_solution[static_cast<std::size_t>(s)]; };
-  if (n(S::kAmbiguous) > 0) {
-    cli::Warn(
-        ctx.tool, ctx.common,
-        std::to_string(n(S::kAmbiguous)) +
-            " frame(s) ambiguous: two solutions that no history separates; primary = nose-nearer "
-            "(SPEC.md 3), the other in alt_yaw_deg/alt_pitch_deg");
-  }
-  const std::size_t invalid = res.rows_by_status[static_cast<std::size_t>(RowStatus::kInvalid)];
-  if (invalid > 0) {
-    cli::Warn(ctx.tool, ctx.common,
-              std::to_string(invalid) + " frame(s) invalid (no_theodolite " +
-                  std::to_string(n(S::kNoTheodolite)) + ", outside_image " +
-                  std::to_string(n(S::kOutsideImage)) + ", inconsistent " +
-                  std::to_string(n(S::kInconsistent)) + ", degenerate " +
-                  std::to_string(n(S::kDegenerate)) + ", no_solution " +
-                  std::to_string(n(S::kNoSolution)) + ")");
-  }
+  const io::RunSummary summary = res.Summary();
+  cli::WarnAll(ctx.tool, ctx.common, summary);
   if (!ctx.common.report_path.empty()) {
     io::Json rep = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     cli::AddReportInput(&rep, "points", a.points_path);
@@ -117,13 +95,14 @@ int RunCylinderCmd(const CylinderArgs& a, const Context& ctx) {
     rep["options"] = opt.ToJson();
     for (std::size_t i = 0; i < a.videos.size(); ++i)
       cli::AddReportInput(&rep, "video_" + std::to_string(i), a.videos[i]);
-    rep["summary"] = res.SummaryJson();
-    cli::WriteReport(ctx.common.report_path, rep);
+    cli::WriteReport(ctx.common.report_path, rep, summary);
   }
   if (cli::ShowProgress(ctx.common)) {
     std::cerr << ctx.tool << ": " << points.frames.size() << " frames: "
-              << res.rows_by_status[static_cast<std::size_t>(RowStatus::kOk)] << " ok, " << invalid << " invalid, "
-              << n(S::kAmbiguous) << " ambiguous\n";
+              << res.rows_by_status[static_cast<std::size_t>(RowStatus::kOk)] << " ok, "
+              << res.rows_by_status[static_cast<std::size_t>(RowStatus::kInvalid)] << " invalid, "
+              << res.rows_by_solution[static_cast<std::size_t>(attitude::CylinderSolutionStatus::kAmbiguous)]
+              << " ambiguous\n";
   }
   return 0;
 }

@@ -57,19 +57,10 @@ int RunOi(const OiArgs& a, const Context& ctx) {
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
 
-  std::vector<std::string> inputs = {a.points, a.camera, a.target};
-  if (!a.turret.empty()) inputs.push_back(a.turret);
-  if (!a.pointing.empty()) inputs.push_back(a.pointing);
-  int n_stdin = 0;
-  for (const auto& in : inputs) n_stdin += io::IsStdStream(in) ? 1 : 0;
-  if (n_stdin > 1) throw UsageError("only one input can be read from stdin ('-')");
-  io::CheckOutputNotInput(a.output, inputs);
-  if (!ctx.common.report_path.empty()) {
-    io::CheckOutputNotInput(ctx.common.report_path, inputs);
-    if (io::IsStdStream(ctx.common.report_path) && io::IsStdStream(a.output)) {
-      throw UsageError("--report and -o cannot both be stdout");
-    }
-  }
+  cli::CheckStreams(ctx.common,
+                    {{"--points", a.points}, {"--camera", a.camera}, {"--target", a.target},
+                     {"--turret", a.turret}, {"--pointing", a.pointing}},
+                    {{"-o", a.output}});
   std::optional<geo::AzEl> fixed;
   if (!a.boresight.empty()) fixed = ParseBoresight(a.boresight);
 
@@ -86,25 +77,8 @@ int RunOi(const OiArgs& a, const Context& ctx) {
             : track::BoresightSource::FromLog(std::move(*turret_log), opt.turret_method, opt.turret_max_gap_s);
 
   const pose::AttitudeOiResult res = pose::RunAttitudeOi(points, model, camera, boresight, opt);
-  const std::size_t n = res.rows.size();
-  if (res.turret_not_covered > 0 && !fixed) {
-    cli::Warn(ctx.tool, ctx.common,
-              std::to_string(res.turret_not_covered) + " of " + std::to_string(n) +
-                  " frame times are not covered by " + a.turret +
-                  " (rows with enough points written as invalid)");
-  }
-  if (res.ambiguous > 0) {
-    cli::Warn(ctx.tool, ctx.common,
-              std::to_string(res.ambiguous) + " of " + std::to_string(n) +
-                  " frames have two poses that fit equally well (column ambiguous; the other is in alt_*)");
-  }
-  const double c2 = res.MeanChi2PerDof();
-  if (std::isfinite(c2) && c2 > 4.0) {
-    cli::Warn(ctx.tool, ctx.common,
-              "mean chi-square per degree of freedom is " + std::to_string(c2) +
-                  ": the pixel noise is larger than --sigma-px / sigma_px says, so the sigma_* columns are "
-                  "too small");
-  }
+  const io::RunSummary summary = res.Summary(a.turret, fixed.has_value(), points.unusable_rows);
+  cli::WarnAll(ctx.tool, ctx.common, summary);
   pose::PoseCsv(res).Write(a.output);
 
   if (!ctx.common.report_path.empty()) {
@@ -116,27 +90,11 @@ int RunOi(const OiArgs& a, const Context& ctx) {
     if (!a.turret.empty()) cli::AddReportInput(&r, "turret", a.turret);
     if (!a.pointing.empty()) cli::AddReportInput(&r, "pointing", a.pointing);
     r["output"] = a.output;
-    io::Json status = io::Json::object();
-    for (int s = 0; s < 5; ++s) status[RowStatusName(static_cast<RowStatus>(s))] = res.rows_by_status[static_cast<std::size_t>(s)];
-    r["counts"] = {{"frames", n},
-                   {"status", status},
-                   {"few_points", res.few_points},
-                   {"turret_not_covered", res.turret_not_covered},
-                   {"degenerate", res.degenerate},
-                   {"behind_camera", res.behind_camera},
-                   {"reprojection", res.reprojection},
-                   {"outliers_rejected", res.outliers_rejected},
-                   {"ambiguous", res.ambiguous},
-                   {"second_starts", res.second_starts},
-                   {"turret_duplicate_times", res.turret_duplicate_times},
-                   {"unusable_point_rows", points.unusable_rows}};
-    r["mean_chi2_per_dof"] = std::isfinite(c2) ? io::Json(c2) : io::Json(nullptr);
-    r["summary"] = res.SummaryJson();
     r["target"] = {{"points", model.size()}, {"planarity", model.Planarity()}};
     r["options"] = opt.ToJson();
     r["options"]["boresight"] =
         fixed ? io::Json{geo::RadToDeg(fixed->az_rad), geo::RadToDeg(fixed->el_rad)} : io::Json(nullptr);
-    cli::WriteReport(ctx.common.report_path, r);
+    cli::WriteReport(ctx.common.report_path, r, summary);
   }
   return 0;
 }

@@ -46,8 +46,6 @@ io::Json LensReport(const Context& ctx, const LensArgs& a, const calibrate::Lens
     views.push_back(j);
   }
   rep["views"] = views;
-  rep["warnings"] = res.warnings;
-  rep["summary"] = res.SummaryJson();
   rep["time_s"] = {{"detection", res.detect_s}, {"solve", res.solve_s}};
   rep["options"] = a.opt.ToJson();
   return rep;
@@ -74,22 +72,22 @@ Command AddLensCommand(CLI::App& parent) {
   return {c, [a](const Context& ctx) -> int {
             std::string why;
             if (!a->opt.Check(&why)) throw UsageError(why);
-            io::CheckOutputNotInput(a->out_path, a->images);
-            if (!a->plot_path.empty()) io::CheckOutputNotInput(a->plot_path, a->images);
-            if (!ctx.common.report_path.empty()) io::CheckOutputNotInput(ctx.common.report_path, a->images);
-            if (!a->plot_path.empty() && a->plot_path == a->out_path) throw UsageError("--plot and -o name the same file");
             video::RefuseStdinVideo(a->images, "--images");
+            std::vector<cli::NamedPath> images;
+            for (const std::string& p : a->images) images.push_back({"--images", p});
+            cli::CheckStreams(ctx.common, images, {{"--plot", a->plot_path}, {"-o", a->out_path}});
             const bool progress = cli::ShowProgress(ctx.common);
             cli::ProgressMeter meter(ctx.tool, "images", 0, progress);  // the count is known only once read
             const calibrate::LensResult res =
                 calibrate::CalibrateLens(a->images, a->opt, [&](std::int64_t n) { meter.Update(n); });
             meter.Finish();
-            for (const std::string& w : res.warnings) cli::Warn(ctx.tool, ctx.common, w);
+            const io::RunSummary summary = res.Summary();
+            cli::WarnAll(ctx.tool, ctx.common, summary);
             const io::Json camera = res.CameraJson(a->opt, UtcNowIso());
             const std::string png = a->plot_path.empty() ? std::string() : calibrate::LensPlotPng(res);
             io::WriteJson(a->out_path, camera);
             if (!a->plot_path.empty()) io::WriteFileAtomic(a->plot_path, png);
-            if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, LensReport(ctx, *a, res));
+            if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, LensReport(ctx, *a, res), summary);
             if (progress) {
               std::cerr << ctx.tool << ": " << res.views.size() << " images: " << res.ViewsUsed() << " used, "
                         << res.ViewsWithoutBoard() << " without a board, " << res.ViewsRejected() << " rejected; RMS "

@@ -32,6 +32,9 @@ struct PointingCli {
   CLI::Option* dut1 = nullptr;
 };
 
+constexpr const char* kDut1Warning =
+    "--dut1 not given: UT1 - UTC taken as 0 s (up to 0.9 s = 13.5\" of star azimuth at the equator)";
+
 std::string NowUtc() {
   const std::time_t now = std::time(nullptr);
   std::tm tm{};
@@ -41,25 +44,12 @@ std::string NowUtc() {
   return buf;
 }
 
-// Every path the command reads, and the refusal of outputs that would overwrite one of them.
-std::vector<std::string> CheckPaths(const PointingCli& c, const Context& ctx) {
-  std::vector<std::string> inputs = {c.observations, c.turret, c.camera};
-  if (!c.landmarks.empty()) inputs.push_back(c.landmarks);
-  if (!c.stars.empty()) inputs.push_back(c.stars);
-  int n_stdin = 0;
-  for (const auto& in : inputs) n_stdin += io::IsStdStream(in) ? 1 : 0;
-  if (n_stdin > 1) throw UsageError("only one input can be read from stdin ('-')");
-  std::vector<std::string> outs = {c.out};
-  for (const std::string& p : {c.camera_out, c.plot, ctx.common.report_path}) {
-    if (!p.empty()) outs.push_back(p);
-  }
-  int n_stdout = 0;
-  for (const auto& p : outs) {
-    io::CheckOutputNotInput(p, inputs);
-    n_stdout += io::IsStdStream(p) ? 1 : 0;
-  }
-  if (n_stdout > 1) throw UsageError("only one output can be written to stdout ('-')");
-  return inputs;
+// The refusal of outputs that would overwrite an input or each other (cli::CheckStreams).
+void CheckPaths(const PointingCli& c, const Context& ctx) {
+  cli::CheckStreams(ctx.common,
+                    {{"--observations", c.observations}, {"--turret", c.turret}, {"--camera", c.camera},
+                     {"--landmarks", c.landmarks}, {"--stars", c.stars}},
+                    {{"-o", c.out}, {"--camera-out", c.camera_out}, {"--plot", c.plot}});
 }
 
 calibrate::TargetCatalogue ReadTargets(const PointingCli& c) {
@@ -96,9 +86,9 @@ void WriteReportFile(const PointingCli& c, const Context& ctx, const calibrate::
   opts["station"] = c.station;
   if (!c.epoch_utc.empty()) opts["epoch_utc"] = c.epoch_utc;
   r["options"] = opts;
-  r["summary"] = calibrate::PointingSummaryJson(sol, cam);
-  r["warnings"] = sol.warnings;
-  cli::WriteReport(ctx.common.report_path, r);
+  io::RunSummary summary = calibrate::PointingRunSummary(sol, cam, c.out);
+  if (!c.stars.empty() && c.dut1->count() == 0) summary.Flag("dut1_assumed_zero", kDut1Warning);  // said at the start
+  cli::WriteReport(ctx.common.report_path, r, summary);
 }
 
 int RunPointing(const PointingCli& c, const Context& ctx) {
@@ -111,7 +101,7 @@ int RunPointing(const PointingCli& c, const Context& ctx) {
   if (!c.epoch_utc.empty()) target::ParseUtc(c.epoch_utc, "--epoch-utc");
   CheckPaths(c, ctx);
   if (!c.stars.empty() && c.dut1->count() == 0) {
-    cli::Warn(ctx.tool, ctx.common, "--dut1 not given: UT1 - UTC taken as 0 s (up to 0.9 s = 13.5\" of star azimuth at the equator)");
+    cli::Warn(ctx.tool, ctx.common, kDut1Warning);
   }
 
   const calibrate::ImagePoints points = calibrate::ReadImagePoints(io::CsvTable::Read(c.observations, {c.bad_rows, {}}));
@@ -129,11 +119,7 @@ int RunPointing(const PointingCli& c, const Context& ctx) {
   const calibrate::PointingSolution sol =
       calibrate::SolvePointing(build, cam, est, c.o, [&](std::int64_t n) { meter.Update(n); });
   meter.Finish();
-  for (const std::string& w : sol.warnings) cli::Warn(ctx.tool, ctx.common, w);
-  if (sol.rejected > 0) {
-    cli::Warn(ctx.tool, ctx.common, std::to_string(sol.rejected) + " of " + std::to_string(sol.residuals.size()) +
-                                        " observations rejected as outliers (listed under \"rejected\" in " + c.out + ")");
-  }
+  cli::WarnAll(ctx.tool, ctx.common, calibrate::PointingRunSummary(sol, cam, c.out));
   // Everything is computed before the first file is written.
   const std::string pointing_text = calibrate::PointingFileJson(sol, points, cam, NowUtc()).dump(2) + "\n";
   const std::string camera_text = camera::CameraModelToJson(sol.Camera(cam)).dump(2) + "\n";

@@ -36,9 +36,7 @@ int RunBeaconCmd(const BeaconArgs& a, const Context& ctx) {
   }
   if (a.out_path.empty()) throw rk::UsageError("-o/--output is required (or --decode-only)");
   a.in.CheckFrameTimes();
-  const std::vector<std::string> inputs = a.in.Inputs();
-  rk::io::CheckOutputNotInput(a.out_path, inputs);
-  if (!common.report_path.empty()) rk::io::CheckOutputNotInput(common.report_path, inputs);
+  rk::cli::CheckStreams(common, a.in.Inputs(), {{"-o", a.out_path}});
 
   const rk::formats::FrameClock clock = a.in.Clock();
   const bool progress = rk::cli::ShowProgress(common);
@@ -61,23 +59,9 @@ int RunBeaconCmd(const BeaconArgs& a, const Context& ctx) {
     a.in.AddReportInputs(&rep);
     rep["subcommand"] = "beacon";
     rep["output"] = a.out_path;
-    rep["video"] = {{"width_px", res.width_px}, {"height_px", res.height_px}, {"bit_depth", res.bit_depth}};
-    rep["frames"] = res.frames;
-    rep["status_counts"] = {{"ok", s.ok},
-                            {"reacquired", s.reacquired},
-                            {"lost", s.lost},
-                            {"predicted", s.predicted},
-                            {"invalid", s.invalid}};
-    rep["acquisitions"] = s.acquisitions;
-    rep["full_frame_searches"] = s.full_frame_searches;
-    rep["mean_ncc"] = s.mean_ncc();
-    rep["summary"] = res.SummaryJson();
-    rep["restarts"] = s.restarts;
-    rep["centroid_estimator"] = {{"per_lamp", s.per_lamp}, {"cluster", s.ok + s.reacquired - s.per_lamp}};
     AddReportTimes(&rep, res.frames, res.wall_s, res.extract_s);
-    rep["options"] = opt.ToJson();
     rep["frame_times"] = a.in.FrameTimesJson();
-    rk::cli::WriteReport(common.report_path, rep);
+    rk::cli::WriteReport(common.report_path, rep, res.Summary(opt));
   }
   if (progress) {
     std::cerr << ctx.tool << ": " << res.frames << " frames: " << s.ok << " ok, " << s.reacquired << " reacquired, "

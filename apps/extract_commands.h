@@ -18,7 +18,7 @@ Command AddBeaconCommand(CLI::App& app);      // extract_beacon_cmd.cpp
 Command AddFeaturesCommand(CLI::App& app);    // extract_features_cmd.cpp
 Command AddSilhouetteCommand(CLI::App& app);  // extract_silhouette_cmd.cpp
 
-// --video, --frames | --fps [--t0], --bad-rows: the recording and its frame times (extract/frame_times.h).
+// --video, --frames | --fps [--t0], --bad-rows: the recording and its frame times (formats/frame_times.h).
 // Paths and optional values, so registered here rather than from an option table.
 struct VideoInputArgs {
   std::vector<std::string> videos;
@@ -43,9 +43,10 @@ struct VideoInputArgs {
     if (frames_path.empty() && !fps) throw UsageError("give the frame times: --frames F.csv or --fps HZ [--t0 S]");
   }
   // The videos, then the frames file if any.
-  std::vector<std::string> Inputs() const {
-    std::vector<std::string> inputs = videos;
-    if (!frames_path.empty()) inputs.push_back(frames_path);
+  std::vector<cli::NamedPath> Inputs() const {
+    std::vector<cli::NamedPath> inputs;
+    for (const std::string& v : videos) inputs.push_back({"--video", v});
+    inputs.push_back({"--frames", frames_path});
     return inputs;
   }
   formats::FrameClock Clock() const {

@@ -31,15 +31,9 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
   std::string why;
   if (!opt.Check(&why)) throw UsageError(why);
   a.in.CheckFrameTimes();
-  std::vector<std::string> inputs = a.in.Inputs();
-  inputs.push_back(a.target_path);
-  io::CheckOutputNotInput(a.out_path, inputs);
-  if (!ctx.common.report_path.empty()) {
-    io::CheckOutputNotInput(ctx.common.report_path, inputs);
-    if (io::IsStdStream(ctx.common.report_path) && io::IsStdStream(a.out_path)) {
-      throw UsageError("--report and -o cannot both be stdout");
-    }
-  }
+  std::vector<cli::NamedPath> inputs = a.in.Inputs();
+  inputs.push_back({"--target", a.target_path});
+  cli::CheckStreams(ctx.common, inputs, {{"-o", a.out_path}});
   const target::FeatureModel model = target::LoadFeatureModel(a.target_path);
   const formats::FrameClock clock = a.in.Clock();
   const bool progress = cli::ShowProgress(ctx.common);
@@ -55,12 +49,8 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
       });
   meter.Finish();
   const auto& s = res.summary;
-  if (s.ambiguous > 0) {
-    cli::Warn(ctx.tool, ctx.common,
-              std::to_string(s.ambiguous) +
-                  " frames had an ambiguous identification and got no points "
-                  "(a symmetric marker layout cannot be identified without tracking)");
-  }
+  const io::RunSummary summary = res.Summary(model, opt);
+  cli::WarnAll(ctx.tool, ctx.common, summary);
   out.Finish();
 
   if (!ctx.common.report_path.empty()) {
@@ -69,21 +59,9 @@ int RunFeaturesCmd(const FeaturesArgs& a, const Context& ctx) {
     cli::AddReportInput(&rep, "target", a.target_path);
     rep["subcommand"] = "features";
     rep["output"] = a.out_path;
-    rep["video"] = {{"width_px", res.width_px}, {"height_px", res.height_px}, {"bit_depth", res.bit_depth}};
-    rep["frames"] = res.frames;
-    rep["markers"] = model.size();
-    io::Json st = io::Json::object();
-    for (int k = 0; k < 5; ++k) st[RowStatusName(static_cast<RowStatus>(k))] = s.rows_by_status[static_cast<std::size_t>(k)];
-    rep["status_counts"] = st;
-    rep["acquisitions"] = {{"tried", s.acquisitions}, {"ok", s.acquisitions_ok}, {"ambiguous", s.ambiguous}};
-    rep["rejected_by_constellation"] = s.rejected;
-    rep["frames_with_4_points"] = s.frames_with_4;
-    rep["mean_ncc"] = s.mean_ncc;
-    rep["summary"] = res.SummaryJson();
     AddReportTimes(&rep, res.frames, res.wall_s, res.extract_s);
-    rep["options"] = opt.ToJson();
     rep["frame_times"] = a.in.FrameTimesJson();
-    cli::WriteReport(ctx.common.report_path, rep);
+    cli::WriteReport(ctx.common.report_path, rep, summary);
   }
   if (progress) {
     std::cerr << ctx.tool << ": " << res.frames << " frames, " << s.frames_with_4 << " with >= 4 markers, "

@@ -39,9 +39,7 @@ Command AddSilhouetteCommand(CLI::App& parent) {
             std::string why;
             if (!a->opt.Check(&why)) throw UsageError(why);
             a->in.CheckFrameTimes();
-            const std::vector<std::string> inputs = a->in.Inputs();
-            io::CheckOutputNotInput(a->out_path, inputs);
-            if (!ctx.common.report_path.empty()) io::CheckOutputNotInput(ctx.common.report_path, inputs);
+            cli::CheckStreams(ctx.common, a->in.Inputs(), {{"-o", a->out_path}});
             const formats::FrameClock clock = a->in.Clock();
             const bool progress = cli::ShowProgress(ctx.common);
             cli::ProgressMeter meter(ctx.tool, "frames", VideoInputArgs::ExpectedFrames(clock), progress);
@@ -56,35 +54,19 @@ Command AddSilhouetteCommand(CLI::App& parent) {
                 });
             meter.Finish();
             out.Finish();
-            using S = extract::SilhouetteStatus;
-            const auto n = [&](S s) { return res.by_status[static_cast<std::size_t>(s)]; };
-            const std::int64_t bad = res.frames - n(S::kOk);
-            if (bad > 0) {
-              cli::Warn(ctx.tool, ctx.common,
-                        std::to_string(bad) + " of " + std::to_string(res.frames) +
-                            " frames without points (not_found " + std::to_string(n(S::kNotFound)) +
-                            ", touches_border " + std::to_string(n(S::kTouchesBorder)) + ", too_small " +
-                            std::to_string(n(S::kTooSmall)) + ", bad_fit " + std::to_string(n(S::kBadFit)) +
-                            ")");
-            }
+            const io::RunSummary summary = res.Summary(a->opt);
+            cli::WarnAll(ctx.tool, ctx.common, summary);
             if (!ctx.common.report_path.empty()) {
               io::Json rep = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
               a->in.AddReportInputs(&rep);
               rep["subcommand"] = "silhouette";
               rep["output"] = a->out_path;
-              rep["video"] = {{"width_px", res.width_px}, {"height_px", res.height_px}, {"bit_depth", res.bit_depth}};
-              rep["frames"] = res.frames;
-              io::Json counts = io::Json::object();
-              for (int s = 0; s < 5; ++s)
-                counts[extract::SilhouetteStatusName(static_cast<S>(s))] = res.by_status[static_cast<std::size_t>(s)];
-              rep["status_counts"] = counts;
-              rep["summary"] = res.SummaryJson();
               rep["time_s"] = {{"total", res.wall_s}, {"extraction", res.extract_s}};
-              rep["options"] = a->opt.ToJson();
-              cli::WriteReport(ctx.common.report_path, rep);
+              cli::WriteReport(ctx.common.report_path, rep, summary);
             }
             if (progress) {
-              std::cerr << ctx.tool << ": " << res.frames << " frames: " << n(S::kOk) << " with points, " << bad
+              const std::int64_t ok = res.by_status[static_cast<std::size_t>(extract::SilhouetteStatus::kOk)];
+              std::cerr << ctx.tool << ": " << res.frames << " frames: " << ok << " with points, " << res.frames - ok
                         << " without\n";
             }
             return 0;

@@ -62,10 +62,12 @@ Command AddBatchCommand(CLI::App& app) {
     io::Json extra;
     extra["initial_bernoulli"] = registration::EstimateJson(in, res.initial.result.x, res.initial.result.P);
     extra["initial_bernoulli"].erase("correlation");
-    reg::WriteOutputs(a.in, ctx, "batch", in, res.result, extra);
+    std::vector<io::Warning> warnings;
     if (!res.stats.covariance_ok) {
-      cli::Warn(ctx.tool, ctx.common, "the covariance could not be computed (biases not all observable): sigmas empty");
+      warnings.push_back(
+          {"covariance_unavailable", "the covariance could not be computed (biases not all observable): sigmas empty"});
     }
+    reg::WriteOutputs(a.in, ctx, "batch", in, res.result, extra, warnings);
     return 0;
   };
   return cmd;

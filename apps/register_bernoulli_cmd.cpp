@@ -42,13 +42,14 @@ Command AddBernoulliCommand(CLI::App& app) {
     const registration::BernoulliResult res =
         registration::RunBernoulli(in, opt, [&](std::int64_t k) { meter.Update(k); });
     meter.Finish();
-    reg::WriteOutputs(a.in, ctx, "bernoulli", in, res.result);
+    std::vector<io::Warning> warnings;
+    if (res.stats.counters.steps_updated == 0) {
+      warnings.push_back({"prior_only", "no step could be updated (no pair passed the gate): the biases are the prior"});
+    }
+    reg::WriteOutputs(a.in, ctx, "bernoulli", in, res.result, io::Json::object(), warnings);
     if (progress) {
       std::cerr << ctx.tool << ": " << in.steps.size() << " steps: " << res.stats.counters.steps_updated
                 << " updated, " << res.stats.counters.steps_predicted << " predicted\n";
-    }
-    if (res.stats.counters.steps_updated == 0) {
-      cli::Warn(ctx.tool, ctx.common, "no step could be updated (no pair passed the gate): the biases are the prior");
     }
     return 0;
   };

@@ -42,13 +42,14 @@ Command AddKfCommand(CLI::App& app) {
     cli::ProgressMeter meter(ctx.tool, "steps", static_cast<std::int64_t>(in.steps.size()), progress);
     const registration::KfResult res = registration::RunKalman(in, opt, [&](std::int64_t k) { meter.Update(k); });
     meter.Finish();
-    reg::WriteOutputs(a.in, ctx, "kf", in, res.result);
+    std::vector<io::Warning> warnings;
+    if (res.counters.steps_updated == 0) {
+      warnings.push_back({"prior_only", "no step had a pair with a common track_id: the biases are the prior"});
+    }
+    reg::WriteOutputs(a.in, ctx, "kf", in, res.result, io::Json::object(), warnings);
     if (progress) {
       std::cerr << ctx.tool << ": " << in.steps.size() << " steps: " << res.counters.steps_updated << " updated, "
                 << res.counters.steps_predicted << " predicted; " << res.counters.updates << " pair updates\n";
-    }
-    if (res.counters.steps_updated == 0) {
-      cli::Warn(ctx.tool, ctx.common, "no step had a pair with a common track_id: the biases are the prior");
     }
     return 0;
   };

@@ -75,18 +75,7 @@ inline registration::FilterOptions MakeFilterOptions(const InputArgs& a) {
 }
 
 inline void CheckPaths(const InputArgs& a, const Context& ctx) {
-  if (io::IsStdStream(a.plots) && io::IsStdStream(a.nav)) throw UsageError("--plots and --nav cannot both be stdin");
-  const std::vector<std::string> inputs{a.plots, a.nav};
-  io::CheckOutputNotInput(a.output, inputs);
-  if (!ctx.common.report_path.empty()) {
-    io::CheckOutputNotInput(ctx.common.report_path, inputs);
-    if (ctx.common.report_path == a.output && !io::IsStdStream(a.output)) {
-      throw UsageError("--report and -o name the same file " + a.output);
-    }
-    if (io::IsStdStream(ctx.common.report_path) && io::IsStdStream(a.output)) {
-      throw UsageError("--report and -o cannot both be stdout");
-    }
-  }
+  cli::CheckStreams(ctx.common, {{"--plots", a.plots}, {"--nav", a.nav}}, {{"-o", a.output}});
 }
 
 inline registration::RegistrationInput ReadInput(const InputArgs& a, bool require_track_id) {
@@ -103,31 +92,25 @@ inline registration::RegistrationInput ReadInput(const InputArgs& a, bool requir
 
 // Writes the biases CSV and, with --report, the JSON report: {tool, version, command_line,
 // inputs, subcommand, radars, input, options, estimate, sigma, correlation, stats, summary, rows_written}
-// plus `extra`.
+// plus `extra`, with the run's summary (RegistrationResult::Summary, then the method's own `warnings`), which
+// it prints.
 inline void WriteOutputs(const InputArgs& a, const Context& ctx, const std::string& subcommand,
                          const registration::RegistrationInput& in, const registration::RegistrationResult& r,
-                         const io::Json& extra = io::Json::object()) {
+                         const io::Json& extra = io::Json::object(), const std::vector<io::Warning>& warnings = {}) {
   const io::CsvWriter csv = registration::BiasesCsv(in, r, a.sigmas);
-  io::Json report;
+  io::RunSummary summary = r.Summary(in);
+  summary.warnings.insert(summary.warnings.end(), warnings.begin(), warnings.end());
+  csv.Write(a.output);
   if (!ctx.common.report_path.empty()) {
-    report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
+    io::Json report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     cli::AddReportInput(&report, "plots", a.plots);
     cli::AddReportInput(&report, "nav", a.nav);
     report["subcommand"] = subcommand;
-    const io::Json body = r.ToJson(in);
-    for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
-    for (auto it = extra.begin(); it != extra.end(); ++it) report[it.key()] = it.value();
-    report["rows_written"] = csv.rows();
+    for (auto it = extra.begin(); it != extra.end(); ++it) summary.details[it.key()] = it.value();
+    summary.details["rows_written"] = csv.rows();
+    cli::WriteReport(ctx.common.report_path, report, summary);
   }
-  csv.Write(a.output);
-  if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
-  for (int r = 0; r < 2; ++r) {
-    if (in.summary.nav_unfolded_rows[r] > 0) {
-      cli::Warn(ctx.tool, ctx.common,
-                "nav of radar '" + in.radars[r] + "': " + std::to_string(in.summary.nav_unfolded_rows[r]) +
-                    " rows had the pitch folded into [-90, 90] (yaw and roll +180); read as the continuous angles");
-    }
-  }
+  cli::WarnAll(ctx.tool, ctx.common, summary);
 }
 
 }  // namespace rk::app::reg

@@ -17,19 +17,6 @@ namespace {
 
 const char* const kTool = "rk-intersect";
 
-void CheckPaths(const std::string& out_path, const std::string& report_path, const std::vector<std::string>& inputs) {
-  int n_stdin = 0;
-  for (const auto& in : inputs) n_stdin += rk::io::IsStdStream(in) ? 1 : 0;
-  if (n_stdin > 1) throw rk::UsageError("only one input can be read from stdin ('-')");
-  rk::io::CheckOutputNotInput(out_path, inputs);
-  if (!report_path.empty()) {
-    rk::io::CheckOutputNotInput(report_path, inputs);
-    if (rk::io::IsStdStream(report_path) && rk::io::IsStdStream(out_path)) {
-      throw rk::UsageError("--report and -o cannot both be stdout");
-    }
-  }
-}
-
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -56,13 +43,13 @@ int main(int argc, char** argv) {
     std::string why;
     if (!opt.Check(&why)) throw rk::UsageError(why);
     if (!at_path.empty() && opt.rate_hz > 0.0) throw rk::UsageError("--at and --rate exclude each other");
-    std::vector<std::string> inputs = {stations_path};
-    if (!at_path.empty()) inputs.push_back(at_path);
-    CheckPaths(out_path, common.report_path, inputs);
+    // Checked twice: the stations file before it is read, then with the located files it names.
+    std::vector<rk::cli::NamedPath> inputs = {{"--stations", stations_path}, {"--at", at_path}};
+    rk::cli::CheckStreams(common, inputs, {{"-o", out_path}});
 
     const rk::formats::StationsFile stations = rk::formats::LoadStations(stations_path);
-    for (const auto& s : stations.stations) inputs.push_back(s.located);
-    CheckPaths(out_path, common.report_path, inputs);
+    for (const auto& s : stations.stations) inputs.push_back({s.name, s.located});
+    rk::cli::CheckStreams(common, inputs, {{"-o", out_path}});
     std::vector<rk::intersect::StationTrack> tracks;
     for (const auto& s : stations.stations) {
       tracks.emplace_back(rk::formats::ReadLocated(rk::io::CsvTable::Read(s.located, {bad_rows, rk::formats::LocatedRowRule()})),
@@ -72,11 +59,8 @@ int main(int argc, char** argv) {
     if (!at_path.empty()) at = rk::intersect::ReadTimes(rk::io::CsvTable::Read(at_path, {bad_rows, {}}));
     const std::vector<double> times = rk::intersect::OutputTimes(tracks, opt, at);
     const rk::intersect::IntersectResult result = rk::intersect::Intersect(stations, tracks, times, opt);
-    if (result.rows_lost > 0) {
-      rk::cli::Warn(kTool, common,
-                    std::to_string(result.rows_lost) + " of " + std::to_string(result.rows.size()) +
-                        " rows have fewer than two lines of sight (status lost)");
-    }
+    const rk::io::RunSummary summary = result.Summary();
+    rk::cli::WarnAll(kTool, common, summary);
     rk::intersect::TrajectoryCsv(result).Write(out_path);
 
     if (!common.report_path.empty()) {
@@ -86,8 +70,7 @@ int main(int argc, char** argv) {
       if (!at_path.empty()) rk::cli::AddReportInput(&report, "at", at_path);
       report["output"] = out_path;
       report["options"] = opt.ToJson();
-      report.update(result.ToJson());
-      rk::cli::WriteReport(common.report_path, report);
+      rk::cli::WriteReport(common.report_path, report, summary);
     }
     return 0;
   });

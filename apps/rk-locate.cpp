@@ -56,19 +56,10 @@ int main(int argc, char** argv) {
     if (!station_text.empty()) {
       opt.station = rk::cli::ParseStationOption(station_text);
     }
-    std::vector<std::string> inputs = {track_path, camera_path, turret_path};
-    if (!range_path.empty()) inputs.push_back(range_path);
-    if (!pointing_path.empty()) inputs.push_back(pointing_path);
-    int n_stdin = 0;
-    for (const auto& in : inputs) n_stdin += rk::io::IsStdStream(in) ? 1 : 0;
-    if (n_stdin > 1) throw rk::UsageError("only one input can be read from stdin ('-')");
-    rk::io::CheckOutputNotInput(out_path, inputs);
-    if (!common.report_path.empty()) {
-      rk::io::CheckOutputNotInput(common.report_path, inputs);
-      if (rk::io::IsStdStream(common.report_path) && rk::io::IsStdStream(out_path)) {
-        throw rk::UsageError("--report and -o cannot both be stdout");
-      }
-    }
+    rk::cli::CheckStreams(common,
+                          {{"--track", track_path}, {"--camera", camera_path}, {"--turret", turret_path},
+                           {"--range", range_path}, {"--pointing", pointing_path}},
+                          {{"-o", out_path}});
 
     const rk::formats::Track track = rk::formats::ReadTrack(rk::io::CsvTable::Read(track_path, {bad_rows, rk::formats::TrackRowRule()}));
     const rk::camera::CameraModel camera = rk::camera::LoadCameraModel(camera_path);
@@ -81,17 +72,9 @@ int main(int argc, char** argv) {
 
     const rk::locate::LocateResult result =
         rk::locate::Locate(track, camera, std::move(turret), range ? &*range : nullptr, opt);  // a long log: no copy
-    if (result.rows_turret_not_covered > 0) {
-      rk::cli::Warn(kTool, common,
-                    std::to_string(result.rows_turret_not_covered) + " of " +
-                        std::to_string(result.rows.size()) + " frame times are not covered by " +
-                        turret_path + " (" + std::to_string(result.measured_rows_turret_not_covered) +
-                        " measured rows written as invalid)");
-    }
-    if (range && result.rows_with_los > 0 && result.rows_with_range == 0) {
-      rk::cli::Warn(kTool, common,
-                    "no frame got a range from " + range_path + " (check its time span and status)");
-    }
+    const rk::io::RunSummary summary = rk::locate::LocateSummary(
+        result, opt, {turret_path, range ? range_path : std::string(), turret_empty_samples});
+    rk::cli::WarnAll(kTool, common, summary);
     rk::locate::LocatedCsv(result).Write(out_path);
 
     if (!common.report_path.empty()) {
@@ -102,37 +85,7 @@ int main(int argc, char** argv) {
       if (range) rk::cli::AddReportInput(&report, "range", range_path);
       if (opt.pointing) rk::cli::AddReportInput(&report, "pointing", pointing_path);
       report["output"] = out_path;
-      report["options"] = opt.ToJson();
-      if (opt.station) {
-        report["station"] = {{"lat_deg", opt.station->lat_deg}, {"lon_deg", opt.station->lon_deg},
-                             {"h_m", opt.station->h_m}};
-      }
-      if (camera.time_offset_s != 0.0) report["time_offset_s"] = camera.time_offset_s;
-      rk::io::Json status = rk::io::Json::object();
-      for (int s = 0; s < 5; ++s) {
-        status[rk::RowStatusName(static_cast<rk::RowStatus>(s))] =
-            result.rows_by_status[s];
-      }
-      rk::io::Json range_status = rk::io::Json::object();
-      for (int s = 0; s < 5; ++s) {
-        range_status[rk::locate::RangeStatusName(static_cast<rk::locate::RangeStatus>(s))] =
-            result.rows_by_range_status[s];
-      }
-      const double coverage = result.RangeCoverage();
-      report["counts"] = {{"rows", result.rows.size()},
-                          {"status", status},
-                          {"range_status", range_status},
-                          {"rows_with_line_of_sight", result.rows_with_los},
-                          {"rows_with_range", result.rows_with_range},
-                          {"rows_turret_not_covered", result.rows_turret_not_covered},
-                          {"measured_rows_turret_not_covered", result.measured_rows_turret_not_covered},
-                          {"turret_duplicate_times", result.turret_duplicate_times},
-                          {"turret_empty_samples", turret_empty_samples},
-                          {"range_duplicate_times", result.range_duplicate_times},
-                          {"range_device_errors", result.range_device_errors}};
-      report["range_coverage"] = std::isfinite(coverage) ? rk::io::Json(coverage) : rk::io::Json(nullptr);
-      report["summary"] = result.SummaryJson();
-      rk::cli::WriteReport(common.report_path, report);
+      rk::cli::WriteReport(common.report_path, report, summary);
     }
     return 0;
   });

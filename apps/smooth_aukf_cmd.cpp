@@ -78,18 +78,8 @@ filter::AukfOptions AukfOptionsOf(const AukfArgs& a, const CLI::App& sub, std::v
   return opt;
 }
 
-// -o and --report: not the input, not the same file, not both stdout.
 void CheckAukfPaths(const AukfArgs& a, const Context& ctx) {
-  io::CheckOutputNotInput(a.output, {a.input});
-  if (!ctx.common.report_path.empty()) {
-    io::CheckOutputNotInput(ctx.common.report_path, {a.input});
-    if (ctx.common.report_path == a.output && !io::IsStdStream(a.output)) {
-      throw UsageError("--report and -o name the same file " + a.output);
-    }
-    if (io::IsStdStream(ctx.common.report_path) && io::IsStdStream(a.output)) {
-      throw UsageError("--report and -o cannot both be stdout");
-    }
-  }
+  cli::CheckStreams(ctx.common, {{"-i", a.input}}, {{"-o", a.output}});
 }
 
 int RunAukfCommand(const AukfArgs& a, const CLI::App& sub, const Context& ctx) {

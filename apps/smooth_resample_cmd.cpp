@@ -44,18 +44,7 @@ void CheckResampleArgs(const ResampleArgs& args, const Context& ctx, bool have_a
   if (have_at && (args.t0_opt->count() || args.t1_opt->count())) {
     throw UsageError("--t0/--t1 go with --rate, not with --at");
   }
-  std::vector<std::string> inputs = {args.input};
-  if (have_at) inputs.push_back(args.at);
-  if (have_at && io::IsStdStream(args.input) && io::IsStdStream(args.at)) {
-    throw UsageError("only one input can be read from stdin ('-')");
-  }
-  io::CheckOutputNotInput(args.output, inputs);
-  if (!ctx.common.report_path.empty()) {
-    io::CheckOutputNotInput(ctx.common.report_path, inputs);
-    if (io::IsStdStream(ctx.common.report_path) && io::IsStdStream(args.output)) {
-      throw UsageError("--report and -o cannot both be stdout");
-    }
-  }
+  cli::CheckStreams(ctx.common, {{"-i", args.input}, {"--at", have_at ? args.at : ""}}, {{"-o", args.output}});
 }
 
 filter::ResampleOptions ResampleOptionsOf(const ResampleArgs& args, bool max_gap_given) {

@@ -25,16 +25,8 @@ struct SingerArgs {
 
 constexpr int kDecimals = 9;
 
-// --report and -o: not an input, not both stdout.
 void CheckSingerPaths(const SingerArgs& args, const Context& ctx) {
-  const std::vector<std::string> inputs = {args.input};
-  io::CheckOutputNotInput(args.output, inputs);
-  if (!ctx.common.report_path.empty()) {
-    io::CheckOutputNotInput(ctx.common.report_path, inputs);
-    if (io::IsStdStream(ctx.common.report_path) && io::IsStdStream(args.output)) {
-      throw UsageError("--report and -o cannot both be stdout");
-    }
-  }
+  cli::CheckStreams(ctx.common, {{"-i", args.input}}, {{"-o", args.output}});
 }
 
 filter::SingerSeriesOptions SingerOptionsOf(const SingerArgs& args) {

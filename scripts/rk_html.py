@@ -147,11 +147,38 @@ def step_quality(step):
     return q if isinstance(q, dict) else {}
 
 
+def typed_headline(step):
+    """[(label, value text, note)] of the "headline" figures of a step's tool report (issue 28 item 4), or None
+    for a report written before it."""
+    tr = step.get("tool_report")
+    if not isinstance(tr, dict) or not isinstance(tr.get("headline"), dict):
+        return None
+    out = []
+    for name, f in tr["headline"].items():
+        if not isinstance(f, dict):
+            continue
+        v, u = f.get("value"), f.get("unit", "")
+        if isinstance(v, (int, float)) and not isinstance(v, bool):
+            text = percent(v) if u == "fraction" else ("%s %s" % (num(v), u)).strip()
+        else:
+            text = "—"
+        label = ("%s %s" % (step.get("unit", ""), name)).strip()
+        out.append((label, text, f.get("note", "")))
+    return out
+
+
 def headline_figures(report):
-    """[(label, value text, unit/step)] of a trial: the figures a person looks at first, from each step's
-    quality record (the tool's summary, docs/rk-run.md "The summary contract")."""
+    """[(label, value text, unit/step)] of a trial: the figures a person looks at first, each step's tool report's
+    "headline" (docs/rk-run.md "The summary contract"); for a report of an older rk, from the step's quality
+    record by step kind."""
     out = []
     for st in report.get("steps", []) if isinstance(report, dict) else []:
+        if st.get("status", "ok") not in ("ok", "skipped"):  # a failed step's figures are not the trial's
+            continue
+        typed = typed_headline(st)
+        if typed is not None:
+            out += typed
+            continue
         q = step_quality(st)
         kind, unit = st.get("kind", ""), st.get("unit", "")
         if not q:

@@ -131,6 +131,32 @@ CylinderPointsFile ReadCylinderPoints(const io::CsvTable& table) {
   return out;
 }
 
+io::RunSummary CylinderRunResult::Summary() const {
+  io::RunSummary out;
+  for (std::size_t s = 0; s < rows_by_status.size(); ++s) out.CountRows(static_cast<RowStatus>(s), rows_by_status[s]);
+  using S = CylinderSolutionStatus;
+  const auto n = [&](S s) { return std::to_string(rows_by_solution[static_cast<std::size_t>(s)]); };
+  if (rows_by_solution[static_cast<std::size_t>(S::kAmbiguous)] > 0) {
+    out.Warn("ambiguous", n(S::kAmbiguous) +
+                              " frame(s) ambiguous: two solutions that no history separates; primary = nose-nearer "
+                              "(SPEC.md 3), the other in alt_yaw_deg/alt_pitch_deg");
+  }
+  const std::size_t invalid = rows_by_status[static_cast<std::size_t>(RowStatus::kInvalid)];
+  if (invalid > 0) {
+    out.Warn("rows_invalid", std::to_string(invalid) + " frame(s) invalid (no_theodolite " + n(S::kNoTheodolite) +
+                                 ", outside_image " + n(S::kOutsideImage) + ", inconsistent " + n(S::kInconsistent) +
+                                 ", degenerate " + n(S::kDegenerate) + ", no_solution " + n(S::kNoSolution) + ")");
+  }
+  if (rows_fit_time_limit > 0) out.termination = "time limit";
+  if (!rows.empty()) {
+    const std::size_t ok = rows_by_status[static_cast<std::size_t>(RowStatus::kOk)];
+    out.AddFigure("attitude ok", static_cast<double>(ok) / static_cast<double>(rows.size()), "fraction",
+                  std::to_string(rows.size()) + " rows");
+  }
+  out.details["summary"] = SummaryJson();
+  return out;
+}
+
 io::Json CylinderRunResult::SummaryJson() const {
   io::Json by_status = io::Json::object();
   for (int s = 0; s < 5; ++s)
@@ -456,7 +482,7 @@ CylinderRunResult RunCylinder(const CylinderPointsFile& points, formats::TurretL
   result.has_frame = points.has_frame;
   result.image_fit = frames != nullptr;
 
-  // Theodolite: merge repeated times, azimuth on its unwrapped sequence (locate/boresight.h, as rk-locate).
+  // Theodolite: merge repeated times, azimuth on its unwrapped sequence (track/boresight.h, as rk-locate).
   const track::BoresightSource theo =
       track::BoresightSource::FromLog(std::move(theodolite), options.theodolite_method, options.theodolite_max_gap_s);
   result.theodolite_duplicate_times = theo.duplicate_times();

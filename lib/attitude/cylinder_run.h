@@ -62,6 +62,7 @@
 #include "io/json_util.h"
 #include "io/row_status.h"
 #include "formats/turret_log.h"
+#include "io/run_summary.h"
 #include "track/interp.h"
 
 namespace rk::attitude {
@@ -163,6 +164,10 @@ struct CylinderRunResult {
   long fit_evaluations = 0;
   double fit_seconds = 0.0;
   io::Json SummaryJson() const;
+  // The run's summary (io/run_summary.h): rows by status, the warnings rk-attitude cylinder prints (ambiguous,
+  // invalid frames by cause), termination "time limit" when the image fit ran out of fit_time_limit_s, the
+  // fraction of rows ok, and the report's "summary".
+  io::RunSummary Summary() const;
 };
 
 // The frame numbered `frame` (SPEC.md: counting from 0 across video segments) for the image fit, CV_8UC1 or

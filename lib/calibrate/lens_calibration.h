@@ -27,6 +27,7 @@
 #include "camera/camera_model.h"
 #include "io/json_util.h"
 #include "io/options.h"
+#include "io/run_summary.h"
 
 namespace rk::calibrate {
 
@@ -122,6 +123,9 @@ struct LensResult {
   io::Json CameraJson(const LensOptions& opt, const std::string& date_utc) const;
   // The report's "summary": rms_px, views, focal length and principal point with their 1σ.
   io::Json SummaryJson() const;
+  // The run's summary (io/run_summary.h): the 1σ warnings (code "poorly_determined"), the RMS reprojection
+  // error as headline, and the report's "summary". No rows_by_status: the product is a camera model.
+  io::RunSummary Summary() const;
 };
 
 // Detects the board of `opt` in an 8-bit grey image; fills view->found, image_px, board_mm.

@@ -70,6 +70,15 @@ io::Json LensResult::CameraJson(const LensOptions& opt, const std::string& date_
   return j;
 }
 
+io::RunSummary LensResult::Summary() const {
+  io::RunSummary r;
+  for (const std::string& w : warnings) r.Warn("poorly_determined", w);
+  const io::Json j = SummaryJson();
+  if (j.contains("rms_px") && j["rms_px"].is_number()) r.AddFigure("reprojection RMS", j["rms_px"].get<double>(), "px");
+  r.details["summary"] = j;
+  return r;
+}
+
 io::Json LensResult::SummaryJson() const {
   return {{"rms_px", rms_px},
           {"views", views.size()},

@@ -80,6 +80,19 @@ io::Json PointingFileJson(const PointingSolution& s, const ImagePoints& points, 
   return camera::PointingModelToJson(m);
 }
 
+io::RunSummary PointingRunSummary(const PointingSolution& s, const camera::CameraModel& input, const std::string& out) {
+  io::RunSummary r;
+  for (const std::string& w : s.warnings) r.Warn("pointing_fit", w);
+  if (s.rejected > 0) {
+    r.Warn("outliers_rejected", std::to_string(s.rejected) + " of " + std::to_string(s.residuals.size()) +
+                                    " observations rejected as outliers (listed under \"rejected\" in " + out + ")");
+  }
+  if (!s.termination.empty()) r.termination = s.termination == "CONVERGENCE" ? "converged" : s.termination;
+  r.AddFigure("residual RMS", s.rms_px, "px", std::to_string(s.used) + " observations used");
+  r.details["summary"] = PointingSummaryJson(s, input);
+  return r;
+}
+
 io::Json PointingSummaryJson(const PointingSolution& s, const camera::CameraModel& input) {
   io::Json sigma = io::Json::object(), value = io::Json::object();
   for (int k : s.estimated_params) {

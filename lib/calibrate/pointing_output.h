@@ -10,6 +10,7 @@
 #include "calibrate/pointing_solve.h"
 #include "camera/camera_model.h"
 #include "io/json_util.h"
+#include "io/run_summary.h"
 
 namespace rk::calibrate {
 
@@ -18,6 +19,10 @@ io::Json PointingFileJson(const PointingSolution& s, const ImagePoints& points, 
                           const std::string& date_utc);
 // The report's "summary" (headline figures: rms, counts, σ in arcsec / mm / ms).
 io::Json PointingSummaryJson(const PointingSolution& s, const camera::CameraModel& input);
+// The run's summary (io/run_summary.h): the solution's warnings (code "pointing_fit": separability and doubtful
+// fits, in words), outliers rejected (naming `out`, where they are listed), Ceres' termination, the RMS residual
+// as headline, and the report's "summary". No rows_by_status: the product is a model, not rows.
+io::RunSummary PointingRunSummary(const PointingSolution& s, const camera::CameraModel& input, const std::string& out);
 // The residual plot as PNG bytes.
 std::string ResidualPlotPng(const PointingSolution& s);
 

@@ -75,6 +75,33 @@ void AppendBeaconTrackRow(io::CsvWriter* out, const BeaconFrameResult& r) {
   w.EndRow();
 }
 
+io::RunSummary BeaconRunResult::Summary(const BeaconTrackOptions& opt) const {
+  const BeaconTrackSummary& s = summary;
+  io::RunSummary out;
+  out.CountRows(RowStatus::kOk, static_cast<std::size_t>(s.ok));
+  out.CountRows(RowStatus::kReacquired, static_cast<std::size_t>(s.reacquired));
+  out.CountRows(RowStatus::kPredicted, static_cast<std::size_t>(s.predicted));
+  out.CountRows(RowStatus::kLost, static_cast<std::size_t>(s.lost));
+  out.CountRows(RowStatus::kInvalid, static_cast<std::size_t>(s.invalid));
+  if (frames > 0) {
+    out.AddFigure("tracked frames", static_cast<double>(s.ok) / static_cast<double>(frames), "fraction",
+                  std::to_string(s.ok) + " of " + std::to_string(frames) + " frames");
+  }
+  io::Json& d = out.details;
+  d["video"] = {{"width_px", width_px}, {"height_px", height_px}, {"bit_depth", bit_depth}};
+  d["frames"] = frames;
+  d["status_counts"] = {{"ok", s.ok}, {"reacquired", s.reacquired}, {"lost", s.lost}, {"predicted", s.predicted},
+                        {"invalid", s.invalid}};
+  d["acquisitions"] = s.acquisitions;
+  d["full_frame_searches"] = s.full_frame_searches;
+  d["mean_ncc"] = s.mean_ncc();
+  d["summary"] = SummaryJson();
+  d["restarts"] = s.restarts;
+  d["centroid_estimator"] = {{"per_lamp", s.per_lamp}, {"cluster", s.ok + s.reacquired - s.per_lamp}};
+  d["options"] = opt.ToJson();
+  return out;
+}
+
 nlohmann::json BeaconRunResult::SummaryJson() const {
   return {{"frames", frames}, {"mean_ncc", summary.mean_ncc()}, {"restarts", summary.restarts}};
 }

@@ -16,6 +16,7 @@
 #include "extract/frame_loop.h"
 #include "formats/frame_times.h"
 #include "io/csv.h"
+#include "io/run_summary.h"
 
 namespace rk::extract {
 
@@ -24,6 +25,9 @@ struct BeaconRunResult : VideoRunStats {  // frames, size, bit depth, wall and e
   BeaconTrackSummary summary;
   // The report's "summary" (docs/rk-extract.md "Report"): the headline figures rk-run copies.
   nlohmann::json SummaryJson() const;
+  // The run's summary (io/run_summary.h): rows by status, tracked frames as headline figure, and the report
+  // keys of docs/rk-extract.md "Report" (video, frames, status_counts, acquisitions, ..., options).
+  io::RunSummary Summary(const BeaconTrackOptions& opt) const;
 };
 
 // Runs the tracker over all frames of `videos`. Throws DataError naming the

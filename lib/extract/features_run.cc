@@ -60,6 +60,38 @@ void AppendFeaturePointRows(io::CsvWriter* out, const FeatureFrameResult& r, con
   }
 }
 
+io::RunSummary FeatureRunResult::Summary(const target::FeatureModel& model, const FeatureTrackOptions& opt) const {
+  const FeatureTrackSummary& s = summary;
+  io::RunSummary out;
+  io::Json st = io::Json::object();
+  for (int k = 0; k < 5; ++k) {
+    out.CountRows(static_cast<RowStatus>(k), static_cast<std::size_t>(s.rows_by_status[static_cast<std::size_t>(k)]));
+    st[RowStatusName(static_cast<RowStatus>(k))] = s.rows_by_status[static_cast<std::size_t>(k)];
+  }
+  if (s.ambiguous > 0) {
+    out.Warn("ambiguous", std::to_string(s.ambiguous) +
+                              " frames had an ambiguous identification and got no points "
+                              "(a symmetric marker layout cannot be identified without tracking)");
+  }
+  if (out.TotalRows() > 0) {
+    out.AddFigure("feature points ok",
+                  static_cast<double>(out.Rows(RowStatus::kOk)) / static_cast<double>(out.TotalRows()), "fraction",
+                  std::to_string(out.TotalRows()) + " rows");
+  }
+  io::Json& d = out.details;
+  d["video"] = {{"width_px", width_px}, {"height_px", height_px}, {"bit_depth", bit_depth}};
+  d["frames"] = frames;
+  d["markers"] = model.size();
+  d["status_counts"] = st;
+  d["acquisitions"] = {{"tried", s.acquisitions}, {"ok", s.acquisitions_ok}, {"ambiguous", s.ambiguous}};
+  d["rejected_by_constellation"] = s.rejected;
+  d["frames_with_4_points"] = s.frames_with_4;
+  d["mean_ncc"] = s.mean_ncc;
+  d["summary"] = SummaryJson();
+  d["options"] = opt.ToJson();
+  return out;
+}
+
 nlohmann::json FeatureRunResult::SummaryJson() const {
   return {{"frames", frames}, {"mean_ncc", summary.mean_ncc}, {"frames_with_4_points", summary.frames_with_4}};
 }

@@ -17,6 +17,7 @@
 #include "extract/frame_loop.h"
 #include "formats/frame_times.h"
 #include "io/csv.h"
+#include "io/run_summary.h"
 #include "target/feature_model.h"
 
 namespace rk::extract {
@@ -26,6 +27,9 @@ struct FeatureRunResult : VideoRunStats {  // frames, size, bit depth, wall and 
   FeatureTrackSummary summary;
   // The report's "summary" (docs/rk-extract.md "Report"): the headline figures rk-run copies.
   nlohmann::json SummaryJson() const;
+  // The run's summary (io/run_summary.h): point rows by status, the ambiguous-identification warning, the
+  // fraction of rows ok, and the report keys video, frames, markers, status_counts, ..., summary, options.
+  io::RunSummary Summary(const target::FeatureModel& model, const FeatureTrackOptions& opt) const;
 };
 
 // Throws DataError for a frames file that lists fewer frames than the video has (and for a

@@ -60,6 +60,33 @@ void AppendSilhouettePointRows(io::CsvWriter* out, const SilhouetteFrameRow& r) 
   }
 }
 
+io::RunSummary SilhouetteRunResult::Summary(const SilhouetteOptions& opt) const {
+  using S = SilhouetteStatus;
+  const auto n = [&](S s) { return by_status[static_cast<std::size_t>(s)]; };
+  io::RunSummary out;
+  const std::int64_t bad = frames - n(S::kOk);
+  if (bad > 0) {
+    out.Warn("frames_without_points",
+             std::to_string(bad) + " of " + std::to_string(frames) + " frames without points (not_found " +
+                 std::to_string(n(S::kNotFound)) + ", touches_border " + std::to_string(n(S::kTouchesBorder)) +
+                 ", too_small " + std::to_string(n(S::kTooSmall)) + ", bad_fit " + std::to_string(n(S::kBadFit)) +
+                 ")");
+  }
+  if (frames > 0) {
+    out.AddFigure("frames with points", static_cast<double>(n(S::kOk)) / static_cast<double>(frames), "fraction",
+                  std::to_string(n(S::kOk)) + " of " + std::to_string(frames) + " frames");
+  }
+  io::Json counts = io::Json::object();
+  for (int s = 0; s < 5; ++s) counts[SilhouetteStatusName(static_cast<S>(s))] = by_status[static_cast<std::size_t>(s)];
+  io::Json& d = out.details;
+  d["video"] = {{"width_px", width_px}, {"height_px", height_px}, {"bit_depth", bit_depth}};
+  d["frames"] = frames;
+  d["status_counts"] = counts;
+  d["summary"] = SummaryJson();
+  d["options"] = opt.ToJson();
+  return out;
+}
+
 nlohmann::json SilhouetteRunResult::SummaryJson() const {
   return {{"frames", frames}, {"frames_with_points", by_status[static_cast<std::size_t>(SilhouetteStatus::kOk)]}};
 }

@@ -18,6 +18,7 @@
 #include "formats/frame_times.h"
 #include "extract/silhouette.h"
 #include "io/csv.h"
+#include "io/run_summary.h"
 
 namespace rk::extract {
 
@@ -32,6 +33,10 @@ struct SilhouetteRunResult : VideoRunStats {  // frames, size, bit depth, wall a
   std::array<std::int64_t, 5> by_status{};  // indexed by SilhouetteStatus
   // The report's "summary" (docs/rk-extract.md "Report"): the headline figures rk-run copies.
   nlohmann::json SummaryJson() const;
+  // The run's summary (io/run_summary.h): the frames-without-points warning by cause, the fraction of frames
+  // with points, and the report keys video, frames, status_counts (by SilhouetteStatus), summary, options.
+  // No rows_by_status: a frame's outcome here is a SilhouetteStatus, not a SPEC.md §2 row status.
+  io::RunSummary Summary(const SilhouetteOptions& opt) const;
 };
 
 // Throws DataError for a truncated video (fewer frames than the frames file lists) or a frames file with

@@ -21,6 +21,7 @@
 #include "io/csv.h"
 #include "io/options.h"
 #include "io/row_status.h"
+#include "io/run_summary.h"
 
 namespace rk::intersect {
 
@@ -84,6 +85,9 @@ struct IntersectResult {
   io::Json SummaryJson() const;
   // Report body: counts, per-station figures, median correlations, summary.
   io::Json ToJson() const;
+  // The run's summary (io/run_summary.h): rows by status, the warning for rows with fewer than two lines of
+  // sight, the median 3-D 1σ as headline, ToJson as details.
+  io::RunSummary Summary() const;
 };
 
 // Output times: `at` when not empty, else the rate grid over the stations' span, else the union of rows.

@@ -113,6 +113,24 @@ io::Json IntersectResult::SummaryJson() const {
           {"median_rms_residual_arcsec", NumberOrNull(internal::UpperMedianOrNaN(rms))}};
 }
 
+io::RunSummary IntersectResult::Summary() const {
+  io::RunSummary out;
+  for (const TrajectoryRow& tr : rows) out.CountRows(tr.status);
+  if (rows_lost > 0) {
+    out.Warn("rows_lost", std::to_string(rows_lost) + " of " + std::to_string(rows.size()) +
+                              " rows have fewer than two lines of sight (status lost)");
+  }
+  std::vector<double> sigma;
+  for (const TrajectoryRow& tr : rows)
+    if (tr.status == RowStatus::kOk) sigma.push_back(std::sqrt(tr.result.solution.P.trace()));
+  if (!sigma.empty()) {
+    out.AddFigure("median 3-D 1σ", internal::UpperMedianOrNaN(sigma), "m",
+                  std::to_string(rows_ok) + " of " + std::to_string(rows.size()) + " rows");
+  }
+  out.details = ToJson();
+  return out;
+}
+
 io::Json IntersectResult::ToJson() const {
   io::Json j;
   j["counts"] = {{"rows", rows.size()}, {"ok", rows_ok}, {"lost", rows_lost}, {"invalid", rows_invalid},

@@ -15,6 +15,7 @@
 
 #include "io/error.h"
 #include "io/file_util.h"
+#include "io/row_status.h"
 #include "io/run_record.h"
 #include "io/version.h"
 
@@ -191,6 +192,82 @@ void WriteReport(const std::string& path, io::Json report) {
   report["status"] = ok ? "ok" : "failed";
   LastReport() = report;
   io::WriteJson(path, report);
+}
+
+namespace {
+
+// Every input of the report with bad rows skipped (--bad-rows skip), as a typed warning.
+void AddSkippedRowWarnings(const io::Json& report, io::Json* warnings) {
+  if (!report.contains("inputs") || !report["inputs"].is_object()) return;
+  for (const auto& [role, in] : report["inputs"].items()) {
+    if (!in.is_object() || !in.contains("rows_skipped") || !in["rows_skipped"].is_number_unsigned()) continue;
+    const auto n = in["rows_skipped"].get<std::uint64_t>();
+    if (n == 0) continue;
+    warnings->push_back({{"code", "rows_skipped"},
+                         {"message", std::to_string(n) + " bad row(s) of " + in.value("path", role) +
+                                         " skipped (--bad-rows skip)"}});
+  }
+}
+
+io::Json FigureValue(double v) { return std::isfinite(v) ? io::Json(v) : io::Json(nullptr); }
+
+}  // namespace
+
+void WriteReport(const std::string& path, io::Json report, const io::RunSummary& summary) {
+  report.update(summary.details);
+  if (summary.rows_by_status) {
+    io::Json rows = io::Json::object();
+    for (std::size_t s = 0; s < summary.rows_by_status->size(); ++s)
+      rows[RowStatusName(static_cast<RowStatus>(s))] = (*summary.rows_by_status)[s];
+    report["rows_by_status"] = rows;
+  } else {
+    report["rows_by_status"] = nullptr;
+  }
+  io::Json warnings = io::Json::array();
+  for (const io::Warning& w : summary.warnings) warnings.push_back({{"code", w.code}, {"message", w.message}});
+  AddSkippedRowWarnings(report, &warnings);
+  report["warnings"] = warnings;
+  report["termination"] = summary.termination;
+  io::Json headline = io::Json::object();
+  for (const io::Figure& f : summary.headline) {
+    io::Json fig = {{"value", FigureValue(f.value)}, {"unit", f.unit}};
+    if (!f.note.empty()) fig["note"] = f.note;
+    headline[f.name] = fig;
+  }
+  report["headline"] = headline;
+  WriteReport(path, std::move(report));
+}
+
+void WarnAll(const std::string& tool, const CommonOptions& common, const io::RunSummary& summary) {
+  for (const io::Warning& w : summary.warnings)
+    if (w.on_stderr) Warn(tool, common, w.message);
+}
+
+void CheckStreams(const CommonOptions& common, const std::vector<NamedPath>& inputs,
+                  const std::vector<NamedPath>& outputs) {
+  std::vector<std::string> in_paths;
+  int n_stdin = 0;
+  for (const NamedPath& in : inputs) {
+    if (in.path.empty()) continue;
+    in_paths.push_back(in.path);
+    n_stdin += io::IsStdStream(in.path) ? 1 : 0;
+  }
+  if (n_stdin > 1) throw UsageError("only one input can be read from stdin ('-')");
+  std::vector<NamedPath> outs;
+  if (!common.report_path.empty()) outs.push_back({"--report", common.report_path});
+  for (const NamedPath& o : outputs)
+    if (!o.path.empty()) outs.push_back(o);
+  for (const NamedPath& o : outs) io::CheckOutputNotInput(o.path, in_paths);
+  for (std::size_t i = 0; i < outs.size(); ++i) {
+    for (std::size_t j = i + 1; j < outs.size(); ++j) {
+      if (i == 0 && !common.report_path.empty() && outs[j].may_be_report && outs[j].path == outs[i].path) continue;
+      const bool same_stream = io::IsStdStream(outs[i].path) && io::IsStdStream(outs[j].path);
+      if (same_stream) throw UsageError(outs[i].flag + " and " + outs[j].flag + " cannot both be stdout");
+      if (outs[i].path == outs[j].path) {
+        throw UsageError(outs[i].flag + " and " + outs[j].flag + " name the same file " + outs[i].path);
+      }
+    }
+  }
 }
 
 bool ShowProgress(const CommonOptions& common) { return !common.quiet && ::isatty(STDERR_FILENO); }

@@ -15,6 +15,7 @@
 #include "io/json_util.h"
 #include "io/options.h"
 #include "io/progress.h"
+#include "io/run_summary.h"
 
 namespace rk::cli {
 
@@ -113,6 +114,28 @@ void AddReportInput(io::Json* report, const std::string& role, const std::string
 // is absent or 0, else "failed") and "exit_code" (0 when absent). Run keeps a copy: if the run
 // fails afterwards, the report is rewritten with the failure.
 void WriteReport(const std::string& path, io::Json report);
+// The same with the run's summary (io/run_summary.h), the one place a summary becomes report keys: its
+// details merged as they are, then "rows_by_status" ({ok, reacquired, predicted, lost, invalid}, or null for a
+// tool whose product has no row status), "warnings" ([{"code", "message"}]: the summary's, then one
+// "rows_skipped" per input with bad rows skipped), "termination" and "headline" ({name: {"value", "unit"[,
+// "note"]}}).
+void WriteReport(const std::string& path, io::Json report, const io::RunSummary& summary);
+// Prints the summary's warnings meant for stderr (Warn, in order) unless quiet.
+void WarnAll(const std::string& tool, const CommonOptions& common, const io::RunSummary& summary);
+
+// A path on the command line and the flag that named it ("-o", "--errors", "--at").
+struct NamedPath {
+  std::string flag;
+  std::string path;  // "" = not given
+  // An output that is the report itself (rk-analyze's -o JSON): --report may name the same file or stream.
+  bool may_be_report = false;
+};
+// The one check of a tool's files before anything is read (SPEC.md §2): at most one input is stdin ('-'); no
+// output (the given `outputs`, and --report) is an input; no two outputs name the same file; no two are stdout.
+// Throws UsageError: "only one input can be read from stdin ('-')", "A and B name the same file PATH",
+// "A and B cannot both be stdout" (A, B the flags, --report first).
+void CheckStreams(const CommonOptions& common, const std::vector<NamedPath>& inputs,
+                  const std::vector<NamedPath>& outputs);
 
 // True when stderr is a terminal (progress display) and not quiet.
 bool ShowProgress(const CommonOptions& common);

@@ -72,6 +72,57 @@ io::Json LocateResult::SummaryJson() const {
           {"rows_with_range", rows_with_range}};
 }
 
+namespace {
+
+io::Json LocateCounts(const LocateResult& r, std::size_t turret_empty_samples) {
+  io::Json status = io::Json::object();
+  for (int s = 0; s < 5; ++s) status[RowStatusName(static_cast<RowStatus>(s))] = r.rows_by_status[s];
+  io::Json range_status = io::Json::object();
+  for (int s = 0; s < 5; ++s) range_status[RangeStatusName(static_cast<RangeStatus>(s))] = r.rows_by_range_status[s];
+  return {{"rows", r.rows.size()},
+          {"status", status},
+          {"range_status", range_status},
+          {"rows_with_line_of_sight", r.rows_with_los},
+          {"rows_with_range", r.rows_with_range},
+          {"rows_turret_not_covered", r.rows_turret_not_covered},
+          {"measured_rows_turret_not_covered", r.measured_rows_turret_not_covered},
+          {"turret_duplicate_times", r.turret_duplicate_times},
+          {"turret_empty_samples", turret_empty_samples},
+          {"range_duplicate_times", r.range_duplicate_times},
+          {"range_device_errors", r.range_device_errors}};
+}
+
+}  // namespace
+
+io::RunSummary LocateSummary(const LocateResult& r, const LocateOptions& options, const LocateSources& sources) {
+  io::RunSummary s;
+  for (int k = 0; k < 5; ++k) s.CountRows(static_cast<RowStatus>(k), r.rows_by_status[k]);
+  if (r.rows_turret_not_covered > 0) {
+    s.Warn("turret_not_covered", std::to_string(r.rows_turret_not_covered) + " of " + std::to_string(r.rows.size()) +
+                                     " frame times are not covered by " + sources.turret + " (" +
+                                     std::to_string(r.measured_rows_turret_not_covered) +
+                                     " measured rows written as invalid)");
+  }
+  if (!sources.range.empty() && r.rows_with_los > 0 && r.rows_with_range == 0) {
+    s.Warn("no_range", "no frame got a range from " + sources.range + " (check its time span and status)");
+  }
+  const double coverage = r.RangeCoverage();
+  if (std::isfinite(coverage)) {
+    s.AddFigure("range coverage", coverage, "fraction", "rows with a range");
+  }
+  io::Json& d = s.details;
+  d["options"] = options.ToJson();
+  if (options.station) {
+    d["station"] = {{"lat_deg", options.station->lat_deg}, {"lon_deg", options.station->lon_deg},
+                    {"h_m", options.station->h_m}};
+  }
+  if (r.time_offset_s != 0.0) d["time_offset_s"] = r.time_offset_s;
+  d["counts"] = LocateCounts(r, sources.turret_empty_samples);
+  d["range_coverage"] = std::isfinite(coverage) ? io::Json(coverage) : io::Json(nullptr);
+  d["summary"] = r.SummaryJson();
+  return s;
+}
+
 static RangeStatus FromInterpStatus(track::InterpStatus s) {
   switch (s) {
     case track::InterpStatus::kOk:

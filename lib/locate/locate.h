@@ -42,6 +42,7 @@
 #include "formats/beacon_track.h"
 #include "formats/range_log.h"
 #include "formats/turret_log.h"
+#include "io/run_summary.h"
 #include "locate/locate_sigma.h"
 #include "track/interp.h"
 
@@ -116,6 +117,18 @@ struct LocateResult {
   // The report's "summary" (docs/rk-locate.md "Report"): the headline figures rk-run copies.
   io::Json SummaryJson() const;
 };
+
+// Where a run's inputs came from, for its summary's warnings and report.
+struct LocateSources {
+  std::string turret;                  // the turret log's path
+  std::string range;                   // the range log's path ("" = none)
+  std::size_t turret_empty_samples = 0;  // turret rows without angles (TurretLog::empty_samples, before Locate)
+};
+
+// The run's summary (io/run_summary.h): rows by status, the warnings rk-locate prints (turret log not
+// covering frame times, no range at all), range coverage as headline figure, and the report keys of
+// docs/rk-locate.md "Report" (options, station, time_offset_s, counts, range_coverage, summary).
+io::RunSummary LocateSummary(const LocateResult& result, const LocateOptions& options, const LocateSources& sources);
 
 // Throws rk::Error: DataError naming the turret log if it covers no frame
 // time at all, or the camera for a malformed calibration.sigma; UsageError if options fail Check().

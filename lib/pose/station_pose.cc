@@ -88,6 +88,55 @@ const char* PoseNoteName(PoseNote note) {
 
 double AttitudeOiResult::MeanChi2PerDof() const { return dof_sum > 0 ? chi2_sum / dof_sum : std::nan(""); }
 
+io::RunSummary AttitudeOiResult::Summary(const std::string& turret_source, bool boresight_fixed,
+                                         std::size_t unusable_point_rows) const {
+  io::RunSummary out;
+  io::Json status = io::Json::object();
+  for (std::size_t s = 0; s < rows_by_status.size(); ++s) {
+    out.CountRows(static_cast<RowStatus>(s), rows_by_status[s]);
+    status[RowStatusName(static_cast<RowStatus>(s))] = rows_by_status[s];
+  }
+  const std::string n = std::to_string(rows.size());
+  if (turret_not_covered > 0 && !boresight_fixed) {
+    out.Warn("turret_not_covered", std::to_string(turret_not_covered) + " of " + n +
+                                       " frame times are not covered by " + turret_source +
+                                       " (rows with enough points written as invalid)");
+  }
+  if (ambiguous > 0) {
+    out.Warn("ambiguous", std::to_string(ambiguous) + " of " + n +
+                              " frames have two poses that fit equally well (column ambiguous; the other is in alt_*)");
+  }
+  const double c2 = MeanChi2PerDof();
+  if (std::isfinite(c2) && c2 > 4.0) {
+    out.Warn("noise_above_sigma", "mean chi-square per degree of freedom is " + std::to_string(c2) +
+                                      ": the pixel noise is larger than --sigma-px / sigma_px says, so the sigma_* "
+                                      "columns are too small");
+  }
+  if (outliers_rejected > 0) {
+    out.Flag("outliers_rejected", std::to_string(outliers_rejected) + " outlier point(s) rejected");
+  }
+  const std::size_t poses = rows_by_status[static_cast<std::size_t>(RowStatus::kOk)];
+  if (!rows.empty()) {
+    out.AddFigure("poses", static_cast<double>(poses) / static_cast<double>(rows.size()), "fraction",
+                  std::to_string(poses) + " of " + n + " frames");
+  }
+  out.details["counts"] = {{"frames", rows.size()},
+                           {"status", status},
+                           {"few_points", few_points},
+                           {"turret_not_covered", turret_not_covered},
+                           {"degenerate", degenerate},
+                           {"behind_camera", behind_camera},
+                           {"reprojection", reprojection},
+                           {"outliers_rejected", outliers_rejected},
+                           {"ambiguous", ambiguous},
+                           {"second_starts", second_starts},
+                           {"turret_duplicate_times", turret_duplicate_times},
+                           {"unusable_point_rows", unusable_point_rows}};
+  out.details["mean_chi2_per_dof"] = std::isfinite(c2) ? io::Json(c2) : io::Json(nullptr);
+  out.details["summary"] = SummaryJson();
+  return out;
+}
+
 nlohmann::json AttitudeOiResult::SummaryJson() const {
   const double c2 = MeanChi2PerDof();
   return {{"frames", rows.size()},

@@ -5,7 +5,7 @@
 // Per frame (one output row per frame of the points file, never dropped):
 //   1. Usable points (x, y given; status ok/reacquired), at least min_points (≥ 4) of them,
 //      else status `lost` (note few_points).
-//   2. Boresight (A, E) at the frame time (locate/boresight.h); none → `invalid` (note turret).
+//   2. Boresight (A, E) at the frame time (track/boresight.h); none → `invalid` (note turret).
 //   3. Pixels → undistorted normalised rays m = (x, y, 1) (camera::CameraModel::NormalisedRay,
 //      the OpenCV distortion inverted exactly), pose R_cam_body, t_cam by pose::PnpSolver
 //      (weak-perspective or homography start → orthogonal iteration → LM polish of the
@@ -45,6 +45,7 @@
 #include "geo/line_of_sight.h"
 #include "io/csv.h"
 #include "io/row_status.h"
+#include "io/run_summary.h"
 #include "track/boresight.h"
 #include "pose/image_points.h"
 #include "geo/pointing.h"
@@ -111,6 +112,10 @@ struct AttitudeOiResult {
   double MeanChi2PerDof() const;
   // The report's "summary" (docs/rk-attitude.md "Report"): the headline figures rk-run copies.
   nlohmann::json SummaryJson() const;
+  // The run's summary (io/run_summary.h): rows by status, the warnings rk-attitude oi prints (turret log not
+  // covering frame times, unless the boresight is fixed; ambiguous poses; chi-square per dof above 4), outliers
+  // rejected (report only), poses as headline, and the report keys counts, mean_chi2_per_dof and summary.
+  io::RunSummary Summary(const std::string& turret_source, bool boresight_fixed, std::size_t unusable_point_rows) const;
 };
 
 // Throws DataError naming file:line:col for a pixel outside the camera's image, and naming the

@@ -3,6 +3,7 @@
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <cmath>
+#include <cstdio>
 
 #include "geo/angles.h"
 #include "io/csv.h"
@@ -169,6 +170,53 @@ io::Json EstimateJson(const RegistrationInput& input, const BiasVector& x, const
   }
   j["correlation"] = {{"order", names}, {"matrix", corr}};
   return j;
+}
+
+namespace {
+
+// Σ of every member named `key` in `j`, at any depth (the methods keep their counters at different places).
+std::int64_t SumMembers(const io::Json& j, const std::string& key) {
+  std::int64_t n = 0;
+  if (!j.is_object()) return 0;
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    if (it.key() == key && it.value().is_number_integer()) n += it.value().get<std::int64_t>();
+    n += SumMembers(it.value(), key);
+  }
+  return n;
+}
+
+}  // namespace
+
+io::RunSummary RegistrationResult::Summary(const RegistrationInput& input) const {
+  io::RunSummary out;
+  out.rows_by_status.emplace();
+  for (const StepEstimate& s : steps) out.CountRows(s.status);
+  for (int r = 0; r < 2; ++r) {
+    if (input.summary.nav_unfolded_rows[r] > 0) {
+      out.Warn("nav_pitch_folded",
+               "nav of radar '" + input.radars[r] + "': " + std::to_string(input.summary.nav_unfolded_rows[r]) +
+                   " rows had the pitch folded into [-90, 90] (yaw and roll +180); read as the continuous angles");
+    }
+  }
+  const std::int64_t repairs = SumMembers(stats, "covariance_repairs");
+  if (repairs > 0) out.Flag("covariance_repaired", std::to_string(repairs) + " covariance repair(s)");
+  if (stats.contains("termination") && stats["termination"].is_string()) {
+    const std::string t = stats["termination"].get<std::string>();
+    out.termination = t == "CONVERGENCE" ? "converged" : t;
+    if (t != "CONVERGENCE") out.Flag("not_converged", "the batch solve ended with " + t + ", not convergence");
+  }
+  io::Json details = ToJson(input);
+  for (int r = 0; r < 2; ++r) {
+    const io::Json& est = details["estimate"][input.radars[r]];
+    const io::Json& sig = details["sigma"][input.radars[r]];
+    if (!est.contains("range_m") || !est["range_m"].is_number()) continue;
+    const bool has_sigma = sig.is_object() && sig.contains("range_m") && sig["range_m"].is_number();
+    char note[64] = "";
+    if (has_sigma) std::snprintf(note, sizeof note, "1σ %.3g m", sig["range_m"].get<double>());
+    out.AddFigure("radar " + input.radars[r] + " range bias", est["range_m"].get<double>(), "m", note);
+  }
+  out.details = std::move(details);
+  return out;
 }
 
 io::Json RegistrationResult::ToJson(const RegistrationInput& input) const {

@@ -17,6 +17,7 @@
 #include "io/json_util.h"
 #include "io/options.h"
 #include "io/row_status.h"
+#include "io/run_summary.h"
 #include "registration/input.h"
 #include "registration/radar_model.h"
 
@@ -83,6 +84,10 @@ struct RegistrationResult {
   // The report's body (docs/rk-register.md "Report"): radars, input, estimate, sigma, correlation,
   // stats, options, and the "summary" rk-run copies: the final estimate and its 1-sigma per radar.
   io::Json ToJson(const RegistrationInput& input) const;
+  // The run's summary (io/run_summary.h): bias rows by status, the folded-pitch warning per radar's nav,
+  // covariance repairs (report only), the solver's termination where `stats` has one (batch: Ceres' type,
+  // a warning unless it converged), each radar's range bias with its 1σ as headline, ToJson as details.
+  io::RunSummary Summary(const RegistrationInput& input) const;
 };
 
 // Biases CSV of SPEC.md §2.1: t_s + per radar R: R_range_m,R_az_deg,R_el_deg,R_yaw_deg,

@@ -12,6 +12,10 @@ rk_cli_script(rk_locate/rk_locate_stdout REQUIRES locate_data)
 
 rk_cli_script(rk_locate/rk_locate_partial_turret_warns REQUIRES locate_data)
 
+# Issue 28 item 4: the report's uniform keys. The turret warning on stderr and a row skipped under --bad-rows skip
+# are typed warnings {code, message} in the report; rows_by_status counts the rows written; a headline.
+rk_cli_script(rk_locate/rk_locate_report_typed_warnings REQUIRES locate_data)
+
 rk_cli_script(rk_locate/rk_locate_bad_input REQUIRES locate_data)
 
 # End to end on rk-sim's small trial: the truth beacon pixels as a perfect

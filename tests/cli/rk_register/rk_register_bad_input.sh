@@ -34,7 +34,7 @@ $expect 2 "$x" 'linearize' -- rk-register bernoulli --plots "$P" --nav "$N" -o "
 $expect 2 "$x" 'subset-length must be in \[1, 32\]' -- rk-register bernoulli --plots "$P" --nav "$N" -o "$x" -L 0
 $expect 2 "$x" 'p0: give six values' -- rk-register kf --plots "$P" --nav "$N" -o "$x" --p0 1,2,3,4,5
 $expect 2 "$x" 'no plot has this track_id' -- rk-register kf --plots "$P" --nav "$N" -o "$x" --track 9
-$expect 2 "$x" 'both be stdin' -- rk-register kf --plots - --nav - -o "$x"
+$expect 2 "$x" 'only one input can be read from stdin' -- rk-register kf --plots - --nav - -o "$x"
 $expect 2 "$x" 'subcommand' -- rk-register --plots "$P" --nav "$N" -o "$x"
 $expect 4 "$x" 'nothere.csv' -- rk-register bernoulli --plots "$o/nothere.csv" --nav "$N" -o "$x"
 $expect 4 - '' -- rk-register bernoulli --plots "$P" --nav "$N" -o "$o/nodir/x.csv"
