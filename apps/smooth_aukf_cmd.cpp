@@ -92,23 +92,18 @@ int RunAukfCommand(const AukfArgs& a, const CLI::App& sub, const Context& ctx) {
   const filter::AukfResult result = filter::RunAukf(series, opt);
   const io::CsvWriter csv = filter::AukfCsv(series, result, a.out);
 
+  io::RunSummary summary = filter::AukfSummary(series, opt, result);
+  summary.details["options"]["adapt_requested"] = a.adapt;
   io::Json report;
   if (!ctx.common.report_path.empty()) {
     report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     cli::AddReportInput(&report, "input", a.input);
-    const io::Json body = filter::AukfReportJson(series, opt, result);
-    for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
     report["subcommand"] = "aukf";
-    report["options"]["adapt_requested"] = a.adapt;
     report["rows_written"] = csv.rows();
   }
   csv.Write(a.output);
-  if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
-  if (result.skipped_updates > 0) {
-    cli::Warn(ctx.tool, ctx.common,
-              std::to_string(result.skipped_updates) +
-                  " sample rows without any value: no update, status 'predicted'");
-  }
+  if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report, summary);
+  cli::WarnAll(ctx.tool, ctx.common, summary);
   return 0;
 }
 

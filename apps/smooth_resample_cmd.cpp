@@ -9,6 +9,7 @@
 #include "filter/resample.h"
 #include "filter/series.h"
 #include "filter/singer_series.h"
+#include "filter/smoothed_series.h"
 #include "geo/angles.h"
 #include "io/csv.h"
 #include "io/error.h"
@@ -96,58 +97,30 @@ ResampleTargets TargetsOf(const ResampleArgs& args, const filter::Series& series
   return tg;
 }
 
-// t_s, the copied columns of --at, kind, the values, status, reason (and 1-sigma with kalman --sigmas).
+// t_s, the copied columns of --at, kind, the values, status, reason (and 1-sigma with kalman --sigmas):
+// filter::SmoothedSeriesWriter.
 io::CsvWriter ResampleCsv(const filter::Series& series, const ResampleTargets& tg, const filter::ResampleResult& res,
                           const filter::ResampleOptions& opt, bool with_sigmas) {
   const std::size_t nc = series.columns.size();
-  const std::vector<bool> is360 = filter::AngleColumnsIn360(series);
-  std::vector<std::string> header = {"t_s"};
-  for (const auto& p : tg.pass_names) header.push_back(p);
-  header.push_back("kind");
-  for (const auto& c : series.columns) header.push_back(c);
-  header.push_back("status");
-  header.push_back("reason");
-  if (with_sigmas) {
-    for (const auto& c : series.columns) header.push_back(filter::DerivedColumnName(c, 0, true));
-  }
-  io::CsvWriter w(header);
+  filter::SmoothedColumns columns;
+  columns.copied = tg.pass_names;
+  columns.reason = true;
+  columns.sigma_orders = with_sigmas ? 1 : 0;
+  filter::SmoothedSeriesWriter w(series, columns, kResampleDecimals);
   const std::string kind = opt.method == filter::ResampleMethod::kKalman ? "smoothed" : "estimate";
+  std::vector<std::string_view> copied(tg.pass_cols.size());
   for (std::size_t i = 0; i < tg.t_s.size(); ++i) {
-    w.Add(tg.t_s[i], kResampleDecimals);
-    for (int pc : tg.pass_cols) w.Add(tg.at_table.Cell(i, pc));
-    w.Add(kind);
+    for (std::size_t k = 0; k < tg.pass_cols.size(); ++k) copied[k] = tg.at_table.Cell(i, tg.pass_cols[k]);
     for (std::size_t c = 0; c < nc; ++c) {
-      const double v = res.values[c][i];
-      if (!std::isfinite(v)) {
-        w.AddEmpty();
-      } else if (series.is_angle[c]) {
-        const double deg = geo::RadToDeg(v);
-        w.Add(is360[c] ? geo::WrapDeg360(deg) : geo::WrapDeg180(deg), kResampleDecimals);
-      } else {
-        w.Add(v, kResampleDecimals);
-      }
+      w.Set(c, res.values[c][i]);
+      if (with_sigmas) w.SetSigma(c, 0, res.sigmas[c][i]);
     }
-    switch (res.reason[i]) {
-      case filter::ResampleReason::kNone:
-        w.Add("ok");
-        break;
-      case filter::ResampleReason::kGap:
-        w.Add("lost");
-        break;
-      case filter::ResampleReason::kOutside:
-        w.Add("invalid");
-        break;
-    }
-    w.Add(filter::ResampleReasonName(res.reason[i]));
-    if (with_sigmas) {
-      for (std::size_t c = 0; c < nc; ++c) {
-        const double u = series.is_angle[c] ? geo::RadToDeg(1.0) : 1.0;
-        w.Add(res.sigmas[c][i] * u, kResampleDecimals);
-      }
-    }
-    w.EndRow();
+    const char* status = "ok";
+    if (res.reason[i] == filter::ResampleReason::kGap) status = "lost";
+    if (res.reason[i] == filter::ResampleReason::kOutside) status = "invalid";
+    w.Write(tg.t_s[i], kind, status, filter::ResampleReasonName(res.reason[i]), &copied);
   }
-  return w;
+  return std::move(w.csv());
 }
 
 // The input series (status-masked unless --ignore-status) and the number of rows masked; the table (its
@@ -176,19 +149,19 @@ int RunResample(const ResampleArgs& args, const CLI::App& sub, const Context& ct
   const bool with_sigmas = args.sigmas && opt.method == filter::ResampleMethod::kKalman;
   const io::CsvWriter w = ResampleCsv(series, targets, res, opt, with_sigmas);
 
+  const io::RunSummary summary = res.Summary(series, opt);
   io::Json report;
   if (!ctx.common.report_path.empty()) {
     report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     cli::AddReportInput(&report, "input", args.input);
     if (have_at) cli::AddReportInput(&report, "at", args.at);
-    const io::Json body = res.ToJson(series, opt);
-    for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
     report["subcommand"] = "resample";
     report["rows_masked_by_status"] = masked;
     report["options"] = opt.ToJson();
   }
   w.Write(args.output);
-  if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
+  if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report, summary);
+  cli::WarnAll(ctx.tool, ctx.common, summary);
   return 0;
 }
 

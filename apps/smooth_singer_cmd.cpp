@@ -6,6 +6,7 @@
 
 #include "filter/series.h"
 #include "filter/singer_series.h"
+#include "filter/smoothed_series.h"
 #include "geo/angles.h"
 #include "io/csv.h"
 #include "io/error.h"
@@ -39,76 +40,25 @@ filter::SingerSeriesOptions SingerOptionsOf(const SingerArgs& args) {
   return opt;
 }
 
-// t_s, kind, the columns, status, then rates and accelerations, then the 1-sigma columns.
-std::vector<std::string> SingerHeader(const std::vector<std::string>& columns, const SingerArgs& args) {
-  std::vector<std::string> header = {"t_s", "kind"};
-  for (const auto& c : columns) header.push_back(c);
-  header.push_back("status");
-  if (args.derivatives) {
-    for (const auto& c : columns) {
-      header.push_back(filter::DerivedColumnName(c, 1));
-      header.push_back(filter::DerivedColumnName(c, 2));
-    }
-  }
-  if (args.sigmas) {
-    for (const auto& c : columns) {
-      header.push_back(filter::DerivedColumnName(c, 0, true));
-      if (args.derivatives) {
-        header.push_back(filter::DerivedColumnName(c, 1, true));
-        header.push_back(filter::DerivedColumnName(c, 2, true));
-      }
-    }
-  }
-  return header;
-}
-
-// The smoothed (or filtered) series, one row per input row, in column units, written block by block
-// (filter::SingerSmoother) into `out`: neither the estimates nor the text of the whole series are held.
+// The smoothed (or filtered) series, one row per input row (filter::SmoothedSeriesWriter), written block by
+// block (filter::SingerSmoother) into `out`: neither the estimates nor the text of the whole series are held.
 void WriteSingerCsv(const filter::Series& series, const filter::SingerSmoother& smoother, const SingerArgs& args,
                     io::OutputFile* out) {
   const std::size_t nc = series.columns.size();
-  const std::vector<bool> is360 = filter::AngleColumnsIn360(series);
-  io::CsvWriter w(SingerHeader(series.columns, args));
+  filter::SmoothedColumns columns;
+  columns.derivatives = args.derivatives;
+  columns.sigma_orders = args.sigmas ? (args.derivatives ? 3 : 1) : 0;
+  filter::SmoothedSeriesWriter w(series, columns, kDecimals);
   const std::string kind = smoother.summary().smoothed ? "smoothed" : "estimate";
-  std::vector<Eigen::Vector3d> x(nc);
-  std::vector<Eigen::Matrix3d> P(nc);
-  std::vector<bool> have(nc);
-  const auto unit = [&](std::size_t c) { return series.is_angle[c] ? geo::RadToDeg(1.0) : 1.0; };
+  Eigen::Vector3d x;
+  Eigen::Matrix3d P;
   const auto row = [&](const filter::SingerBlock& block, std::size_t r) {
-    w.Add(series.t_s[r], kDecimals).Add(kind);
     for (std::size_t c = 0; c < nc; ++c) {
-      have[c] = block.At(c, r, &x[c], &P[c]);
-      if (!have[c]) {
-        w.AddEmpty();
-      } else if (series.is_angle[c]) {
-        const double deg = geo::RadToDeg(x[c](0));
-        w.Add(is360[c] ? geo::WrapDeg360(deg) : geo::WrapDeg180(deg), kDecimals);
-      } else {
-        w.Add(x[c](0), kDecimals);
-      }
+      if (!block.At(c, r, &x, &P)) continue;
+      w.Set(c, x(0), x(1), x(2));
+      for (int i = 0; i < 3; ++i) w.SetSigma(c, i, std::sqrt(std::max(P(i, i), 0.0)));
     }
-    w.Add(filter::SingerRowStatusName(smoother.RowStatus(r)));
-    if (args.derivatives) {
-      for (std::size_t c = 0; c < nc; ++c) {
-        if (!have[c]) {
-          w.AddEmpty().AddEmpty();
-        } else {
-          w.Add(x[c](1) * unit(c), kDecimals).Add(x[c](2) * unit(c), kDecimals);
-        }
-      }
-    }
-    if (args.sigmas) {
-      for (std::size_t c = 0; c < nc; ++c) {
-        const int k = args.derivatives ? 3 : 1;
-        for (int i = 0; i < k; ++i) {
-          if (!have[c])
-            w.AddEmpty();
-          else
-            w.Add(std::sqrt(std::max(P[c](i, i), 0.0)) * unit(c), kDecimals);
-        }
-      }
-    }
-    w.EndRow();
+    w.Write(series.t_s[r], kind, filter::SingerRowStatusName(smoother.RowStatus(r)));
   };
   smoother.ForEachBlock([&](const filter::SingerBlock& block) {
     for (std::size_t r = block.begin(); r < block.end(); ++r) row(block, r);
@@ -137,12 +87,11 @@ int RunSinger(const SingerArgs& args, const Context& ctx) {
   opt.meas_sigma = filter::ColumnUnitsToInternal(opt.meas_sigma, series, "--meas-sigma");
   const filter::SingerSmoother smoother(series, opt);
 
+  const io::RunSummary summary = smoother.summary().Summary(series, opt.maneuver_time_s);
   io::Json report;
   if (!ctx.common.report_path.empty()) {
     report = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
     cli::AddReportInput(&report, "input", args.input);
-    const io::Json body = smoother.summary().ToJson(series, opt.maneuver_time_s);
-    for (auto it = body.begin(); it != body.end(); ++it) report[it.key()] = it.value();
     report["subcommand"] = "singer";
     report["rows_masked_by_status"] = masked;
     report["options"] = opt.ToJson();
@@ -150,7 +99,8 @@ int RunSinger(const SingerArgs& args, const Context& ctx) {
   io::OutputFile out(args.output);
   WriteSingerCsv(series, smoother, args, &out);
   out.Commit();
-  if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report);
+  if (!ctx.common.report_path.empty()) cli::WriteReport(ctx.common.report_path, report, summary);
+  cli::WarnAll(ctx.tool, ctx.common, summary);
   return 0;
 }
 

@@ -4,66 +4,33 @@
 #include <vector>
 
 #include "filter/aukf_series.h"
-#include "filter/singer_series.h"  // sigma column names and angle range shared by the rk-smooth subcommands
-#include "geo/angles.h"
+#include "filter/smoothed_series.h"
 
 namespace rk::filter {
 
 io::CsvWriter AukfCsv(const Series& series, const AukfResult& result, const AukfOutputOptions& out) {
   const int m = result.m;
-  std::vector<std::string> header = {"t_s", "kind"};
-  for (const auto& c : series.columns) header.push_back(c);
-  header.push_back("status");
-  if (out.derivatives) {
-    for (const auto& c : series.columns) {
-      header.push_back(DerivedColumnName(c, 1));
-      header.push_back(DerivedColumnName(c, 2));
-    }
-  }
-  if (out.sigmas) {
-    for (const auto& c : series.columns) header.push_back(DerivedColumnName(c, 0, true));
-  }
-  // Output range of each angle column, shared with `singer` (AngleColumnIs360): [0, 360) for
-  // azimuth/yaw-like names or when some input value exceeds 180°, else (−180, 180].
-  const std::vector<bool> wrap360 = AngleColumnsIn360(series);
-  io::CsvWriter w(header);
-  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  SmoothedColumns columns;
+  columns.derivatives = out.derivatives;
+  columns.sigma_orders = out.sigmas ? 1 : 0;
+  SmoothedSeriesWriter w(series, columns, out.decimals);
   // Empty fields: a column before its first value; its 1σ in the forward pass before its noise is known.
   auto write_row = [&](std::size_t j, const char* kind, const Eigen::MatrixXd& X, const Eigen::MatrixXd& SD,
                        bool forward) {
     const Eigen::Index jc = static_cast<Eigen::Index>(j);
-    w.Add(result.t_s[j], out.decimals).Add(kind);
     for (int c = 0; c < m; ++c) {
-      double v = X(3 * c, jc);
-      if (series.is_angle[static_cast<std::size_t>(c)]) {
-        v = geo::RadToDeg(v);
-        v = wrap360[static_cast<std::size_t>(c)] ? geo::WrapDeg360(v) : geo::WrapDeg180(v);
-      }
-      w.Add(result.HasValue(j, c) ? v : kNaN, out.decimals);
+      const std::size_t k = static_cast<std::size_t>(c);
+      if (result.HasValue(j, c)) w.Set(k, X(3 * c, jc), X(3 * c + 1, jc), X(3 * c + 2, jc));
+      if (forward ? result.HasSigma(j, c) : result.HasValue(j, c)) w.SetSigma(k, 0, SD(3 * c, jc));
     }
-    w.Add(result.status[j] == AukfStatus::kOk ? "ok" : "predicted");
-    if (out.derivatives) {
-      for (int c = 0; c < m; ++c) {
-        const double f = series.is_angle[static_cast<std::size_t>(c)] ? geo::RadToDeg(1.0) : 1.0;
-        const bool have = result.HasValue(j, c);
-        w.Add(have ? f * X(3 * c + 1, jc) : kNaN, out.decimals).Add(have ? f * X(3 * c + 2, jc) : kNaN, out.decimals);
-      }
-    }
-    if (out.sigmas) {
-      for (int c = 0; c < m; ++c) {
-        const double f = series.is_angle[static_cast<std::size_t>(c)] ? geo::RadToDeg(1.0) : 1.0;
-        const bool have = forward ? result.HasSigma(j, c) : result.HasValue(j, c);
-        w.Add(have ? f * SD(3 * c, jc) : kNaN, out.decimals);
-      }
-    }
-    w.EndRow();
+    w.Write(result.t_s[j], kind, result.status[j] == AukfStatus::kOk ? "ok" : "predicted");
   };
   const bool smoothed = result.x_smooth.cols() == static_cast<Eigen::Index>(result.t_s.size());
   for (std::size_t j = 0; j < result.t_s.size(); ++j) {
     write_row(j, result.is_mid[j] ? "prediction" : "estimate", result.x_filter, result.sd_filter, true);
     if (smoothed) write_row(j, "smoothed", result.x_smooth, result.sd_smooth, false);
   }
-  return w;
+  return std::move(w.csv());
 }
 
 io::Json AukfReportJson(const Series& series, const AukfOptions& options, const AukfResult& result) {
@@ -153,6 +120,34 @@ io::Json AukfReportJson(const Series& series, const AukfOptions& options, const 
       "SI and radians; state order [p, p', p''] per column in --columns order; final_Q is the process noise of "
       "one median interval interval_s";
   return j;
+}
+
+}  // namespace rk::filter
+
+namespace rk::filter {
+
+io::RunSummary AukfSummary(const Series& series, const AukfOptions& options, const AukfResult& result) {
+  io::RunSummary s;
+  const bool smoothed = result.x_smooth.cols() == static_cast<Eigen::Index>(result.t_s.size());
+  std::size_t samples = 0, updated = 0;
+  for (std::size_t j = 0; j < result.t_s.size(); ++j) {
+    const RowStatus st = result.status[j] == AukfStatus::kOk ? RowStatus::kOk : RowStatus::kPredicted;
+    s.CountRows(st, smoothed ? 2 : 1);
+    if (!result.is_mid[j]) {
+      ++samples;
+      if (result.status[j] == AukfStatus::kOk) ++updated;
+    }
+  }
+  if (result.skipped_updates > 0) {
+    s.Warn("no_update_rows", std::to_string(result.skipped_updates) +
+                                 " sample rows without any value: no update, status 'predicted'");
+  }
+  if (samples > 0) {
+    s.AddFigure("sample rows updated", static_cast<double>(updated) / static_cast<double>(samples), "fraction",
+                std::to_string(updated) + " of " + std::to_string(samples));
+  }
+  s.details = AukfReportJson(series, options, result);
+  return s;
 }
 
 }  // namespace rk::filter

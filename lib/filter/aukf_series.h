@@ -69,6 +69,7 @@
 #include "io/csv.h"
 #include "io/json_util.h"
 #include "io/options.h"
+#include "io/run_summary.h"
 
 namespace rk::filter {
 
@@ -204,5 +205,8 @@ io::CsvWriter AukfCsv(const Series& series, const AukfResult& result, const Aukf
 
 // Options, counters, final Q and R (SI/radians) and NIS for the JSON report.
 io::Json AukfReportJson(const Series& series, const AukfOptions& options, const AukfResult& result);
+// The run's summary (io/run_summary.h): the written rows by status (ok / predicted), the warning for sample rows
+// without a value (on stderr), the share of sample rows updated as headline, AukfReportJson as details.
+io::RunSummary AukfSummary(const Series& series, const AukfOptions& options, const AukfResult& result);
 
 }  // namespace rk::filter

@@ -9,6 +9,7 @@
 #include "geo/angles.h"
 #include "io/error.h"
 #include "io/json_util.h"
+#include "io/run_summary.h"
 #include "numeric/robust_stats.h"
 #include "track/interp.h"
 
@@ -260,6 +261,28 @@ nlohmann::json ResampleResult::ToJson(const Series& series, const ResampleOption
     j["summary"]["nis_mean"] = singer.SummaryJson(series)["nis_mean"];
   }
   return j;
+}
+
+}  // namespace rk::filter
+
+namespace rk::filter {
+
+io::RunSummary ResampleResult::Summary(const Series& series, const ResampleOptions& options) const {
+  io::RunSummary s;
+  s.CountRows(RowStatus::kOk, rows_ok);
+  s.CountRows(RowStatus::kLost, rows_gap);
+  s.CountRows(RowStatus::kInvalid, rows_outside);
+  if (rows_gap + rows_outside > 0) {
+    s.Flag("rows_without_value", std::to_string(rows_gap + rows_outside) + " of " + std::to_string(rows) +
+                                     " target times have no value (" + std::to_string(rows_gap) + " in a gap, " +
+                                     std::to_string(rows_outside) + " outside the input)");
+  }
+  if (rows > 0) {
+    s.AddFigure("rows ok", static_cast<double>(rows_ok) / static_cast<double>(rows), "fraction",
+                std::to_string(rows_ok) + " of " + std::to_string(rows));
+  }
+  s.details = ToJson(series, options);
+  return s;
 }
 
 }  // namespace rk::filter

@@ -68,6 +68,9 @@ struct ResampleResult {
   // margin_s, median_interval_s, input_rows, the row counts, with kalman maneuver_time_s and columns, and
   // the "summary" rk-run copies: {rows_ok, rows_gap, rows_outside} (+ nis_mean per column with kalman).
   nlohmann::json ToJson(const Series& series, const ResampleOptions& options) const;
+  // The run's summary (io/run_summary.h): rows ok / lost (gap) / invalid (outside), a report-only warning
+  // for target times without a value, the share ok as headline, ToJson as details.
+  io::RunSummary Summary(const Series& series, const ResampleOptions& options) const;
 };
 
 // target_t_s must be non-decreasing and finite (RK_CHECK). Throws UsageError for bad options.

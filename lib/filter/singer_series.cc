@@ -10,6 +10,7 @@
 #include "geo/angles.h"
 #include "io/error.h"
 #include "io/json_util.h"
+#include "io/run_summary.h"
 #include "numeric/robust_stats.h"
 #include "track/singer.h"
 
@@ -788,6 +789,27 @@ nlohmann::json SingerSeriesSummary::ToJson(const Series& series, double maneuver
   j["columns"] = ColumnsJson(series, true);
   j["summary"] = SummaryJson(series);
   return j;
+}
+
+}  // namespace rk::filter
+
+namespace rk::filter {
+
+io::RunSummary SingerSeriesSummary::Summary(const Series& series, double maneuver_time_s) const {
+  io::RunSummary s;
+  s.CountRows(RowStatus::kOk, rows_ok);
+  s.CountRows(RowStatus::kPredicted, rows_predicted);
+  s.CountRows(RowStatus::kLost, rows_lost);
+  if (rows_lost > 0) {
+    s.Flag("rows_lost", std::to_string(rows_lost) + " of " + std::to_string(rows) +
+                            " rows before any column's first value have no estimate (status lost)");
+  }
+  if (rows > 0) {
+    s.AddFigure("rows ok", static_cast<double>(rows_ok) / static_cast<double>(rows), "fraction",
+                std::to_string(rows_ok) + " of " + std::to_string(rows));
+  }
+  s.details = ToJson(series, maneuver_time_s);
+  return s;
 }
 
 }  // namespace rk::filter

@@ -47,6 +47,10 @@
 #include "io/options.h"
 #include "track/singer.h"
 
+namespace rk::io {
+struct RunSummary;
+}
+
 namespace rk::filter {
 
 // Order k of the differences used to estimate σ_z.
@@ -122,6 +126,9 @@ struct SingerSeriesSummary {
   // rk-smooth singer's report body: smoothed, maneuver_time_s, rows, rows_ok, rows_predicted, rows_lost,
   // columns (with counts) and summary.
   nlohmann::json ToJson(const Series& series, double maneuver_time_s) const;
+  // The run's summary (io/run_summary.h): rows by status, a report-only warning for lost rows, the share of
+  // rows ok as headline, ToJson as details.
+  io::RunSummary Summary(const Series& series, double maneuver_time_s) const;
 };
 
 // A whole run kept in memory: x and P predicted, filtered and smoothed of every row and column, 288 bytes a
