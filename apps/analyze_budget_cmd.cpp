@@ -144,20 +144,11 @@ Command AddBudgetCommand(CLI::App& parent) {
             out["subcommand"] = "budget";
             out["solver"] = attitude::CylinderMethodName(solve.method);
             out.update(analysis::BudgetResultToJson(*model, sources, opt, r));
-            if (r.failed > 0) {
-              cli::Warn(ctx.tool, ctx.common,
-                        std::to_string(r.failed) + " of " + std::to_string(r.samples) +
-                            " Monte Carlo draws had no solution and were left out");
-            }
-            if (!r.outputs.empty() && !std::isfinite(r.outputs[0].sigma_jacobian)) {
-              cli::Warn(
-                  ctx.tool, ctx.common,
-                  "the Jacobian is singular at the nominal point (side-on view: a double root); only Monte "
-                  "Carlo sigmas are given");
-            }
+            const io::RunSummary summary = analysis::BudgetSummary(*model, r);
+            cli::WarnAll(ctx.tool, ctx.common, summary);
             io::WriteJson(a->out_path, out);
             if (!ctx.common.report_path.empty() && ctx.common.report_path != a->out_path)
-              cli::WriteReport(ctx.common.report_path, out);
+              cli::WriteReport(ctx.common.report_path, out, summary);
             if (a->table) {
               const std::string text = analysis::FormatBudgetTable(*model, sources, r);
               if (io::IsStdStream(a->out_path)) {

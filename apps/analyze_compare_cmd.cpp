@@ -73,21 +73,13 @@ int RunCompare(const CompareArgs& a, const Context& ctx) {
   const io::CsvTable estimate = io::CsvTable::Read(a.est_path, read);
   const io::CsvTable reference = io::CsvTable::Read(a.ref_path, read);
   const analysis::CompareResult result = analysis::Compare(estimate, reference, opt);
-  for (const auto& cc : result.columns) {
-    if (!cc.stats) {
-      cli::Warn(ctx.tool, ctx.common,
-                "column " + cc.column + ": no comparable row (estimate empty " +
-                    std::to_string(cc.skipped_estimate_empty) + ", reference outside " +
-                    std::to_string(cc.skipped_reference_outside) + ", reference gap " +
-                    std::to_string(cc.skipped_reference_gap) + ", cut by --after/--before " +
-                    std::to_string(cc.skipped_time_window) + "); statistics are null");
-    }
-  }
+  const io::RunSummary summary = analysis::CompareSummary(result);
+  cli::WarnAll(ctx.tool, ctx.common, summary);
   const io::Json report = CompareReport(a, ctx, opt, result);
   if (!a.errors_path.empty()) analysis::ErrorsCsv(result).Write(a.errors_path);
   io::WriteJson(a.out_path, report);
   if (!ctx.common.report_path.empty() && ctx.common.report_path != a.out_path) {
-    cli::WriteReport(ctx.common.report_path, report);
+    cli::WriteReport(ctx.common.report_path, report, summary);
   }
   if (a.table) {
     const std::string text = analysis::FormatTable(result);

@@ -395,3 +395,25 @@ std::string FormatBudgetTable(const BudgetModel& model, const std::vector<Budget
 }
 
 }  // namespace rk::analysis
+
+namespace rk::analysis {
+
+io::RunSummary BudgetSummary(const BudgetModel& model, const BudgetResult& r) {
+  io::RunSummary s;
+  if (r.failed > 0) {
+    s.Warn("draws_without_solution", std::to_string(r.failed) + " of " + std::to_string(r.samples) +
+                                         " Monte Carlo draws had no solution and were left out");
+  }
+  if (!r.outputs.empty() && !std::isfinite(r.outputs[0].sigma_jacobian)) {
+    s.Warn("singular_jacobian",
+           "the Jacobian is singular at the nominal point (side-on view: a double root); only Monte "
+           "Carlo sigmas are given");
+  }
+  for (std::size_t k = 0; k < r.outputs.size() && k < model.outputs().size(); ++k) {
+    const BudgetQuantity& q = model.outputs()[k];
+    s.AddFigure("sigma " + q.name, BudgetToFile(q.unit, r.outputs[k].sigma_jacobian), BudgetUnitName(q.unit));
+  }
+  return s;
+}
+
+}  // namespace rk::analysis

@@ -25,6 +25,7 @@
 
 #include "io/json_util.h"
 #include "io/options.h"
+#include "io/run_summary.h"
 
 namespace rk::analysis {
 
@@ -113,6 +114,10 @@ struct BudgetResult {
 // Throws ProcessingError if the nominal computation fails.
 BudgetResult RunBudget(const BudgetModel& model, const std::vector<BudgetSource>& sources,
                        const BudgetOptions& options);
+// The run's summary (io/run_summary.h): warnings for Monte Carlo draws without a solution and a singular
+// Jacobian (on stderr), each output's Jacobian 1σ as headline (file units). `details` is left empty: the
+// report is the budget document.
+io::RunSummary BudgetSummary(const BudgetModel& model, const BudgetResult& result);
 
 // Report document (file units: deg, arcmin for angles, px, m) and a fixed-width table.
 io::Json BudgetResultToJson(const BudgetModel& model, const std::vector<BudgetSource>& sources,

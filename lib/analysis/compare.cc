@@ -221,3 +221,23 @@ io::CsvRowRule CompareRowRule(const std::vector<std::string>& columns) {
 }
 
 }  // namespace rk::analysis
+
+namespace rk::analysis {
+
+io::RunSummary CompareSummary(const CompareResult& result) {
+  io::RunSummary s;
+  for (const ColumnComparison& cc : result.columns) {
+    if (!cc.stats) {
+      s.Warn("no_comparable_row",
+             "column " + cc.column + ": no comparable row (estimate empty " + std::to_string(cc.skipped_estimate_empty) +
+                 ", reference outside " + std::to_string(cc.skipped_reference_outside) + ", reference gap " +
+                 std::to_string(cc.skipped_reference_gap) + ", cut by --after/--before " +
+                 std::to_string(cc.skipped_time_window) + "); statistics are null");
+      continue;
+    }
+    s.AddFigure("rms error " + cc.column, cc.stats->rms, cc.unit, std::to_string(cc.stats->n) + " rows");
+  }
+  return s;
+}
+
+}  // namespace rk::analysis

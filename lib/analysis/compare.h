@@ -20,6 +20,7 @@
 #include "io/options.h"
 #include "analysis/stats.h"
 #include "io/csv.h"
+#include "io/run_summary.h"
 #include "io/json_util.h"
 #include "track/interp.h"
 
@@ -70,6 +71,10 @@ CompareResult Compare(const io::CsvTable& estimate, const io::CsvTable& referenc
 // The cells Compare needs of every row of either file (io::CsvReadOptions::rule, --bad-rows skip):
 // t_s non-decreasing, each of `columns` empty or a number.
 io::CsvRowRule CompareRowRule(const std::vector<std::string>& columns);
+// The run's summary (io/run_summary.h): a warning per column without a comparable row (on stderr), the RMS
+// error of each column as headline (in its statistics unit). `details` is left empty: the report is the
+// comparison document rk-analyze compare writes.
+io::RunSummary CompareSummary(const CompareResult& result);
 
 // {"<C>": {"n","max","min","mean","std","rms","p95_abs","unit","n_skipped":{...}}}
 // (statistics null when n = 0; std null when n < 2).
