@@ -69,8 +69,14 @@ calibrate::TargetCatalogue ReadTargets(const PointingCli& c) {
   return t;
 }
 
+// The observations rows that are not a measurement (formats::ImagePoint::measured), left out of the fit.
+std::string UnmeasuredWarning(const calibrate::ImagePoints& points) {
+  return std::to_string(points.unmeasured_rows) + " rows of " + points.source +
+         " have no measured position (status lost, invalid or predicted, or an empty pixel) and are left out";
+}
+
 void WriteReportFile(const PointingCli& c, const Context& ctx, const calibrate::PointingSolution& sol,
-                     const camera::CameraModel& cam) {
+                     const camera::CameraModel& cam, const calibrate::ImagePoints& points) {
   io::Json r = cli::MakeReport(ctx.tool, ctx.argc, ctx.argv);
   r["subcommand"] = "pointing";
   cli::AddReportInput(&r, "observations", c.observations);
@@ -88,6 +94,8 @@ void WriteReportFile(const PointingCli& c, const Context& ctx, const calibrate::
   r["options"] = opts;
   io::RunSummary summary = calibrate::PointingRunSummary(sol, cam, c.out);
   if (!c.stars.empty() && c.dut1->count() == 0) summary.Flag("dut1_assumed_zero", kDut1Warning);  // said at the start
+  if (points.unmeasured_rows > 0) summary.Flag("rows_not_measured", UnmeasuredWarning(points));  // said at reading
+  r["observations_unmeasured"] = points.unmeasured_rows;
   cli::WriteReport(ctx.common.report_path, r, summary);
 }
 
@@ -104,7 +112,9 @@ int RunPointing(const PointingCli& c, const Context& ctx) {
     cli::Warn(ctx.tool, ctx.common, kDut1Warning);
   }
 
-  const calibrate::ImagePoints points = calibrate::ReadImagePoints(io::CsvTable::Read(c.observations, {c.bad_rows, {}}));
+  const calibrate::ImagePoints points =
+      calibrate::ReadImagePoints(io::CsvTable::Read(c.observations, {c.bad_rows, calibrate::ImagePointsRowRule()}));
+  if (points.unmeasured_rows > 0) cli::Warn(ctx.tool, ctx.common, UnmeasuredWarning(points));
   formats::TurretLog log = formats::ReadTurretLog(io::CsvTable::Read(c.turret, {c.bad_rows, formats::TurretLogRowRule()}));
   const camera::CameraModel cam = camera::LoadCameraModel(c.camera);
   const calibrate::TargetCatalogue targets = ReadTargets(c);
@@ -127,7 +137,7 @@ int RunPointing(const PointingCli& c, const Context& ctx) {
   io::WriteFileAtomic(c.out, pointing_text);
   if (!c.camera_out.empty()) io::WriteFileAtomic(c.camera_out, camera_text);
   if (!c.plot.empty()) io::WriteFileAtomic(c.plot, plot_png);
-  if (!ctx.common.report_path.empty()) WriteReportFile(c, ctx, sol, cam);
+  if (!ctx.common.report_path.empty()) WriteReportFile(c, ctx, sol, cam, points);
   if (progress) {
     std::cerr << ctx.tool << ": " << sol.residuals.size() << " observations: " << sol.used << " used, " << sol.rejected
               << " rejected; RMS " << sol.rms_px << " px; " << sol.iterations << " solver iterations, "

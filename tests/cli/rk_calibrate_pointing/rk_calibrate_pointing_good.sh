@@ -35,4 +35,26 @@ PY
 rk-calibrate pointing --observations "$s/points.csv" --turret "$s/turret.csv" --camera "$s/camera.json" \
   --landmarks "$s/landmarks.csv" --stars "$s/stars.csv" --epoch-utc "$epoch" --station "$station" -o "$o/p2.json" 2>"$o/stderr2.txt"
 grep -q 'dut1' "$o/stderr2.txt"
+# A row without a measured position (empty pixel) is left out with a warning and counted in the report: the fit
+# uses the same observations as without it (issue 28 item 3: the one image-points reader).
+python3 - "$s/points.csv" "$o/points_lost.csv" <<'PY'
+import csv, sys
+rows = list(csv.DictReader(open(sys.argv[1])))
+last = dict(rows[-1])
+last["frame"] = str(int(last["frame"]) + 1); last["x_px"] = ""; last["y_px"] = ""
+w = csv.DictWriter(open(sys.argv[2], "w", newline=""), fieldnames=list(rows[0].keys()))
+w.writeheader(); w.writerows(rows + [last])
+PY
+rk-calibrate pointing --observations "$o/points_lost.csv" --turret "$s/turret.csv" --camera "$s/camera.json" \
+  --landmarks "$s/landmarks.csv" --stars "$s/stars.csv" --epoch-utc "$epoch" --station "$station" --dut1 0 \
+  -o "$o/p3.json" --report "$o/r3.json" 2>"$o/stderr3.txt"
+grep -q '1 rows of .*points_lost.csv have no measured position' "$o/stderr3.txt"
+python3 - "$o" <<'PY'
+import json, sys
+o = sys.argv[1]
+r = json.load(open(o + '/r3.json')); p3 = json.load(open(o + '/p3.json')); p2 = json.load(open(o + '/p2.json'))
+assert r['observations_unmeasured'] == 1, r['observations_unmeasured']
+assert 'rows_not_measured' in [w['code'] for w in r['warnings']], r['warnings']
+assert p3['observations'] == p2['observations'], (p3['observations'], p2['observations'])
+PY
 echo ok
