@@ -56,7 +56,7 @@ void WriteSingerCsv(const filter::Series& series, const filter::SingerSmoother& 
     for (std::size_t c = 0; c < nc; ++c) {
       if (!block.At(c, r, &x, &P)) continue;
       w.Set(c, x(0), x(1), x(2));
-      for (int i = 0; i < 3; ++i) w.SetSigma(c, i, std::sqrt(std::max(P(i, i), 0.0)));
+      for (int i = 0; i < columns.sigma_orders; ++i) w.SetSigma(c, i, std::sqrt(std::max(P(i, i), 0.0)));
     }
     w.Write(series.t_s[r], kind, filter::SingerRowStatusName(smoother.RowStatus(r)));
   };

@@ -2,19 +2,12 @@
 #include "formats/image_points.h"
 
 #include <map>
-#include <sstream>
 
 #include "io/error.h"
+#include "io/number_text.h"
 
 namespace rk::formats {
 namespace {
-
-std::string Num(double v) {
-  std::ostringstream s;
-  s.precision(9);
-  s << v;
-  return s.str();
-}
 
 // The row's 1σ: sigma_x_px,sigma_y_px (both needed), else sigma_px for both; each > 0 where given.
 std::optional<Eigen::Vector2d> RowSigma(const io::CsvTable& t, std::size_t r, int c_sx, int c_sy, int c_s) {
@@ -77,7 +70,7 @@ ImagePoints ReadImagePoints(const io::CsvTable& table) {
     }
     ImagePointFrame& f = out.frames.back();
     if (t != f.t_s) {
-      throw table.CellError(r, c_t, "t_s " + Num(t) + " differs from " + Num(f.t_s) + " on line " +
+      throw table.CellError(r, c_t, "t_s " + io::NumberText(t) + " differs from " + io::NumberText(f.t_s) + " on line " +
                                         std::to_string(f.line) + " of the same frame");
     }
     ImagePoint p;

@@ -3,24 +3,17 @@
 
 #include <Eigen/Dense>
 #include <cmath>
-#include <sstream>
 #include <utility>
 
 #include "geo/angles.h"
 #include "io/error.h"
 #include "io/json_util.h"
+#include "io/number_text.h"
 #include "camera/station_view.h"
 #include "pose/reproj_refine.h"
 
 namespace rk::pose {
 namespace {
-
-std::string Num(double v) {
-  std::ostringstream s;
-  s.precision(9);
-  s << v;
-  return s.str();
-}
 
 // Station-frame outputs (e, n, u, yaw, pitch, roll) of a perturbed pose, for the covariance.
 Eigen::Matrix<double, 6, 1> Outputs(const camera::CameraModel& cam, const geo::AzEl& b, const Eigen::Matrix3d& R,
@@ -163,7 +156,7 @@ void CheckPointsInImage(const ImagePoints& points, const camera::CameraModel& ca
                           p.px.y() <= camera.height_px - 0.5;
       if (!inside) {
         throw DataError(points.source, p.line, p.col_x,
-                        "point (" + Num(p.px.x()) + ", " + Num(p.px.y()) + ") px is outside the " +
+                        "point (" + io::NumberText(p.px.x()) + ", " + io::NumberText(p.px.y()) + ") px is outside the " +
                             std::to_string(camera.width_px) + "x" + std::to_string(camera.height_px) +
                             " image of the camera model");
       }
@@ -246,9 +239,9 @@ class OiRun {
       const double t0 = boresight_.first_time(), t1 = boresight_.last_time();
       throw DataError(boresight_.source(), 0, 0,
                       (std::isnan(t0) ? std::string("has no usable sample")
-                                      : "covers t_s " + Num(t0) + " .. " + Num(t1)) +
-                          " but no frame time of " + points_.source + " (t_s " + Num(res_.rows.front().t_s) +
-                          " .. " + Num(res_.rows.back().t_s) + ") is covered within the --turret-max-gap limit");
+                                      : "covers t_s " + io::NumberText(t0) + " .. " + io::NumberText(t1)) +
+                          " but no frame time of " + points_.source + " (t_s " + io::NumberText(res_.rows.front().t_s) +
+                          " .. " + io::NumberText(res_.rows.back().t_s) + ") is covered within the --turret-max-gap limit");
     }
     const std::size_t with_pose = res_.rows_by_status[static_cast<std::size_t>(RowStatus::kOk)] +
                                   res_.rows_by_status[static_cast<std::size_t>(RowStatus::kReacquired)];

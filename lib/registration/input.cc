@@ -5,10 +5,10 @@
 #include <map>
 #include <memory>
 #include <optional>
-#include <sstream>
 
 #include "geo/angles.h"
 #include "io/error.h"
+#include "io/number_text.h"
 #include "numeric/robust_stats.h"
 #include "track/interp.h"
 
@@ -23,12 +23,7 @@ std::string Join(const std::vector<std::string>& names) {
   return s;
 }
 
-std::string FormatTime(double t) {
-  std::ostringstream os;
-  os.precision(9);
-  os << t;
-  return os.str();
-}
+std::string FormatTime(double t) { return io::NumberText(t); }
 
 // Nav of one radar: six interpolated channels.
 struct NavSeries {
