@@ -17,6 +17,13 @@ Error DataError(const std::string& file, std::size_t line, std::size_t column, c
   return Error(ExitCode::kInvalidData, msg);
 }
 
+Error ByteOffsetError(const std::string& file, std::uint64_t offset, const std::string& what) {
+  std::string msg;
+  msg.reserve(file.size() + what.size() + 40);
+  msg.append(file).append(": byte ").append(std::to_string(offset)).append(": ").append(what);
+  return Error(ExitCode::kInvalidData, msg);
+}
+
 Error TooFewSamplesError(const std::string& file, const std::string& what) {
   return Error(ExitCode::kInvalidData, DataError(file, 0, 0, what).what(), kTooFewSamples);
 }

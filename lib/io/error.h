@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -42,6 +43,9 @@ inline constexpr const char* kTooFewSamples = "too-few-samples";
 Error DataError(const std::string& file, std::size_t line, std::size_t column, const std::string& what);
 // A DataError (exit 3) of kind kTooFewSamples: a valid input that holds too few usable samples for the
 // method (a beacon seen in two frames cannot be smoothed). rk-run keeps what the chain could make.
+// A DataError in a binary file: "file: byte OFFSET: what" (OFFSET 0-based, where the fault was found:
+// a camera file's header field, a block past the end of the file, a record that cannot be decoded).
+Error ByteOffsetError(const std::string& file, std::uint64_t offset, const std::string& what);
 Error TooFewSamplesError(const std::string& file, const std::string& what);
 Error IoError(const std::string& path, const std::string& what);
 Error UsageError(const std::string& what);

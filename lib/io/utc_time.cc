@@ -79,4 +79,16 @@ bool ParseUtcIso(std::string_view text, UtcTime* out, std::string* why) {
   return true;
 }
 
+double UnixSeconds(const UtcTime& t) {
+  // Days from the civil date (proleptic Gregorian), H. Hinnant's algorithm.
+  const int y = t.year - (t.month <= 2 ? 1 : 0);
+  const int era = (y >= 0 ? y : y - 399) / 400;
+  const int yoe = y - era * 400;
+  const int mp = (t.month + 9) % 12;
+  const int doy = (153 * mp + 2) / 5 + t.day - 1;
+  const int doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
+  const long long days = static_cast<long long>(era) * 146097 + doe - 719468;
+  return static_cast<double>(days) * 86400.0 + t.hour * 3600.0 + t.minute * 60.0 + t.second;
+}
+
 }  // namespace rk::io

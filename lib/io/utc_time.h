@@ -17,6 +17,10 @@ struct UtcTime {
 // True and *out on success; false and *why (a phrase: "month 13 is out of range") otherwise.
 bool ParseUtcIso(std::string_view text, UtcTime* out, std::string* why);
 
+// Seconds since 1970-01-01T00:00:00Z (POSIX time: a leap second 23:59:60 counts as the next day's 00:00:00),
+// to compare with a recording's own UTC stamps (CINE time blocks, IRIG).
+double UnixSeconds(const UtcTime& t);
+
 // The format in words, for messages.
 inline constexpr const char* kUtcIsoFormat = "YYYY-MM-DDThh:mm:ss[.fff]Z (UTC, e.g. 2026-11-21T08:00:00Z)";
 
