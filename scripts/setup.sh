@@ -32,6 +32,7 @@ PACKAGES=(
   python3 python3-matplotlib ffmpeg
   help2man bash-completion bsdutils
   libopencv-contrib-dev opencv-doc
+  libtinyxml2-dev  # Photron .cihx headers are XML (lib/video/mraw_file.cc)
 )
 # Slurm daemons only on request: nobody needs them to use rangekit on one machine (rk-nightly); the
 # test that starts a one-node cluster installs them through --slurm.

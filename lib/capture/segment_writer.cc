@@ -25,15 +25,6 @@ std::string SegmentName(int index) {
   return b;
 }
 
-void FpsFraction(double fps, std::int64_t* num, std::int64_t* den) {
-  // Exact for integer rates and for rates given to 3 decimals (29.97, 23.976).
-  std::int64_t d = 1000;
-  std::int64_t n = std::llround(fps * static_cast<double>(d));
-  const std::int64_t g = std::gcd(n, d);
-  *num = n / g;
-  *den = d / g;
-}
-
 bool CheckFrame(const cv::Mat& frame, const FrameFormat& f, std::string* why) {
   const int type = f.bit_depth == 16 ? CV_16UC1 : CV_8UC1;
   if (frame.cols != f.width || frame.rows != f.height || frame.type() != type) {
@@ -221,56 +212,6 @@ class PgmWriter : public SegmentWriter {
 };
 
 }  // namespace
-
-std::string Y4mHeader(const FrameFormat& f) {
-  std::int64_t num = 0, den = 1;
-  FpsFraction(f.fps, &num, &den);
-  return "YUV4MPEG2 W" + std::to_string(f.width) + " H" + std::to_string(f.height) + " F" + std::to_string(num) +
-         ":" + std::to_string(den) + " Ip A1:1 C" + (f.bit_depth == 16 ? "mono16" : "mono") + "\n";
-}
-
-bool ParseY4mHeader(const std::string& line, FrameFormat* f) {
-  std::istringstream in(line);
-  std::string magic;
-  in >> magic;
-  if (magic != "YUV4MPEG2") return false;
-  FrameFormat out;
-  bool have_w = false, have_h = false, have_c = false;
-  std::string tok;
-  while (in >> tok) {
-    const char k = tok[0];
-    const std::string v = tok.substr(1);
-    try {
-      if (k == 'W') {
-        out.width = std::stoi(v);
-        have_w = true;
-      } else if (k == 'H') {
-        out.height = std::stoi(v);
-        have_h = true;
-      } else if (k == 'F') {
-        const auto colon = v.find(':');
-        if (colon == std::string::npos) return false;
-        const double num = std::stod(v.substr(0, colon)), den = std::stod(v.substr(colon + 1));
-        if (!(num > 0 && den > 0)) return false;
-        out.fps = num / den;
-      } else if (k == 'C') {
-        if (v == "mono") {
-          out.bit_depth = 8;
-        } else if (v == "mono16") {
-          out.bit_depth = 16;
-        } else {
-          return false;
-        }
-        have_c = true;
-      }
-    } catch (const std::exception&) {
-      return false;
-    }
-  }
-  if (!have_w || !have_h || !have_c || out.width <= 0 || out.height <= 0) return false;
-  *f = out;
-  return true;
-}
 
 std::unique_ptr<SegmentWriter> MakeSegmentWriter(const std::string& format, const std::string& trial_dir,
                                                  const std::string& camera, const FrameFormat& frame_format,

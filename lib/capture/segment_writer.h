@@ -18,21 +18,15 @@
 #include <vector>
 
 #include "capture/durable_file.h"
+#include "video/y4m.h"
 
 namespace rk::capture {
 
-struct FrameFormat {
-  int width = 0;
-  int height = 0;
-  int bit_depth = 8;  // 8 or 16
-  double fps = 20.0;
-};
+// The frame format and its YUV4MPEG2 header line live with the reader (video/y4m.h).
+using video::FrameFormat;
+using video::ParseY4mHeader;
+using video::Y4mHeader;
 
-// The YUV4MPEG2 header for a format; "F" is the frame rate as a reduced fraction (29.97 → 2997:100).
-std::string Y4mHeader(const FrameFormat& format);
-// Parses a YUV4MPEG2 header line (without '\n'); false if it is not one rangekit can read
-// (mono / mono16 only).
-bool ParseY4mHeader(const std::string& line, FrameFormat* format);
 
 class SegmentWriter {
  public:

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "io/csv.h"
 #include "io/error.h"
@@ -46,6 +47,25 @@ FrameClock FrameClock::FromCsv(const std::string& path, io::BadRows bad_rows) {
   table.RequireNonDecreasing(c_t);
   if (clock.t_s_.empty()) throw DataError(path, 0, 0, "no frame times (the file has a header but no rows)");
   return clock;
+}
+
+FrameClock FrameClock::FromTimes(std::vector<double> t_s, std::string source) {
+  FrameClock clock;
+  clock.from_file_ = true;
+  clock.path_ = std::move(source);
+  clock.t_s_ = std::move(t_s);
+  return clock;
+}
+
+void WriteFrameTimes(const std::string& path, const std::vector<FrameTimeRow>& rows,
+                     const std::vector<std::string>& comments) {
+  io::CsvWriter out(io::SplitList(kFrameTimesColumns));
+  for (const std::string& c : comments) out.Comment(c);
+  constexpr int kNs = 9;
+  for (const FrameTimeRow& r : rows) {
+    out.Add(r.frame).Add(r.t_s, kNs).Add(r.time_source).Add(r.exposure_s, kNs).Add(r.camera_ts_s, kNs).EndRow();
+  }
+  out.Write(path);
 }
 
 FrameClock FrameClock::FromRate(double fps_hz, double t0_s) {

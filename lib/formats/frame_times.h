@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -21,6 +22,9 @@ class FrameClock {
   // goes backwards; the frame numbers of the rows kept must still count 0, 1, 2, ..., except that a
   // skipped row's frame number is a hole (no time): after n skipped rows the count may jump by n.
   static FrameClock FromCsv(const std::string& path, io::BadRows bad_rows = io::BadRows::kError);
+  // A recording's own times (video::ReadFrameTimes: CINE stamps, container times, ...), frame k at t_s[k];
+  // `source` names the recording in messages.
+  static FrameClock FromTimes(std::vector<double> t_s, std::string source);
   // t = t0 + frame / fps; throws UsageError unless fps > 0 and both finite.
   static FrameClock FromRate(double fps_hz, double t0_s);
 
@@ -40,5 +44,20 @@ class FrameClock {
   double fps_hz_ = 0.0;
   double t0_s_ = 0.0;
 };
+
+// One row of a frames.csv with the optional columns of SPEC.md §2.1 (rk-import frames): NaN = empty.
+struct FrameTimeRow {
+  std::int64_t frame = 0;
+  double t_s = 0.0;
+  std::string time_source;  // irig, camera, container, host, nominal
+  double exposure_s = std::numeric_limits<double>::quiet_NaN();
+  double camera_ts_s = std::numeric_limits<double>::quiet_NaN();
+};
+// Column order of that file.
+inline constexpr const char* kFrameTimesColumns = "frame,t_s,time_source,exposure_s,camera_ts_s";
+// Writes `rows` (t_s, exposure_s and camera_ts_s to the nanosecond) after `comments` ("# " lines), atomically
+// ("-" = stdout).
+void WriteFrameTimes(const std::string& path, const std::vector<FrameTimeRow>& rows,
+                     const std::vector<std::string>& comments);
 
 }  // namespace rk::formats

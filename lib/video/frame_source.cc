@@ -12,6 +12,8 @@
 
 #include "io/error.h"
 #include "io/run_record.h"
+#include "video/camera_file.h"
+#include "video/y4m.h"
 #include "video/stdin_video.h"
 
 namespace rk::video {
@@ -115,6 +117,14 @@ VideoInfo ProbeVideo(const std::string& path) {
     throw IoError(path, "no image matches the pattern (tried numbering from 0 and 1)");
   }
   CheckReadable(path);
+  if (IsCameraFile(path)) {
+    CameraFileReader reader(path);
+    return {reader.file().width, reader.file().height, reader.file().packing == Packing::kU8 ? 8 : 16};
+  }
+  if (IsMonoY4m(path)) {
+    const Y4mReader reader(path);
+    return {reader.format().width, reader.format().height, reader.format().bit_depth};
+  }
   std::string err = MakeTempFile();
   std::string cmd = "ffprobe -v error -select_streams v:0 -show_entries stream=width,height,pix_fmt -of csv=p=0 " +
                     ShellQuote(path) + " 2>" + ShellQuote(err);
@@ -158,6 +168,8 @@ FrameSource::FrameSource(std::vector<std::string> segments) : segments_(std::mov
 }
 
 FrameSource::~FrameSource() {
+  camera_.reset();
+  y4m_.reset();
   if (pipe_) {
     ::pclose(pipe_);
     pipe_ = nullptr;
@@ -177,7 +189,20 @@ bool FrameSource::OpenNext() {
   if (next_segment_ >= segments_.size()) return false;
   current_ = segments_[next_segment_++];
   segment_frames_ = 0;
-  VideoInfo seg = ProbeVideo(current_);
+  camera_.reset();
+  y4m_.reset();
+  VideoInfo seg;
+  is_sequence_ = IsSequencePattern(current_);
+  if (!is_sequence_ && IsCameraFile(current_)) {
+    camera_ = std::make_unique<CameraFileReader>(current_);
+    camera_next_ = 0;
+    seg = {camera_->file().width, camera_->file().height, camera_->file().packing == Packing::kU8 ? 8 : 16};
+  } else if (!is_sequence_ && IsMonoY4m(current_)) {
+    y4m_ = std::make_unique<Y4mReader>(current_);
+    seg = {y4m_->format().width, y4m_->format().height, y4m_->format().bit_depth};
+  } else {
+    seg = ProbeVideo(current_);
+  }
   {
     std::error_code ec;
     const bool regular = fs::is_regular_file(current_, ec);
@@ -191,7 +216,7 @@ bool FrameSource::OpenNext() {
     throw DataError(current_, 0, 0, "segment differs in frame size or bit depth from the first segment");
   }
   buffer_.create(info_.height, info_.width, info_.bit_depth == 16 ? CV_16UC1 : CV_8UC1);
-  is_sequence_ = IsSequencePattern(current_);
+  if (camera_ || y4m_) return true;
   if (is_sequence_) {
     seq_index_ = fs::exists(SequenceFramePath(current_, 0)) ? 0 : 1;
     return true;
@@ -254,12 +279,25 @@ bool FrameSource::ReadFromSequence(cv::Mat* frame) {
   return true;
 }
 
+bool FrameSource::ReadFromCamera(cv::Mat* frame) {
+  if (y4m_) {
+    if (!y4m_->Read(&buffer_)) return false;
+    *frame = buffer_;
+    return true;
+  }
+  if (camera_next_ >= camera_->frames()) return false;
+  camera_->Read(camera_next_++, &buffer_);
+  *frame = buffer_;
+  return true;
+}
+
 bool FrameSource::Read(cv::Mat* frame) {
   while (true) {
-    if (current_.empty() || (!is_sequence_ && !pipe_)) {
+    const bool in_process = camera_ || y4m_;
+    if (current_.empty() || (!is_sequence_ && !pipe_ && !in_process)) {
       if (!OpenNext()) return false;
     }
-    bool ok = is_sequence_ ? ReadFromSequence(frame) : ReadFromPipe(frame);
+    bool ok = (camera_ || y4m_) ? ReadFromCamera(frame) : is_sequence_ ? ReadFromSequence(frame) : ReadFromPipe(frame);
     if (ok) {
       ++frames_read_;
       ++segment_frames_;
@@ -269,6 +307,10 @@ bool FrameSource::Read(cv::Mat* frame) {
     if (is_sequence_) {
       if (segment_frames_ == 0) throw IoError(current_, "no image matches the pattern");
       is_sequence_ = false;
+    } else if (camera_ || y4m_) {
+      camera_.reset();
+      y4m_.reset();
+      if (segment_frames_ == 0) throw DataError(current_, 0, 0, "video has no frames");
     } else if (segment_frames_ == 0) {
       throw DataError(current_, 0, 0, "video has no frames");
     }

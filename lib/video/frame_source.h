@@ -1,10 +1,13 @@
 // Reading recorded video frame by frame, 8- or 16-bit mono, in decode order.
 //
-// A source is a list of segments (SPEC.md §1.1: --video may repeat), each a
-// video file (decoded by an ffmpeg child process into raw gray / gray16le, so
-// 16-bit FFV1 keeps all its bits and decoding runs beside the caller's work on
-// another core) or an image-sequence pattern such as "frames/%06d.png"
-// (numbering starts at 0 or 1, read until the first missing index).
+// A source is a list of segments (SPEC.md §1.1: --video may repeat), each
+//   - a high-speed camera file, Phantom CINE or Photron MRAW (+ .cihx/.cih), read and unpacked here
+//     (video/camera_file.h; a Bayer mosaic becomes grey by OpenCV's demosaicing);
+//   - a mono y4m (rk-capture's segments), read here from the mapped file (video/y4m.h);
+//   - any other video file, decoded by an ffmpeg child process into raw gray / gray16le (so 16-bit
+//     FFV1 keeps all its bits and decoding runs beside the caller's work on another core);
+//   - an image-sequence pattern such as "frames/%06d.png" (numbering starts at 0 or 1, read until
+//     the first missing index).
 // Frame numbers count on across segments.
 #pragma once
 
@@ -20,8 +23,11 @@ namespace rk::video {
 struct VideoInfo {
   int width = 0;
   int height = 0;
-  int bit_depth = 8;  // 8 or 16
+  int bit_depth = 8;  // 8 or 16 (deeper samples are scaled to 16 bits)
 };
+
+class CameraFileReader;
+class Y4mReader;
 
 class FrameSource {
  public:
@@ -47,6 +53,7 @@ class FrameSource {
   void CloseCurrent(bool at_eof);
   bool ReadFromPipe(cv::Mat* frame);
   bool ReadFromSequence(cv::Mat* frame);
+  bool ReadFromCamera(cv::Mat* frame);
 
   std::vector<std::string> segments_;
   std::size_t next_segment_ = 0;
@@ -55,6 +62,10 @@ class FrameSource {
   // Video-file state.
   FILE* pipe_ = nullptr;
   std::string stderr_path_;
+  // Camera-file (CINE, MRAW) and y4m state: read in-process.
+  std::unique_ptr<CameraFileReader> camera_;
+  std::int64_t camera_next_ = 0;
+  std::unique_ptr<Y4mReader> y4m_;
   // Image-sequence state.
   std::int64_t seq_index_ = 0;
   VideoInfo info_;

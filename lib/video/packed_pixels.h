@@ -1,0 +1,44 @@
+// Pixel packings of high-speed camera files, as one table (kPackings): how many pixels a group of bytes
+// holds and in which bit order, and the one unpacking loop per packing. Deep samples are delivered as
+// 16-bit, scaled to the full 16-bit range by bit replication (v << (16 - b) | v >> (2b - 16)), as ffmpeg
+// delivers a 10- or 12-bit source as gray16le: a recording read here and the same recording decoded by
+// ffmpeg give equal frames.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace rk::video {
+
+enum class Packing {
+  kU8,      // one byte per pixel
+  kU16LE,   // two bytes per pixel, little-endian (Phantom 16-bit, Photron 16-bit MRAW)
+  kP10BE,   // four pixels in five bytes, most significant bit first (Phantom "packed 10-bit", biCompression 256)
+  kP12BE,   // two pixels in three bytes, most significant bit first (Photron 12-bit MRAW, Phantom P12L, 1024)
+};
+
+struct PackingInfo {
+  Packing packing;
+  const char* name;        // for messages and reports: "8-bit", "16-bit LE", "10-bit packed", "12-bit packed"
+  int bits_per_pixel;      // stored bits per pixel: 8, 16, 10, 12
+  int pixels_per_group;    // 1, 1, 4, 2
+  int bytes_per_group;     // 1, 2, 5, 3
+};
+
+const PackingInfo& InfoOf(Packing packing);
+
+// Bytes that `pixels` pixels take in `packing`; `pixels` must fill whole groups (CheckPixelCount).
+std::uint64_t PackedBytes(Packing packing, std::uint64_t pixels);
+// True when `pixels` fills whole groups of `packing` (a 10-bit packed row of 6 pixels does not).
+bool FillsGroups(Packing packing, std::uint64_t pixels);
+
+// Unpacks `pixels` pixels from `src` (PackedBytes(packing, pixels) bytes) into `dst`: 8-bit packings into
+// 8-bit `dst8`, the others into 16-bit `dst16`, each sample of `significant_bits` (its low bits; 1..16)
+// scaled to 16 bits by bit replication. `significant_bits` 16 copies; a sample above its bit range (a 12-bit
+// sample > 4095 in a 16-bit container) is clamped to 65535 and counted in the return value.
+std::uint64_t Unpack16(Packing packing, int significant_bits, const std::uint8_t* src, std::uint64_t pixels,
+                       std::uint16_t* dst16);
+void Unpack8(const std::uint8_t* src, std::uint64_t pixels, std::uint8_t* dst8);
+
+}  // namespace rk::video
