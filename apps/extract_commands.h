@@ -10,6 +10,8 @@
 #include "io/cli.h"
 #include "io/error.h"
 #include "subcommand.h"
+#include "io/run_record.h"
+#include "video/recording_times.h"
 #include "video/stdin_video.h"
 
 namespace rk::app {
@@ -18,29 +20,37 @@ Command AddBeaconCommand(CLI::App& app);      // extract_beacon_cmd.cpp
 Command AddFeaturesCommand(CLI::App& app);    // extract_features_cmd.cpp
 Command AddSilhouetteCommand(CLI::App& app);  // extract_silhouette_cmd.cpp
 
-// --video, --frames | --fps [--t0], --bad-rows: the recording and its frame times (formats/frame_times.h).
-// Paths and optional values, so registered here rather than from an option table.
+// --video, --frames | --fps [--t0] | the recording's own times [--epoch-utc], --bad-rows: the recording and
+// its frame times (formats/frame_times.h, video/recording_times.h). Paths and optional values, so
+// registered here rather than from an option table.
 struct VideoInputArgs {
   std::vector<std::string> videos;
-  std::string frames_path;
+  std::string frames_path, epoch_utc;
   std::optional<double> fps, t0;
   io::BadRows bad_rows = io::BadRows::kError;  // --frames rows
+  // The recording's own times, when neither --frames nor --fps is given (set by Clock()).
+  mutable std::optional<video::RecordingFrameTimes> recording;
 
   void Add(CLI::App* app) {
     app->add_option("--video", videos,
-                    "Video file (ffmpeg-readable, 8/16-bit mono) or image-sequence pattern dir/%06d.png; repeat "
-                    "for segments, read in the order given. Not '-': a video is not read from stdin")
+                    "Recording: Phantom .cine, Photron .mraw (or its .cihx/.cih), a video file (ffmpeg-readable) or "
+                    "an image-sequence pattern dir/%06d.png; repeat for segments, read in the order given. Not '-': "
+                    "a video is not read from stdin")
         ->required();
     auto* o_frames = app->add_option("--frames", frames_path, "Frame times CSV with columns frame,t_s");
     auto* o_fps = app->add_option("--fps", fps, "Constant frame rate (Hz): t = t0 + frame / fps");
     app->add_option("--t0", t0, "Time of frame 0 (s) with --fps [default 0]")->needs(o_fps);
+    auto* o_epoch = app->add_option("--epoch-utc", epoch_utc,
+                                    "Without --frames/--fps the recording's own times are used (as rk-import "
+                                    "frames); UTC-stamped ones (IRIG, camera clock) count from this ISO-8601 "
+                                    "epoch [default: from the first frame]");
     o_frames->excludes(o_fps);
+    o_epoch->excludes(o_frames)->excludes(o_fps);
     cli::AddBadRowsOption(app, &bad_rows);
   }
-  // UsageError unless the frame times are given.
   void CheckFrameTimes() const {
     video::RefuseStdinVideo(videos);
-    if (frames_path.empty() && !fps) throw UsageError("give the frame times: --frames F.csv or --fps HZ [--t0 S]");
+    video::ParseEpochOption(epoch_utc);
   }
   // The videos, then the frames file if any.
   std::vector<cli::NamedPath> Inputs() const {
@@ -49,9 +59,28 @@ struct VideoInputArgs {
     inputs.push_back({"--frames", frames_path});
     return inputs;
   }
+  // --frames, --fps, else the recording's own times: where they come from and their gaps are said on
+  // stderr (and in the report's frame_times); a time that goes backwards stops the run (exit 3), as the
+  // tools' rows must be in time order: correct it in rk-import frames' output and give that as --frames.
   formats::FrameClock Clock() const {
-    return frames_path.empty() ? formats::FrameClock::FromRate(*fps, t0.value_or(0.0))
-                               : formats::FrameClock::FromCsv(frames_path, bad_rows);
+    if (!frames_path.empty()) return formats::FrameClock::FromCsv(frames_path, bad_rows);
+    if (fps) return formats::FrameClock::FromRate(*fps, t0.value_or(0.0));
+    video::FrameTimesOptions o;
+    o.epoch_unix_s = video::ParseEpochOption(epoch_utc);
+    recording = video::ReadFrameTimes(videos, o);
+    if (recording->backwards > 0) {
+      for (const std::string& p : recording->problems) {
+        if (p.find("goes back") != std::string::npos || p.find("same time") != std::string::npos) {
+          throw DataError(videos.front(), 0, 0, p + ": frame times must increase; write them with rk-import frames, "
+                                                    "correct them and give --frames");
+        }
+      }
+    }
+    for (const io::Warning& w : video::FrameTimesSummary(*recording).warnings) io::EmitWarning(w.message);
+    std::vector<double> t;
+    t.reserve(recording->frames.size());
+    for (const video::FrameTime& f : recording->frames) t.push_back(f.t_s);
+    return formats::FrameClock::FromTimes(std::move(t), videos.front() + " (its own frame times)");
   }
   // Frames to process, for the progress display: the frames file's rows; 0 (unknown) with --fps.
   static std::int64_t ExpectedFrames(const formats::FrameClock& clock) { return clock.from_file() ? clock.size() : 0; }
@@ -62,8 +91,11 @@ struct VideoInputArgs {
   }
   // The report's "frame_times".
   io::Json FrameTimesJson() const {
-    return frames_path.empty() ? io::Json{{"source", "fps"}, {"fps_hz", *fps}, {"t0_s", t0.value_or(0.0)}}
-                               : io::Json{{"source", "frames"}};
+    if (!frames_path.empty()) return io::Json{{"source", "frames"}};
+    if (fps) return io::Json{{"source", "fps"}, {"fps_hz", *fps}, {"t0_s", t0.value_or(0.0)}};
+    io::Json j = recording ? video::FrameTimesSummary(*recording).details["frame_times"] : io::Json::object();
+    j["source"] = "recording";
+    return j;
   }
 };
 

@@ -27,8 +27,11 @@ set_tests_properties(extract_cli_beacon_streams PROPERTIES TIMEOUT 300)
 rk_cli_script(rk_extract/extract_cli_decode_only REQUIRES extract_inputs)
 
 # Malformed input / usage (exit codes of SPEC.md §4, no partial output).
-rk_cli_test(extract_cli_no_times REQUIRES extract_inputs COMMAND ${RK_EXPECT} 2 ${RKX_DIR}/bad.csv "--frames" --
-  ${RKX} beacon --video ${RKX_DIR}/beacon.mkv -o ${RKX_DIR}/bad.csv)
+# Without --frames/--fps the recording's own times (SPEC.md §1.1): an image sequence has none (exit 2, give --fps);
+# the MKV's container times are its 20 fps, so the track equals the one made with --fps 20.
+rk_cli_test(extract_cli_no_times REQUIRES extract_inputs COMMAND ${RK_EXPECT} 2 ${RKX_DIR}/bad.csv "give --fps" --
+  ${RKX} beacon --video ${RKX_DIR}/seq/%06d.png -o ${RKX_DIR}/bad.csv)
+rk_cli_script(rk_extract/extract_cli_container_times REQUIRES extract_inputs)
 rk_cli_test(extract_cli_unknown_option REQUIRES extract_inputs COMMAND ${RK_EXPECT} 2 ${RKX_DIR}/bad.csv --
   ${RKX} beacon --video ${RKX_DIR}/beacon.mkv --fps 20 --bogus 3 -o ${RKX_DIR}/bad.csv)
 rk_cli_test(extract_cli_no_subcommand COMMAND ${RK_EXPECT} 2 - -- ${RKX})

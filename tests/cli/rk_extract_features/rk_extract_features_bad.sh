@@ -6,7 +6,7 @@ set -eu
 data=$1 expect=$2 src=$3
 d=$data/att_small
 o=$data/att_bad_points.csv; rm -f "$o"
-"$expect" 2 "$o" 'frames' -- rk-extract features --video "$d/att/video.mkv" --target "$d/target.json" -o "$o"
+"$expect" 2 "$o" 'epoch-utc' -- rk-extract features --video "$d/att/video.mkv" --epoch-utc yesterday --target "$d/target.json" -o "$o"
 "$expect" 2 "$o" 'target' -- rk-extract features --video "$d/att/video.mkv" --fps 10 -o "$o"
 "$expect" 2 - 'input' -- rk-extract features --video "$d/att/video.mkv" --fps 10 --target "$d/target.json" -o "$d/target.json"
 printf '{"length_m": 1.2, "diameter_m": 0.2}' > "$data/att_cyl.json"
