@@ -1,0 +1,97 @@
+#!/usr/bin/env bash
+# Reading recordings at the speed of the disk (issue 29): `rk-extract beacon --decode-only` (every frame
+# read, unpacked, demosaiced where Bayer, handed to the detector's loop) on a 12-bit packed Photron MRAW, a
+# 12-bit packed mono CINE, a 10-bit packed Bayer CINE and rk-capture's 8-bit y4m, each against
+#   dd if=FILE of=/dev/null bs=FRAME_BYTES
+# on the same file from the page cache (the floor: one copy out of the page cache). Ratios from the same run,
+# median of REPEATS runs each, files warmed into the page cache first. Also the full `rk-extract beacon`
+# (detector included) on the y4m. Prints a Markdown table (also OUT/summary.md) for docs/benchmarks.md.
+#   bench/video_read_bench.sh [OUT]      needs a Release build in build/ (scripts/setup.sh)
+# Environment: FRAMES (default 200) frames of W x H (default 2448x2048), REPEATS (default 5).
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+B=${RK_BIN:-$ROOT/build/apps}
+OUT=${1:-/tmp/rk-video-read-bench}
+FRAMES=${FRAMES:-200}
+W=${W:-2448}
+H=${H:-2048}
+REPEATS=${REPEATS:-5}
+mkdir -p "$OUT"
+S=$OUT/summary.md
+: > "$S"
+say() { echo "$*" | tee -a "$S"; }
+
+# The recordings: random samples (the reader's cost does not depend on them), headers by make_camera_seeds'
+# writers (tests/fuzz/make_camera_seeds.py), data from /dev/urandom.
+/usr/bin/python3 - "$OUT" "$FRAMES" "$W" "$H" "$ROOT" <<'PY'
+import os, struct, sys
+out, n, w, h, root = sys.argv[1], int(sys.argv[2]), int(sys.argv[3]), int(sys.argv[4]), sys.argv[5]
+sys.path.insert(0, os.path.join(root, "tests", "fuzz"))
+import make_camera_seeds as seeds
+def rnd(nbytes):
+    return os.urandom(nbytes)
+frame12 = w * h * 3 // 2
+with open(os.path.join(out, "rec.cihx"), "wb") as f:
+    f.write(seeds.cihx(w, h, 12, n))
+with open(os.path.join(out, "rec.mraw"), "wb") as f:
+    for _ in range(n):
+        f.write(rnd(frame12))
+def cine(name, compression, file_compression, cfa, frame_bytes):
+    # Header, bitmap header and setup as make_camera_seeds.cine writes them, then n offsets and images.
+    setup_len = 1600
+    off_setup, off_offsets = 84, 84 + setup_len
+    hdr = struct.pack("<HHHHiIiIIIIII", 0x4943, 44, file_compression, 1, 0, n, 0, n, 44, off_setup, off_offsets, 0, 1700000000)
+    bmp = struct.pack("<IiiHHIIiiII", 40, w, h, 1, 16, compression, frame_bytes, 0, 0, 0, 0)
+    setup = bytearray(setup_len)
+    struct.pack_into("<HH", setup, 140, 0x5453, setup_len)
+    struct.pack_into("<I", setup, 768, 1000)
+    struct.pack_into("<I", setup, 808, cfa)
+    struct.pack_into("<I", setup, 896, 12)
+    with open(os.path.join(out, name), "wb") as f:
+        f.write(hdr + bmp + bytes(setup))
+        at = off_offsets + 8 * n
+        for i in range(n):
+            f.write(struct.pack("<Q", at + i * (8 + frame_bytes)))
+        for i in range(n):
+            f.write(struct.pack("<II", 8, frame_bytes) + rnd(frame_bytes))
+cine("rec12.cine", 1024, 0, 0, frame12)
+cine("rec10_bayer.cine", 256, 2, 3, w * h * 10 // 8)
+with open(os.path.join(out, "rec.y4m"), "wb") as f:
+    f.write(b"YUV4MPEG2 W%d H%d F20:1 Ip A1:1 Cmono\n" % (w, h))
+    for _ in range(n):
+        f.write(b"FRAME\n" + rnd(w * h))
+PY
+
+median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
+# Wall seconds of a command, median of REPEATS.
+timed() {
+  for _ in $(seq "$REPEATS"); do
+    /usr/bin/time -f "%e" -o "$OUT/t" "$@" > /dev/null 2>&1 || true
+    cat "$OUT/t"
+  done | median
+}
+
+say "## Reading recordings (issue 29) — $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
+say ""
+say "$FRAMES frames of ${W}x${H}, from the page cache, median of $REPEATS runs; \`bench/video_read_bench.sh\` (Release build)."
+say ""
+say "| recording | file MB | dd bs=frame (s) | rk-extract beacon --decode-only (s) | ratio to dd |"
+say "|---|---|---|---|---|"
+row() {  # name file frame_bytes
+  local name=$1 file=$2 fb=$3
+  cat "$file" > /dev/null
+  local mb dd dec
+  mb=$(( $(stat -c %s "$file") / 1000000 ))
+  dd=$(timed dd if="$file" of=/dev/null bs="$fb")
+  dec=$(timed "$B/rk-extract" beacon --video "$file" --decode-only --quiet)
+  say "| $name | $mb | $dd | $dec | $(awk -v a="$dec" -v b="$dd" 'BEGIN {printf "%.2f", a / b}') |"
+}
+row "Photron MRAW 12-bit packed" "$OUT/rec.mraw" $((W * H * 3 / 2))
+row "Phantom CINE 12-bit packed mono" "$OUT/rec12.cine" $((W * H * 3 / 2))
+row "Phantom CINE 10-bit packed Bayer (demosaiced)" "$OUT/rec10_bayer.cine" $((W * H * 10 / 8))
+row "rk-capture y4m 8-bit" "$OUT/rec.y4m" $((W * H))
+say ""
+cat "$OUT/rec.y4m" > /dev/null
+full=$(timed "$B/rk-extract" beacon --video "$OUT/rec.y4m" -o "$OUT/track.csv" --quiet)
+dd=$(timed dd if="$OUT/rec.y4m" of=/dev/null bs=$((W * H)))
+say "Full \`rk-extract beacon\` on the y4m (detector on random frames, its own times): $full s, $(awk -v a="$full" -v b="$dd" 'BEGIN {printf "%.2f", a / b}') x dd."
