@@ -1,7 +1,15 @@
-// Unpacking loops of the camera-file packings; see packed_pixels.h. Each loop works group by group on
-// fixed-size groups with no branch, so g++ -O2 vectorises it (bench_video_read: 12-bit packed at the speed
-// of reading the file from the page cache).
+// Unpacking loops of the camera-file packings; see packed_pixels.h. The 16-bit loop is vectorised by g++
+// itself; the 10- and 12-bit packings, whose pixels straddle bytes, are not (-fopt-info-vec), so they have an
+// SSSE3 kernel (every x86-64 processor since 2006; chosen at run time, the portable loop otherwise and for the
+// last groups): one byte shuffle puts each pixel's two bytes in a 16-bit lane, one multiply shifts each lane
+// so that its bits end at the same place, one shift and the widening finish 8 pixels
+// (bench/video_read_bench.sh: docs/benchmarks.md "Reading recordings").
 #include "video/packed_pixels.h"
+
+#if defined(__x86_64__) || defined(__i386__)
+#include <immintrin.h>
+#define RK_HAVE_SSSE3_KERNEL 1
+#endif
 
 #include <algorithm>
 #include <array>
@@ -24,9 +32,57 @@ inline std::uint16_t Widen(std::uint32_t v, int b) {
   return static_cast<std::uint16_t>((v << (16 - b)) | (v >> (2 * b - 16)));
 }
 
+#ifdef RK_HAVE_SSSE3_KERNEL
+// 8 pixels of `bits` (10 or 12) from the 16 bytes at `src` (only the first 8·bits/8 are used): `order` puts
+// pixel k's high byte at lane k's byte 1 and its next byte at byte 0; multiplying by `scale` (2^(16-bits-s),
+// s = the pixel's shift in its lane) aligns every pixel's top bit to bit 15, then >> (16 - bits) and the widening.
+__attribute__((target("ssse3"))) inline void Unpack8Pixels(const std::uint8_t* src, __m128i order, __m128i scale, int bits,
+                                                           std::uint16_t* dst) {
+  __m128i v = _mm_shuffle_epi8(_mm_loadu_si128(reinterpret_cast<const __m128i*>(src)), order);
+  v = _mm_srli_epi16(_mm_mullo_epi16(v, scale), 16 - bits);
+  v = _mm_or_si128(_mm_slli_epi16(v, 16 - bits), _mm_srli_epi16(v, 2 * bits - 16));
+  _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), v);
+}
+
+// Groups of 8 pixels while 16 bytes can be loaded; returns the pixels done.
+__attribute__((target("ssse3"))) std::uint64_t UnpackSsse3(int bits, const std::uint8_t* src, std::uint64_t pixels,
+                                                           std::uint16_t* dst) {
+  // Pixel k's two bytes (high, low) and its shift s within them (the bits below it).
+  alignas(16) std::int8_t order[16];
+  alignas(16) std::int16_t scale[8];
+  for (int k = 0; k < 8; ++k) {
+    const int first_bit = k * bits;  // of the pixel, from the start of the 8-pixel group
+    const int hi = first_bit / 8;
+    const int s = 16 - bits - (first_bit % 8);  // its lowest bit in the 16-bit lane (hi, hi + 1)
+    order[2 * k] = static_cast<std::int8_t>(hi + 1);
+    order[2 * k + 1] = static_cast<std::int8_t>(hi);
+    scale[k] = static_cast<std::int16_t>(1 << (16 - bits - s));
+  }
+  const __m128i o = _mm_load_si128(reinterpret_cast<const __m128i*>(order));
+  const __m128i m = _mm_load_si128(reinterpret_cast<const __m128i*>(scale));
+  const std::uint64_t in_step = static_cast<std::uint64_t>(bits);  // bytes per 8 pixels
+  std::uint64_t done = 0;
+  const std::uint64_t bytes = pixels * in_step / 8;
+  while (done + 8 <= pixels && done / 8 * in_step + 16 <= bytes) {
+    Unpack8Pixels(src + done / 8 * in_step, o, m, bits, dst + done);
+    done += 8;
+  }
+  return done;
+}
+
+bool HaveSsse3() {
+  static const bool have = __builtin_cpu_supports("ssse3");
+  return have;
+}
+#endif
+
 void UnpackP12(const std::uint8_t* src, std::uint64_t pixels, std::uint16_t* dst) {
+  std::uint64_t first = 0;
+#ifdef RK_HAVE_SSSE3_KERNEL
+  if (HaveSsse3()) first = UnpackSsse3(12, src, pixels, dst) / 2;
+#endif
   const std::uint64_t groups = pixels / 2;
-  for (std::uint64_t g = 0; g < groups; ++g) {
+  for (std::uint64_t g = first; g < groups; ++g) {
     const std::uint32_t b0 = src[3 * g], b1 = src[3 * g + 1], b2 = src[3 * g + 2];
     const std::uint32_t v0 = (b0 << 4) | (b1 >> 4);
     const std::uint32_t v1 = ((b1 & 0x0Fu) << 8) | b2;
@@ -36,8 +92,12 @@ void UnpackP12(const std::uint8_t* src, std::uint64_t pixels, std::uint16_t* dst
 }
 
 void UnpackP10(const std::uint8_t* src, std::uint64_t pixels, std::uint16_t* dst) {
+  std::uint64_t first = 0;
+#ifdef RK_HAVE_SSSE3_KERNEL
+  if (HaveSsse3()) first = UnpackSsse3(10, src, pixels, dst) / 4;
+#endif
   const std::uint64_t groups = pixels / 4;
-  for (std::uint64_t g = 0; g < groups; ++g) {
+  for (std::uint64_t g = first; g < groups; ++g) {
     const std::uint8_t* s = src + 5 * g;
     const std::uint32_t b0 = s[0], b1 = s[1], b2 = s[2], b3 = s[3], b4 = s[4];
     const std::uint32_t v0 = (b0 << 2) | (b1 >> 6);

@@ -79,6 +79,20 @@ TEST(PackedPixels, EveryPackingRoundTripsThroughAnIndependentBitWriter) {
     EXPECT_EQ(Unpack16(c.packing, c.bits, packed.data(), v.size(), out.data()), 0u);
     for (std::size_t i = 0; i < v.size(); ++i) ASSERT_EQ(out[i], Widened(v[i], c.bits)) << InfoOf(c.packing).name << " at " << i;
   }
+  // Every length: the vector kernel's groups of 8 and the loop for the last ones.
+  for (const Case c : {Case{Packing::kP10BE, 10}, Case{Packing::kP12BE, 12}}) {
+    for (std::uint64_t n = 4; n <= 68; n += 4) {
+      CineSpec s;
+      s.width = static_cast<int>(n);
+      s.height = 1;
+      s.compression = c.packing == Packing::kP10BE ? 256 : 1024;
+      const Samples v = RandomFrames(1, s.width, 1, c.bits, static_cast<unsigned>(n))[0];
+      const std::vector<std::uint8_t> packed = testing::PackFrame(s, v);
+      std::vector<std::uint16_t> out(n);
+      Unpack16(c.packing, c.bits, packed.data(), n, out.data());
+      for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(out[i], Widened(v[i], c.bits)) << c.bits << "-bit, " << n << " pixels, at " << i;
+    }
+  }
   // A 12-bit sample above 4095 in a 16-bit container is clamped and counted.
   const std::uint16_t over[2] = {5000, 4095};
   std::uint16_t out[2];
