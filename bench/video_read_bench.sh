@@ -66,8 +66,9 @@ median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a
 # Wall seconds of a command, median of REPEATS.
 timed() {
   for _ in $(seq "$REPEATS"); do
-    /usr/bin/time -f "%e" -o "$OUT/t" "$@" > /dev/null 2>&1 || true
-    cat "$OUT/t"
+    /usr/bin/python3 -c 'import subprocess, sys, time
+t = time.perf_counter(); subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+print("%.4f" % (time.perf_counter() - t))' "$@"
   done | median
 }
 
@@ -75,21 +76,24 @@ say "## Reading recordings (issue 29) — $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) 
 say ""
 say "$FRAMES frames of ${W}x${H}, from the page cache, median of $REPEATS runs; \`bench/video_read_bench.sh\` (Release build)."
 say ""
-say "| recording | file MB | dd bs=frame (s) | rk-extract beacon --decode-only (s) | ratio to dd |"
-say "|---|---|---|---|---|"
-row() {  # name file frame_bytes
-  local name=$1 file=$2 fb=$3
+say "| recording | file MB | dd bs=frame (s) | writing the frames (s) | rk-extract beacon --decode-only (s) | ratio to dd | ratio to dd + writing |"
+say "|---|---|---|---|---|---|---|"
+# "writing the frames": dd if=/dev/zero into a buffer of one delivered frame (FRAMES of them) — the cost of
+# writing the 16-bit frames alone; a reader of a packed file cannot do less than read it and write them.
+row() {  # name file stored_frame_bytes delivered_frame_bytes
+  local name=$1 file=$2 fb=$3 ob=$4
   cat "$file" > /dev/null
-  local mb dd dec
+  local mb dd wr dec
   mb=$(( $(stat -c %s "$file") / 1000000 ))
   dd=$(timed dd if="$file" of=/dev/null bs="$fb")
+  wr=$(timed dd if=/dev/zero of=/dev/null bs="$ob" count="$FRAMES")
   dec=$(timed "$B/rk-extract" beacon --video "$file" --decode-only --quiet)
-  say "| $name | $mb | $dd | $dec | $(awk -v a="$dec" -v b="$dd" 'BEGIN {printf "%.2f", a / b}') |"
+  say "| $name | $mb | $dd | $wr | $dec | $(awk -v a="$dec" -v b="$dd" 'BEGIN {printf "%.2f", a / b}') | $(awk -v a="$dec" -v b="$dd" -v c="$wr" 'BEGIN {printf "%.2f", a / (b + c)}') |"
 }
-row "Photron MRAW 12-bit packed" "$OUT/rec.mraw" $((W * H * 3 / 2))
-row "Phantom CINE 12-bit packed mono" "$OUT/rec12.cine" $((W * H * 3 / 2))
-row "Phantom CINE 10-bit packed Bayer (demosaiced)" "$OUT/rec10_bayer.cine" $((W * H * 10 / 8))
-row "rk-capture y4m 8-bit" "$OUT/rec.y4m" $((W * H))
+row "Photron MRAW 12-bit packed" "$OUT/rec.mraw" $((W * H * 3 / 2)) $((W * H * 2))
+row "Phantom CINE 12-bit packed mono" "$OUT/rec12.cine" $((W * H * 3 / 2)) $((W * H * 2))
+row "Phantom CINE 10-bit packed Bayer (demosaiced)" "$OUT/rec10_bayer.cine" $((W * H * 10 / 8)) $((W * H * 2))
+row "rk-capture y4m 8-bit" "$OUT/rec.y4m" $((W * H)) $((W * H))
 say ""
 cat "$OUT/rec.y4m" > /dev/null
 full=$(timed "$B/rk-extract" beacon --video "$OUT/rec.y4m" -o "$OUT/track.csv" --quiet)

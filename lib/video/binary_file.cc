@@ -55,22 +55,28 @@ MappedFile::MappedFile(const std::string& path) : path_(path) {
       ::close(fd);
       throw IoError(path, std::string("cannot map the file: ") + std::strerror(e));
     }
-    ::madvise(p, size_, MADV_SEQUENTIAL);
     data_ = static_cast<const std::uint8_t*>(p);
   }
-  ::close(fd);
+  ::posix_fadvise(fd, 0, 0, POSIX_FADV_SEQUENTIAL);
+  fd_ = fd;
 }
 
 MappedFile::~MappedFile() {
   if (data_) ::munmap(const_cast<std::uint8_t*>(data_), size_);
+  if (fd_ >= 0) ::close(fd_);
 }
 
-void MappedFile::WillNeed(std::uint64_t offset, std::uint64_t n) const {
-  if (!data_ || offset >= size_) return;
-  const std::uint64_t page = static_cast<std::uint64_t>(::sysconf(_SC_PAGESIZE));
-  const std::uint64_t start = offset / page * page;
-  const std::uint64_t end = std::min(size_, offset + n);
-  ::madvise(const_cast<std::uint8_t*>(data_) + start, end - start, MADV_WILLNEED);
+void MappedFile::ReadAt(std::uint64_t offset, std::uint64_t n, void* dst, std::string_view what) const {
+  view().Need(offset, n, what);
+  auto* out = static_cast<std::uint8_t*>(dst);
+  while (n > 0) {
+    const ssize_t got = ::pread(fd_, out, n, static_cast<off_t>(offset));
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) throw IoError(path_, std::string("cannot read ") + std::string(what) + ": " + (got < 0 ? std::strerror(errno) : "the file shrank"));
+    out += got;
+    offset += static_cast<std::uint64_t>(got);
+    n -= static_cast<std::uint64_t>(got);
+  }
 }
 
 }  // namespace rk::video

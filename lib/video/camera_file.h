@@ -88,6 +88,7 @@ class CameraFileReader {
   std::unique_ptr<MappedFile> header_;
   CameraFile file_;
   cv::Mat raw_;  // the mosaic before demosaicing
+  std::vector<std::uint8_t> packed_;  // stored bytes before unpacking: a chunk, or a bottom-up frame (reused)
   std::uint64_t clamped_ = 0;
 };
 

@@ -75,7 +75,7 @@ std::string UtcText(double unix_s) {
   const std::time_t t = static_cast<std::time_t>(std::floor(unix_s));
   std::tm tm{};
   gmtime_r(&t, &tm);
-  char buf[40];
+  char buf[96];
   std::snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02d.%06dZ", tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday,
                 tm.tm_hour, tm.tm_min, tm.tm_sec, static_cast<int>((unix_s - std::floor(unix_s)) * 1e6));
   return buf;

@@ -4,11 +4,12 @@
 
 #include <cstdlib>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgcodecs.hpp>  // the flags only: the functions come from video/image_codecs.h
 #include <sstream>
 
 #include "io/error.h"
 #include "video/frame_source.h"
+#include "video/image_codecs.h"
 
 namespace rk::video {
 
@@ -43,7 +44,7 @@ void FrameSink::Write(const cv::Mat& frame) {
   RK_CHECK(frame.type() == (bit_depth_ == 16 ? CV_16UC1 : CV_8UC1), "frame type");
   if (sequence_) {
     const std::string file = SequenceFramePath(path_, frames_);
-    if (!cv::imwrite(file, frame, {cv::IMWRITE_PNG_COMPRESSION, 1})) {
+    if (!ImWrite(file, frame, {cv::IMWRITE_PNG_COMPRESSION, 1})) {
       throw IoError(file, "cannot write image");
     }
   } else {

@@ -6,13 +6,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgcodecs.hpp>  // the flags only: the functions come from video/image_codecs.h
 #include <opencv2/imgproc.hpp>
 #include <sstream>
 
 #include "io/error.h"
 #include "io/run_record.h"
 #include "video/camera_file.h"
+#include "video/image_codecs.h"
 #include "video/y4m.h"
 #include "video/stdin_video.h"
 
@@ -57,7 +58,7 @@ std::string FirstLine(const std::string& s) {
 // CV_IO_MAX_IMAGE_HEIGHT) turned into the DataError a file that cannot be decoded gets.
 cv::Mat ReadImage(const std::string& path) {
   try {
-    return cv::imread(path, cv::IMREAD_UNCHANGED);
+    return ImRead(path, cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception& e) {
     throw DataError(path, 0, 0, "cannot decode image (" + e.err + ")");
   }

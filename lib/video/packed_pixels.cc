@@ -2,7 +2,8 @@
 // itself; the 10- and 12-bit packings, whose pixels straddle bytes, are not (-fopt-info-vec), so they have an
 // SSSE3 kernel (every x86-64 processor since 2006; chosen at run time, the portable loop otherwise and for the
 // last groups): one byte shuffle puts each pixel's two bytes in a 16-bit lane, one multiply shifts each lane
-// so that its bits end at the same place, one shift and the widening finish 8 pixels
+// so that its bits end at the same place, one shift and the widening finish 8 pixels. An AVX2 version (16 pixels
+// a step) measured no faster: the unpacking is bound by writing the 16-bit frame, not by its instructions
 // (bench/video_read_bench.sh: docs/benchmarks.md "Reading recordings").
 #include "video/packed_pixels.h"
 
@@ -44,12 +45,9 @@ __attribute__((target("ssse3"))) inline void Unpack8Pixels(const std::uint8_t* s
   _mm_storeu_si128(reinterpret_cast<__m128i*>(dst), v);
 }
 
-// Groups of 8 pixels while 16 bytes can be loaded; returns the pixels done.
-__attribute__((target("ssse3"))) std::uint64_t UnpackSsse3(int bits, const std::uint8_t* src, std::uint64_t pixels,
-                                                           std::uint16_t* dst) {
-  // Pixel k's two bytes (high, low) and its shift s within them (the bits below it).
-  alignas(16) std::int8_t order[16];
-  alignas(16) std::int16_t scale[8];
+// The shuffle order and lane multipliers of 8 pixels of `bits` (10 or 12): pixel k's two bytes (high, low) and
+// the factor that moves its top bit to bit 15 of its lane.
+void KernelTables(int bits, std::int8_t order[16], std::int16_t scale[8]) {
   for (int k = 0; k < 8; ++k) {
     const int first_bit = k * bits;  // of the pixel, from the start of the 8-pixel group
     const int hi = first_bit / 8;
@@ -58,6 +56,14 @@ __attribute__((target("ssse3"))) std::uint64_t UnpackSsse3(int bits, const std::
     order[2 * k + 1] = static_cast<std::int8_t>(hi);
     scale[k] = static_cast<std::int16_t>(1 << (16 - bits - s));
   }
+}
+
+// Groups of 8 pixels while 16 bytes can be loaded; returns the pixels done.
+__attribute__((target("ssse3"))) std::uint64_t UnpackSsse3(int bits, const std::uint8_t* src, std::uint64_t pixels,
+                                                           std::uint16_t* dst) {
+  alignas(16) std::int8_t order[16];
+  alignas(16) std::int16_t scale[8];
+  KernelTables(bits, order, scale);
   const __m128i o = _mm_load_si128(reinterpret_cast<const __m128i*>(order));
   const __m128i m = _mm_load_si128(reinterpret_cast<const __m128i*>(scale));
   const std::uint64_t in_step = static_cast<std::uint64_t>(bits);  // bytes per 8 pixels
@@ -114,7 +120,7 @@ void UnpackP10(const std::uint8_t* src, std::uint64_t pixels, std::uint16_t* dst
 
 // 16-bit little-endian samples of `bits` significant bits.
 std::uint64_t UnpackU16(int bits, const std::uint8_t* src, std::uint64_t pixels, std::uint16_t* dst) {
-  std::memcpy(dst, src, pixels * 2);  // x86-64 and every target Debian builds rangekit for: little-endian
+  if (static_cast<const void*>(dst) != static_cast<const void*>(src)) std::memcpy(dst, src, pixels * 2);  // x86-64 and every target Debian builds rangekit for: little-endian
   if (bits >= 16) return 0;
   const std::uint32_t max = (1u << bits) - 1;
   std::uint64_t clamped = 0;

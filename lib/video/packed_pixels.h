@@ -37,6 +37,11 @@ bool FillsGroups(Packing packing, std::uint64_t pixels);
 // 8-bit `dst8`, the others into 16-bit `dst16`, each sample of `significant_bits` (its low bits; 1..16)
 // scaled to 16 bits by bit replication. `significant_bits` 16 copies; a sample above its bit range (a 12-bit
 // sample > 4095 in a 16-bit container) is clamped to 65535 and counted in the return value.
+// In place: `src` may be the last PackedBytes(packing, pixels) bytes of `dst16`'s own buffer (the frame is read
+// there and widened forward): every group is loaded before its pixels are stored, and a group's output ends at
+// or before the first packed byte not yet loaded (for N pixels the packed bytes start at 2N − PackedBytes; the
+// output of pixels [i, i + 8) ends at 2i + 16, the next group starts at 2N − PackedBytes + PackedBytes(i + 8),
+// which is ≥ 2i + 16 while i ≤ N − 8; likewise for the scalar groups). Tested at every length.
 std::uint64_t Unpack16(Packing packing, int significant_bits, const std::uint8_t* src, std::uint64_t pixels,
                        std::uint16_t* dst16);
 void Unpack8(const std::uint8_t* src, std::uint64_t pixels, std::uint8_t* dst8);

@@ -103,13 +103,19 @@ Y4mReader::Y4mReader(const std::string& path) : file_(path) {
 bool Y4mReader::Read(cv::Mat* out) {
   const ByteView v = file_.view();
   if (pos_ >= v.size()) return false;
+  // The FRAME line by pread too: touching the mapping would fault a page per frame.
+  char line[kMaxHeaderLine];
   const std::uint64_t avail = std::min<std::uint64_t>(v.size() - pos_, kMaxHeaderLine);
-  const std::uint8_t* line = v.data() + pos_;
-  const void* nl = std::memchr(line, '\n', avail);
+  file_.ReadAt(pos_, std::min<std::uint64_t>(avail, 64), line, "FRAME line");
+  const void* nl = std::memchr(line, '\n', std::min<std::uint64_t>(avail, 64));
+  if (!nl && avail > 64) {  // FRAME parameters longer than 58 bytes: the whole line
+    file_.ReadAt(pos_, avail, line, "FRAME line");
+    nl = std::memchr(line, '\n', avail);
+  }
   if (avail < 5 || std::memcmp(line, "FRAME", 5) != 0 || !nl) {
     v.Fail(pos_, "frame " + std::to_string(frames_read_) + " has no FRAME line (cut short or not a y4m frame)");
   }
-  const std::uint64_t data = pos_ + static_cast<std::uint64_t>(static_cast<const std::uint8_t*>(nl) - line) + 1;
+  const std::uint64_t data = pos_ + static_cast<std::uint64_t>(static_cast<const char*>(nl) - line) + 1;
   if (data > v.size() || v.size() - data < frame_bytes_) {
     // A torn last frame (the recorder stopped mid-write): said, not read; `rk-capture recover` cuts it off.
     io::EmitWarning(v.file() + ": byte " + std::to_string(pos_) + ": frame " + std::to_string(frames_read_) +
@@ -118,11 +124,10 @@ bool Y4mReader::Read(cv::Mat* out) {
     pos_ = v.size();
     return false;
   }
-  const std::uint8_t* src = v.data() + data;
   out->create(format_.height, format_.width, format_.bit_depth == 16 ? CV_16UC1 : CV_8UC1);
-  std::memcpy(out->data, src, frame_bytes_);  // mono16 is little-endian, as the host
+  // The samples straight into the frame (mono16 is little-endian, as the host): one copy, by the kernel.
+  file_.ReadAt(data, frame_bytes_, out->data, "frame " + std::to_string(frames_read_));
   pos_ = data + frame_bytes_;
-  file_.WillNeed(pos_, frame_bytes_ + 64);
   ++frames_read_;
   return true;
 }

@@ -1,6 +1,6 @@
 // YUV4MPEG2 (y4m) mono video, rk-capture's segment format (capture/segment_writer.h): the header line
-// both sides share, and a reader that takes each frame's samples straight from the mapped file — one
-// copy from the page cache, no decoder process, no pipe (rk-extract on rk-capture's segments reads at
+// both sides share, and a reader that reads each frame's samples straight into the frame (pread) — one
+// copy from the page cache, as dd makes, no decoder process, no pipe (rk-extract on rk-capture's segments reads at
 // the speed of the disk; bench_video_read).
 //   header  "YUV4MPEG2 W<w> H<h> F<num>:<den> [I.. A.. X..] C<mono|mono16>\n"
 //   frame   "FRAME[ params]\n" then w·h samples (mono16: little-endian 16-bit)

@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <opencv2/imgproc.hpp>
@@ -91,6 +92,12 @@ TEST(PackedPixels, EveryPackingRoundTripsThroughAnIndependentBitWriter) {
       std::vector<std::uint16_t> out(n);
       Unpack16(c.packing, c.bits, packed.data(), n, out.data());
       for (std::size_t i = 0; i < n; ++i) ASSERT_EQ(out[i], Widened(v[i], c.bits)) << c.bits << "-bit, " << n << " pixels, at " << i;
+      // In place, the packed bytes at the end of the output buffer (as CameraFileReader reads a frame).
+      std::vector<std::uint16_t> in_place(n);
+      auto* bytes = reinterpret_cast<std::uint8_t*>(in_place.data());
+      std::memcpy(bytes + 2 * n - packed.size(), packed.data(), packed.size());
+      Unpack16(c.packing, c.bits, bytes + 2 * n - packed.size(), n, in_place.data());
+      EXPECT_EQ(in_place, out) << c.bits << "-bit in place, " << n << " pixels";
     }
   }
   // A 12-bit sample above 4095 in a 16-bit container is clamped and counted.
