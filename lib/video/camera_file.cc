@@ -2,7 +2,9 @@
 #include "video/camera_file.h"
 
 #include <algorithm>
+#include <exception>
 #include <filesystem>
+#include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "io/error.h"
@@ -98,17 +100,33 @@ void CameraFileReader::ReadMosaic(std::int64_t index, cv::Mat* out) {
     return;
   }
   if (!f.bottom_up) {
-    // Packed or widened: read a chunk at a time into a buffer that stays in the core's L2 cache, unpack it from
-    // there into the frame (reading the whole frame first and unpacking it after cost 2.4 x dd: the unpacking
-    // then read every byte back from L3; bench/video_read_bench.sh).
+    // Packed or widened: in two bands, one per core (cv::parallel_for_, OpenCV's pool: no thread per frame),
+    // each read a chunk at a time into its own buffer that stays in its core's L2 cache and unpacked from there
+    // into the frame (reading the whole frame first and unpacking it after cost 2.4 x dd: the unpacking then read
+    // every byte back from L3; bench/video_read_bench.sh).
     const std::uint64_t group = static_cast<std::uint64_t>(InfoOf(f.packing).pixels_per_group) * 8;
     const std::uint64_t chunk_pixels = std::max<std::uint64_t>(group, kChunkBytes / PackedBytes(f.packing, group) * group);
-    packed_.resize(PackedBytes(f.packing, chunk_pixels));
-    for (std::uint64_t done = 0; done < pixels; done += chunk_pixels) {
-      const std::uint64_t n = std::min(chunk_pixels, pixels - done);
-      data_->ReadAt(offset + PackedBytes(f.packing, done), PackedBytes(f.packing, n), packed_.data(), what);
-      clamped_ += Unpack16(f.packing, f.significant_bits, packed_.data(), n, out->ptr<std::uint16_t>() + done);
+    const std::uint64_t half = (pixels / 2 + chunk_pixels - 1) / chunk_pixels * chunk_pixels;  // whole chunks
+    std::uint64_t clamped[2] = {0, 0};
+    std::exception_ptr error[2];  // rethrown here: OpenCV would turn them into cv::Exception
+    cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range& bands) {
+      for (int b = bands.start; b < bands.end; ++b) try {
+        std::vector<std::uint8_t>& buffer = chunk_[b];
+        buffer.resize(PackedBytes(f.packing, chunk_pixels));
+        const std::uint64_t begin = b == 0 ? 0 : std::min(half, pixels), end = b == 0 ? std::min(half, pixels) : pixels;
+        for (std::uint64_t done = begin; done < end; done += chunk_pixels) {
+          const std::uint64_t n = std::min(chunk_pixels, end - done);
+          data_->ReadAt(offset + PackedBytes(f.packing, done), PackedBytes(f.packing, n), buffer.data(), what);
+          clamped[b] += Unpack16(f.packing, f.significant_bits, buffer.data(), n, out->ptr<std::uint16_t>() + done);
+        }
+      } catch (...) {
+        error[b] = std::current_exception();
+      }
+    });
+    for (const std::exception_ptr& e : error) {
+      if (e) std::rethrow_exception(e);
     }
+    clamped_ += clamped[0] + clamped[1];
     return;
   }
   // Bottom-up (unpacked CINE): rows reversed through a buffer kept between frames.

@@ -88,7 +88,8 @@ class CameraFileReader {
   std::unique_ptr<MappedFile> header_;
   CameraFile file_;
   cv::Mat raw_;  // the mosaic before demosaicing
-  std::vector<std::uint8_t> packed_;  // stored bytes before unpacking: a chunk, or a bottom-up frame (reused)
+  std::vector<std::uint8_t> packed_;    // a bottom-up frame as stored (reused)
+  std::vector<std::uint8_t> chunk_[2];  // per band: a chunk of stored bytes before unpacking (reused)
   std::uint64_t clamped_ = 0;
 };
 
