@@ -92,8 +92,8 @@ void UnpackP12(const std::uint8_t* src, std::uint64_t pixels, std::uint16_t* dst
     const std::uint32_t b0 = src[3 * g], b1 = src[3 * g + 1], b2 = src[3 * g + 2];
     const std::uint32_t v0 = (b0 << 4) | (b1 >> 4);
     const std::uint32_t v1 = ((b1 & 0x0Fu) << 8) | b2;
-    dst[2 * g] = static_cast<std::uint16_t>((v0 << 4) | (v0 >> 8));
-    dst[2 * g + 1] = static_cast<std::uint16_t>((v1 << 4) | (v1 >> 8));
+    dst[2 * g] = Widen(v0, 12);
+    dst[2 * g + 1] = Widen(v1, 12);
   }
 }
 
@@ -111,10 +111,10 @@ void UnpackP10(const std::uint8_t* src, std::uint64_t pixels, std::uint16_t* dst
     const std::uint32_t v2 = ((b2 & 0x0Fu) << 6) | (b3 >> 2);
     const std::uint32_t v3 = ((b3 & 0x03u) << 8) | b4;
     std::uint16_t* d = dst + 4 * g;
-    d[0] = static_cast<std::uint16_t>((v0 << 6) | (v0 >> 4));
-    d[1] = static_cast<std::uint16_t>((v1 << 6) | (v1 >> 4));
-    d[2] = static_cast<std::uint16_t>((v2 << 6) | (v2 >> 4));
-    d[3] = static_cast<std::uint16_t>((v3 << 6) | (v3 >> 4));
+    d[0] = Widen(v0, 10);
+    d[1] = Widen(v1, 10);
+    d[2] = Widen(v2, 10);
+    d[3] = Widen(v3, 10);
   }
 }
 

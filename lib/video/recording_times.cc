@@ -21,15 +21,9 @@ namespace rk::video {
 namespace fs = std::filesystem;
 namespace {
 
-// One segment's times before they are placed on the output's time line.
-struct SegmentTimes {
-  std::vector<FrameStamp> frames;
-  bool absolute = false;
-  double origin_s = 0.0;  // as RecordingTimes::origin_s
+// One segment's times before they are placed on the output's time line: a camera file's own, or made here.
+struct SegmentTimes : RecordingTimes {
   bool on_trial_clock = false;  // rk-capture's t_s: already seconds since the trial epoch
-  double rate_hz = 0.0;
-  std::string basis;
-  std::vector<std::string> warnings;
 };
 
 // Runs a command, returns its stdout; DataError naming `path` with ffprobe's first error line on failure.
@@ -68,12 +62,12 @@ bool TimedContainer(const std::string& format_name) {
   return false;
 }
 
-SegmentTimes NominalTimes(std::int64_t count, double rate_hz, const std::string& basis) {
+SegmentTimes NominalTimes(std::int64_t count, double nominal_rate_hz, const std::string& basis) {
   SegmentTimes s;
-  s.rate_hz = rate_hz;
+  s.nominal_rate_hz = nominal_rate_hz;
   s.basis = basis;
   s.frames.resize(static_cast<std::size_t>(count));
-  for (std::int64_t i = 0; i < count; ++i) s.frames[static_cast<std::size_t>(i)].t_s = static_cast<double>(i) / rate_hz;
+  for (std::int64_t i = 0; i < count; ++i) s.frames[static_cast<std::size_t>(i)].t_s = static_cast<double>(i) / nominal_rate_hz;
   return s;
 }
 
@@ -104,7 +98,7 @@ SegmentTimes ContainerTimes(const std::string& path, const FrameTimesOptions& o)
   if (TimedContainer(format_name) && all_timed) {
     std::sort(pts.begin(), pts.end());
     SegmentTimes s;
-    s.rate_hz = rate;
+    s.nominal_rate_hz = rate;
     s.basis = "the container's presentation times (" + format_name + ")";
     s.frames.resize(pts.size());
     for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -172,22 +166,15 @@ SegmentTimes CaptureTimes(const std::string& segment, const std::string& frames_
                                           " (run rk-capture recover on the trial)");
   }
   if (s.frames.size() >= 2) {
-    s.rate_hz = static_cast<double>(s.frames.size() - 1) / (s.frames.back().t_s - s.frames.front().t_s);
+    s.nominal_rate_hz = static_cast<double>(s.frames.size() - 1) / (s.frames.back().t_s - s.frames.front().t_s);
   }
   return s;
 }
 
 SegmentTimes TimesOf(const std::string& segment, const FrameTimesOptions& o) {
   if (!IsSequencePattern(segment) && IsCameraFile(segment)) {
-    CameraFileReader reader(segment);
-    const RecordingTimes& t = reader.file().times;
     SegmentTimes s;
-    s.frames = t.frames;
-    s.absolute = t.absolute;
-    s.origin_s = t.origin_s;
-    s.rate_hz = t.nominal_rate_hz;
-    s.basis = t.basis;
-    s.warnings = t.warnings;
+    static_cast<RecordingTimes&>(s) = CameraFileReader(segment).file().times;
     return s;
   }
   const std::string capture = CaptureFramesFile(segment);
@@ -269,7 +256,7 @@ RecordingFrameTimes ReadFrameTimes(const std::vector<std::string>& segments, con
                                              "'s (absolute UTC, the trial clock or relative): give --frames");
     }
   }
-  r.nominal_rate_hz = all.front().rate_hz;
+  r.nominal_rate_hz = all.front().nominal_rate_hz;
   // The time line: the epoch for absolute stamps when given, the trial epoch for rk-capture's, else the first frame.
   // zero = zero_whole + zero_frac, kept apart so that UTC stamps keep their nanoseconds.
   double zero_whole = all.front().origin_s;
