@@ -9,6 +9,7 @@
 #include "formats/frame_times.h"
 #include "io/cli.h"
 #include "io/error.h"
+#include "io/utc_time.h"
 #include "subcommand.h"
 #include "io/run_record.h"
 #include "video/recording_times.h"
@@ -50,7 +51,7 @@ struct VideoInputArgs {
   }
   void CheckFrameTimes() const {
     video::RefuseStdinVideo(videos);
-    video::ParseEpochOption(epoch_utc);
+    io::ParseEpochOption(epoch_utc);
   }
   // The videos, then the frames file if any.
   std::vector<cli::NamedPath> Inputs() const {
@@ -66,7 +67,7 @@ struct VideoInputArgs {
     if (!frames_path.empty()) return formats::FrameClock::FromCsv(frames_path, bad_rows);
     if (fps) return formats::FrameClock::FromRate(*fps, t0.value_or(0.0));
     video::FrameTimesOptions o;
-    o.epoch_unix_s = video::ParseEpochOption(epoch_utc);
+    o.epoch_unix_s = io::ParseEpochOption(epoch_utc);
     recording = video::ReadFrameTimes(videos, o);
     if (recording->backwards > 0) {
       for (const std::string& p : recording->problems) {

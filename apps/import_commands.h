@@ -5,6 +5,7 @@
 
 namespace rk::app {
 
-Command AddFramesCommand(CLI::App& app);  // import_frames_cmd.cpp
+Command AddFramesCommand(CLI::App& app);   // import_frames_cmd.cpp
+Command AddAsterixCommand(CLI::App& app);  // import_asterix_cmd.cpp
 
 }  // namespace rk::app

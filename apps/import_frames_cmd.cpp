@@ -9,6 +9,7 @@
 #include "import_commands.h"
 #include "io/cli.h"
 #include "io/error.h"
+#include "io/utc_time.h"
 #include "video/recording_times.h"
 #include "video/stdin_video.h"
 
@@ -28,7 +29,7 @@ int RunFrames(const FramesArgs& a, const Context& ctx) {
   for (const std::string& v : a.videos) inputs.push_back({"--video", v});
   cli::CheckStreams(ctx.common, inputs, {{"-o", a.output}});
   video::FrameTimesOptions o;
-  o.epoch_unix_s = video::ParseEpochOption(a.epoch_utc);
+  o.epoch_unix_s = io::ParseEpochOption(a.epoch_utc);
   o.fps_hz = a.fps;
   const video::RecordingFrameTimes times = video::ReadFrameTimes(a.videos, o);
 

@@ -33,6 +33,7 @@ PACKAGES=(
   help2man bash-completion bsdutils
   libopencv-contrib-dev opencv-doc
   libtinyxml2-dev  # Photron .cihx headers are XML (lib/video/mraw_file.cc)
+  libpcap-dev      # radar feeds captured as pcap/pcapng (lib/asterix/capture.cc)
 )
 # Slurm daemons only on request: nobody needs them to use rangekit on one machine (rk-nightly); the
 # test that starts a one-node cluster installs them through --slurm.

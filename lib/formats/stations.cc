@@ -53,14 +53,6 @@ geo::Geodetic Position(const Context& ctx, const io::Json& obj, const std::vecto
   return g;
 }
 
-bool GoodName(const std::string& name) {
-  if (name.empty()) return false;
-  for (char c : name) {
-    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-' && c != '.') return false;
-  }
-  return true;
-}
-
 StationSpec Station(const Context& ctx, const io::Json& st, std::size_t i, const std::filesystem::path& dir) {
   const std::vector<std::string> where = {"stations", "#" + std::to_string(i)};
   if (!st.is_object()) throw ctx.At(where, "stations[" + std::to_string(i) + "] must be an object");
@@ -86,6 +78,14 @@ StationSpec Station(const Context& ctx, const io::Json& st, std::size_t i, const
 }
 
 }  // namespace
+
+bool GoodName(const std::string& name) {
+  if (name.empty()) return false;
+  for (char c : name) {
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '_' && c != '-' && c != '.') return false;
+  }
+  return true;
+}
 
 StationsFile ParseStations(const std::string& text, const std::string& path) {
   const io::Json j = io::ParseJson(text, path);

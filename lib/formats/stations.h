@@ -15,6 +15,9 @@ namespace rk::formats {
 // Most stations one file may hold (rk-intersect's solver marks the stations of a row in a 64-bit mask).
 inline constexpr std::size_t kMaxStations = 64;
 
+// A station's or radar's name: [A-Za-z0-9_.-]+ (it names file columns: R_range_m, residual columns).
+bool GoodName(const std::string& name);
+
 struct StationSpec {
   std::string name;     // unique, [A-Za-z0-9_.-]+ (it names the station's residual columns)
   geo::Geodetic position;

@@ -3,6 +3,7 @@
 
 #include <GeographicLib/Geocentric.hpp>
 #include <GeographicLib/LocalCartesian.hpp>
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <vector>
@@ -86,6 +87,32 @@ Eigen::Vector3d LocalEnu::ToEnu(const Geodetic& g) const {
   Eigen::Vector3d p;
   impl_->lc.Forward(g.lat_deg, g.lon_deg, g.h_m, p.x(), p.y(), p.z());
   return p;
+}
+
+std::optional<double> ElevationToHeight(const LocalEnu& site, double range_m, double az_rad, double height_m) {
+  if (!(range_m > 0) || !std::isfinite(range_m) || !std::isfinite(height_m) || !std::isfinite(az_rad)) {
+    return std::nullopt;
+  }
+  const GeographicLib::Geocentric& earth = GeographicLib::Geocentric::WGS84();
+  const double a = earth.EquatorialRadius(), e2 = earth.Flattening() * (2 - earth.Flattening());
+  const double s = std::sin(site.origin().lat_deg * M_PI / 180.0);
+  const double w = 1 - e2 * s * s;
+  const double meridian = a * (1 - e2) / (w * std::sqrt(w)), normal = a / std::sqrt(w);
+  const double ca = std::cos(az_rad), sa = std::sin(az_rad);
+  const double radius = 1.0 / (ca * ca / meridian + sa * sa / normal);  // Euler's radius in this azimuth
+  const double ra = radius + site.origin().h_m, rt = radius + height_m;
+  double sin_el = (rt * rt - ra * ra - range_m * range_m) / (2 * ra * range_m);
+  if (!(std::abs(sin_el) <= 1.0 + 1e-9)) return std::nullopt;
+  double el = std::asin(std::clamp(sin_el, -1.0, 1.0));
+  for (int iter = 0; iter < 10; ++iter) {
+    const double ce = std::cos(el);
+    const Geodetic g = site.ToGeodetic(range_m * Eigen::Vector3d(ce * sa, ce * ca, std::sin(el)));
+    const double f = g.h_m - height_m;
+    if (std::abs(f) < 1e-4) return el;
+    const double slope = ra * range_m * std::max(ce, 1e-6) / rt;  // dh/d(el) on the sphere
+    el = std::clamp(el - f / slope, -M_PI / 2, M_PI / 2);
+  }
+  return std::nullopt;
 }
 
 }  // namespace rk::geo

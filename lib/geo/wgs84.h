@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace rk::geo {
@@ -45,5 +46,13 @@ class LocalEnu {
   Geodetic origin_;
   std::unique_ptr<Impl> impl_;
 };
+
+// The elevation (rad, up from the site's horizontal plane) of the straight line that leaves `site` at azimuth
+// `az_rad` (clockwise from north) and reaches ellipsoidal height `height_m` after the slant range `range_m`: a
+// radar plot's elevation from a target height (a 3-D radar's, or Mode C). Geometric, on the WGS-84 ellipsoid
+// (no refraction): a first value on the sphere of the Euler radius of curvature in that azimuth, then Newton
+// steps on the exact height until it is within 0.1 mm. nullopt when no elevation in [−90°, 90°] reaches that
+// height at that range (range_m <= 0, or the height is further above or below the site than the range).
+std::optional<double> ElevationToHeight(const LocalEnu& site, double range_m, double az_rad, double height_m);
 
 }  // namespace rk::geo

@@ -1,5 +1,7 @@
 #include "io/utc_time.h"
 
+#include "io/error.h"
+
 #include <charconv>
 
 namespace rk::io {
@@ -89,6 +91,16 @@ double UnixSeconds(const UtcTime& t) {
   const int doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
   const long long days = static_cast<long long>(era) * 146097 + doe - 719468;
   return static_cast<double>(days) * 86400.0 + t.hour * 3600.0 + t.minute * 60.0 + t.second;
+}
+
+std::optional<double> ParseEpochOption(const std::string& text, const std::string& option) {
+  if (text.empty()) return std::nullopt;
+  UtcTime t;
+  std::string why;
+  if (!ParseUtcIso(text, &t, &why)) {
+    throw UsageError(option + " '" + text + "': " + why + "; expected " + kUtcIsoFormat);
+  }
+  return UnixSeconds(t);
 }
 
 }  // namespace rk::io

@@ -4,6 +4,7 @@
 // the files and options are UTC by name.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -20,6 +21,10 @@ bool ParseUtcIso(std::string_view text, UtcTime* out, std::string* why);
 // Seconds since 1970-01-01T00:00:00Z (POSIX time: a leap second 23:59:60 counts as the next day's 00:00:00),
 // to compare with a recording's own UTC stamps (CINE time blocks, IRIG).
 double UnixSeconds(const UtcTime& t);
+
+// An option's ISO-8601 UTC value (--epoch-utc) as POSIX seconds (nullopt for ""); UsageError naming the option
+// when it is not ISO-8601 UTC.
+std::optional<double> ParseEpochOption(const std::string& text, const std::string& option = "--epoch-utc");
 
 // The format in words, for messages.
 inline constexpr const char* kUtcIsoFormat = "YYYY-MM-DDThh:mm:ss[.fff]Z (UTC, e.g. 2026-11-21T08:00:00Z)";

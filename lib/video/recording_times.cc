@@ -281,16 +281,6 @@ RecordingFrameTimes ReadFrameTimes(const std::vector<std::string>& segments, con
   return r;
 }
 
-std::optional<double> ParseEpochOption(const std::string& text, const std::string& option) {
-  if (text.empty()) return std::nullopt;
-  io::UtcTime t;
-  std::string why;
-  if (!io::ParseUtcIso(text, &t, &why)) {
-    throw UsageError(option + " '" + text + "': " + why + "; expected " + io::kUtcIsoFormat);
-  }
-  return io::UnixSeconds(t);
-}
-
 io::RunSummary FrameTimesSummary(const RecordingFrameTimes& times) {
   io::RunSummary s;
   constexpr std::size_t kSaid = 20;  // problems said one by one, then a count

@@ -53,8 +53,6 @@ struct RecordingFrameTimes {
 // UsageError for a recording with no times and no --fps; IoError / DataError as the readers.
 RecordingFrameTimes ReadFrameTimes(const std::vector<std::string>& segments, const FrameTimesOptions& options);
 
-// --epoch-utc as POSIX seconds (nullopt for ""); UsageError naming the option when it is not ISO-8601 UTC.
-std::optional<double> ParseEpochOption(const std::string& text, const std::string& option = "--epoch-utc");
 
 // The run summary of a recording's frame times: frames by time source (headline); warnings: segments timed
 // only by a nominal rate (nominal_times), the file's own disagreements (times_disagree), absolute times
