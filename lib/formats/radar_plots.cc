@@ -11,6 +11,7 @@
 #include "io/file_util.h"
 #include "io/json_positions.h"
 #include "io/json_util.h"
+#include "io/number_text.h"
 
 namespace rk::formats {
 
@@ -66,11 +67,11 @@ struct Where {
 double Number(const Where& w, const io::Json& obj, const std::string& at, const std::string& key, double lo,
               double hi) {
   const io::Json& v = obj[key];
-  const std::string name = "radars" + at.substr(7) + "." + key;  // at = "/radars/3"
+  const std::string name = "radars[" + at.substr(8) + "]." + key;  // at = "/radars/3"
   if (!v.is_number()) throw w.At(at + "/" + key, name + " must be a number");
   const double x = v.get<double>();
   if (!std::isfinite(x) || x < lo || x > hi) {
-    throw w.At(at + "/" + key, name + " must be in [" + io::Json(lo).dump() + ", " + io::Json(hi).dump() + "]");
+    throw w.At(at + "/" + key, name + " must be in [" + io::NumberText(lo) + ", " + io::NumberText(hi) + "]");
   }
   return x;
 }

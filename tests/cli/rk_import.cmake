@@ -21,3 +21,12 @@ rk_cli_script(rk_import/import_cli_tools_take_file_times REQUIRES import_inputs)
 # Malformed input: exit 3 with the byte offset or the header line, no output, --report still written; a missing
 # header (4); no times for an image sequence without --fps, a bad --epoch-utc (2).
 rk_cli_script(rk_import/import_cli_bad_input REQUIRES import_inputs)
+
+# rk-import asterix. Synthetic feeds (rk_import/make_asterix.py, written without rangekit's code): a redundant feed
+# over midnight into 24 plots in time order with el from the 3-D radar's height and azimuths across 0/360, CAT034
+# north markers into the scan period, the same plots from a raw .ast stream; bad records skipped with their byte
+# offset or (--bad-records error) exit 3 with no output; radars.json errors with line:column; a fake .pcap.
+rk_cli_script(rk_import/import_cli_asterix)
+# The real radar feed against Wireshark's own ASTERIX dissector (tshark; skipped, exit 77, without it or the file).
+rk_cli_script(rk_import/import_cli_asterix_real)
+set_tests_properties(import_cli_asterix_real PROPERTIES SKIP_RETURN_CODE 77)
