@@ -4,6 +4,7 @@
 #include <cmath>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "io/csv.h"
 #include "io/error.h"
@@ -18,6 +19,8 @@ struct RadarCli {
   rk::sim::RadarSimOptions o;
   rk::sim::RadarTrialWriteOptions w;
   std::string origin = "25,110,0", names = "a,b";
+  std::string two_d;                  // --2d: radar names, empty = the second radar
+  CLI::Option* two_d_opt = nullptr;
 };
 
 int RunRadar(RadarCli& p, const Context& ctx) {
@@ -40,6 +43,18 @@ int RunRadar(RadarCli& p, const Context& ctx) {
   const std::vector<std::string> names = io::SplitList(p.names);
   if (names.size() != 2) throw UsageError("--names: give two radar names, e.g. a,b");
   o.names = {names[0], names[1]};
+  if (p.two_d_opt != nullptr && p.two_d_opt->count() > 0) {
+    const std::vector<std::string> flat = io::SplitList(p.two_d.empty() ? o.names[1] : p.two_d);
+    for (const std::string& n : flat) {
+      if (n == o.names[0]) {
+        o.two_d[0] = true;
+      } else if (n == o.names[1]) {
+        o.two_d[1] = true;
+      } else {
+        throw UsageError("--2d: '" + n + "' is not a radar name (" + o.names[0] + "," + o.names[1] + ")");
+      }
+    }
+  }
   std::string why;
   if (!o.Check(&why)) throw UsageError(why);
   if (p.w.out_dir.empty() || p.w.out_dir == "-") throw UsageError("--out must name a folder");
@@ -77,6 +92,10 @@ Command AddRadarCommand(CLI::App& app) {
   // Hand-registered options go just before the table option they precede in --help.
   rk::cli::AddOptions(s, &p->o, rk::sim::RadarSimOptions::Table(), {{"--pd", clutter}, {"--time-offset-b", origin}});
   s->add_option("--names", p->names, "The two radar names, as written in the files")->capture_default_str();
+  p->two_d_opt = s->add_option("--2d", p->two_d,
+                               "2-D radars: their plots are written with an empty el_deg (truth unchanged); "
+                               "a list of radar names, or alone for the second radar")
+                     ->expected(0, 1);
   return {s, [p](const Context& ctx) { return RunRadar(*p, ctx); }};
 }
 

@@ -16,13 +16,30 @@ namespace {
 // Whitened difference of the two exact bias-corrected points of a pair; one 12-parameter block.
 class PairResidual final : public ceres::SizedCostFunction<3, kBiasDim> {
  public:
-  PairResidual(const PlotRecord& a, const PlotRecord& b, const Mat3& W, const MeasurementNoise& noise)
-      : a_(a), b_(b), W_(W), noise_(noise) {}
+  // W: the whitening of the pair's difference (3×3), or for a pair with a 2-D plot of its reduced difference
+  // (d×d, radar_model.h ReducePair), whose residual is padded with 3 − d zeros.
+  PairResidual(const PlotRecord& a, const PlotRecord& b, const MatX3& W, const MeasurementNoise& noise)
+      : a_(a), b_(b), W_(W.rows() == 3 ? Mat3(W) : Mat3::Zero()), Wr_(W), noise_(noise) {}
 
   bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
     const Eigen::Map<const BiasVector> x(parameters[0]);
     const RadarBias xa = x.head<kRadarBiasDim>(), xb = x.tail<kRadarBiasDim>();
     Eigen::Map<Vec3> r(residuals);
+    if (!a_.meas.has_el || !b_.meas.has_el) {
+      // The elevations are re-filled at x, so the residual is the reduced difference of the exact points; its
+      // Jacobian is taken with U and the elevations held (their first-order effect is zero: Uᵀ ∂p/∂φ = 0).
+      const auto [la, lb] = LinearizePair(a_.meas, a_.pose, xa, b_.meas, b_.pose, xb, noise_);
+      const ReducedPair rp = ReducePair(la, lb, BiasVector(x));
+      const int d = rp.dim;
+      r.setZero();
+      r.head(d) = Wr_ * rp.nu;
+      if (jacobians != nullptr && jacobians[0] != nullptr) {
+        Eigen::Map<Eigen::Matrix<double, 3, kBiasDim, Eigen::RowMajor>> J(jacobians[0]);
+        J.setZero();
+        J.topRows(d) = -Wr_ * rp.H;
+      }
+      return true;
+    }
     if (jacobians == nullptr || jacobians[0] == nullptr) {
       r = W_ * (CorrectedEcefPoint(b_.meas, b_.pose, xb) - CorrectedEcefPoint(a_.meas, a_.pose, xa));
       return true;
@@ -40,14 +57,31 @@ class PairResidual final : public ceres::SizedCostFunction<3, kBiasDim> {
   const PlotRecord& a_;
   const PlotRecord& b_;
   const Mat3 W_;
+  const MatX3 Wr_;
   const MeasurementNoise noise_;
 };
 
 using PairList = std::vector<std::vector<std::pair<int, int>>>;
 
-// d² of a pair for the estimate (x, P) (exact difference, linearised covariance).
+// d² of a pair for the estimate (x, P) (exact difference, linearised covariance), the whitening of its noise and
+// its dimension: 3, or for a pair with a 2-D plot the reduced pair's (radar_model.h ReducePair).
 double PairD2(const PlotRecord& a, const PlotRecord& b, const BiasVector& x, const BiasMatrix& P,
-              const MeasurementNoise& noise, Mat3* W_out) {
+              const MeasurementNoise& noise, MatX3* W_out, int* dim = nullptr) {
+  if (!a.meas.has_el || !b.meas.has_el) {
+    const auto [la, lb] = LinearizePair(a.meas, a.pose, x.head<kRadarBiasDim>(), b.meas, b.pose,
+                                        x.tail<kRadarBiasDim>(), noise);
+    const ReducedPair rp = ReducePair(la, lb, x);
+    if (dim) *dim = rp.dim;
+    const MatX3 S = rp.H * P * rp.H.transpose() + rp.R;
+    const Eigen::LLT<MatX3> llt(0.5 * (S + S.transpose()));
+    if (llt.info() != Eigen::Success) return INFINITY;
+    if (W_out) {
+      const Eigen::LLT<MatX3> lr(rp.R);
+      *W_out = lr.matrixL().solve(MatX3::Identity(rp.dim, rp.dim));
+    }
+    return llt.matrixL().solve(rp.nu).squaredNorm();
+  }
+  if (dim) *dim = 3;
   const PlotLinearization la = LinearizePlot(a.meas, a.pose, x.head<kRadarBiasDim>(), noise);
   const PlotLinearization lb = LinearizePlot(b.meas, b.pose, x.tail<kRadarBiasDim>(), noise);
   const PairMeasurement pm = MakePairMeasurement(la, lb);
@@ -56,7 +90,7 @@ double PairD2(const PlotRecord& a, const PlotRecord& b, const BiasVector& x, con
   if (llt.info() != Eigen::Success) return INFINITY;
   if (W_out) {
     Eigen::LLT<Mat3> lr(pm.R);
-    *W_out = lr.matrixL().solve(Mat3::Identity());
+    *W_out = Mat3(lr.matrixL().solve(Mat3::Identity()));
   }
   return llt.matrixL().solve(lb.point_ecef - la.point_ecef).squaredNorm();
 }
@@ -76,8 +110,9 @@ PairList GateAssociation(const RegistrationInput& in, const BiasVector& x, const
     cands.clear();
     for (std::size_t i = 0; i < s.plots[0].size(); ++i) {
       for (std::size_t j = 0; j < s.plots[1].size(); ++j) {
-        const double d2 = PairD2(s.plots[0][i], s.plots[1][j], x, P, opt.initial.filter.noise, nullptr);
-        if (d2 <= opt.gate_d2) cands.push_back({d2, static_cast<int>(i), static_cast<int>(j)});
+        int dim = 3;
+        const double d2 = PairD2(s.plots[0][i], s.plots[1][j], x, P, opt.initial.filter.noise, nullptr, &dim);
+        if (d2 <= GateForDimension(opt.gate_d2, dim)) cands.push_back({d2, static_cast<int>(i), static_cast<int>(j)});
       }
     }
     std::sort(cands.begin(), cands.end(), [](const Cand& p, const Cand& q) { return p.d2 < q.d2; });
@@ -144,10 +179,19 @@ SolveOutcome Solve(const RegistrationInput& in, const PairList& pairs, const Bia
     for (const auto& [i, j] : pairs[k]) {
       const PlotRecord& a = in.steps[k].plots[0][i];
       const PlotRecord& b = in.steps[k].plots[1][j];
-      Mat3 W;
+      MatX3 W;
       PairD2(a, b, x0, BiasMatrix::Zero(), opt.initial.filter.noise, &W);  // whitening at the start point
       problem.AddResidualBlock(new PairResidual(a, b, W, opt.initial.filter.noise), loss.get(), out.x.data());
     }
+  }
+  // A 2-D radar's el bias does not enter any residual (docs/rk-register.md "2-D radars"): held at its start value,
+  // so that the covariance of the others exists.
+  std::vector<int> constant;
+  for (int r = 0; r < 2; ++r) {
+    if (in.two_d[r]) constant.push_back(r * kRadarBiasDim + kBiasEl);
+  }
+  if (!constant.empty() && problem.NumResidualBlocks() > 0) {
+    problem.SetManifold(out.x.data(), new ceres::SubsetManifold(kBiasDim, constant));
   }
   ceres::Solver::Options sopt;
   sopt.linear_solver_type = ceres::DENSE_QR;
@@ -279,17 +323,21 @@ BatchResult RunBatch(const RegistrationInput& in, const BatchOptions& opt,
 
   // Residual statistics at the solution.
   double chi2 = 0;
+  std::int64_t residual_dims = 0;
   for (std::size_t k = 0; k < pairs.size(); ++k) {
     if (!pairs[k].empty()) ++out.stats.steps_with_pairs;
     for (const auto& [i, j] : pairs[k]) {
+      int dim = 3;
       const double e2 = PairD2(in.steps[k].plots[0][i], in.steps[k].plots[1][j], x, BiasMatrix::Zero(),
-                               opt.initial.filter.noise, nullptr);
+                               opt.initial.filter.noise, nullptr, &dim);
       chi2 += e2;
+      residual_dims += dim;
       if (e2 > opt.loss_scale * opt.loss_scale) ++out.stats.downweighted;
-      if (e2 > opt.gate_d2) ++out.stats.outside_gate;
+      if (e2 > GateForDimension(opt.gate_d2, dim)) ++out.stats.outside_gate;
     }
   }
-  const double dof = 3.0 * static_cast<double>(out.stats.pairs) - kBiasDim;
+  const int free_biases = kBiasDim - (in.two_d[0] ? 1 : 0) - (in.two_d[1] ? 1 : 0);
+  const double dof = static_cast<double>(residual_dims) - free_biases;
   out.stats.variance_factor = dof > 0 ? chi2 / dof : 0.0;
 
   RegistrationResult& r = out.result;
@@ -307,6 +355,7 @@ BatchResult RunBatch(const RegistrationInput& in, const BatchOptions& opt,
     e.status = pairs[k].empty() ? RowStatus::kPredicted : RowStatus::kOk;
     r.steps.push_back(e);
   }
+  r.unobservable = UnobservableBiases(in, r.P, opt.initial.filter.initial_sigma);
   r.stats = out.stats.ToJson();
   r.stats["options"] = opt.ToJson();
   r.stats["initial_bernoulli"] = out.initial.result.stats;

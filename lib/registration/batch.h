@@ -12,6 +12,9 @@
 // Ceres (Levenberg–Marquardt, dense QR) with the analytic Jacobians of radar_model.h.
 // Covariance: (Jᵀ J)⁻¹ at the solution (ceres::Covariance), reported as 1-sigma, and the
 // a-posteriori variance factor σ0² = Σ‖L⁻¹e‖² / (3n − 12) (≈ 1 when the noise sigmas are right).
+// 2-D plots (radar_model.h): a pair with one is the reduced difference (d = 3 − number of 2-D plots rows, the
+// elevations re-filled at every evaluation), its gate the χ²_d quantile of gate_d2's probability; a 2-D radar's el
+// bias is held constant (it enters no residual); σ0² divides by Σ d − the free biases.
 //
 // Association (which pairs enter):
 //   gate       (default) start from a Bernoulli pass (bernoulli.h) over the trial; then, per
@@ -66,7 +69,7 @@ struct BatchStats {
   std::int64_t association_changes = 0;  // pairs added or removed by the last round
   std::int64_t downweighted = 0;        // pairs with whitened norm > loss_scale at the solution
   std::int64_t outside_gate = 0;        // pairs with d² > gate_d2 at the solution
-  double variance_factor = 0.0;         // σ0² = Σ‖L⁻¹e‖² / (3n − 12)
+  double variance_factor = 0.0;         // σ0² = Σ‖L⁻¹e‖² / (Σ d − free biases); 3n − 12 without 2-D plots
   bool covariance_ok = false;
   std::string termination;              // Ceres' termination type of the last solve
   int iterations = 0;                   // Ceres iterations, all rounds

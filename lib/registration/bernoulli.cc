@@ -125,6 +125,7 @@ class BernoulliFilter {
     stats_.mean_components = in_.steps.empty() ? 0.0 : comp_sum / static_cast<double>(in_.steps.size());
     out.result.x = comps_.front().m;
     out.result.P = comps_.front().P;
+    out.result.unobservable = UnobservableBiases(in_, out.result.P, opt_.filter.initial_sigma);
     out.stats = stats_;
     out.result.stats = stats_.ToJson();
     out.result.stats["options"] = opt_.ToJson();
@@ -142,14 +143,47 @@ class BernoulliFilter {
         lin[i] = LinearizePlot(p.meas, p.pose, b0, opt_.filter.noise);
       }
     }
+    // Pairs with a 2-D plot: both plots linearised with the pair's elevations (radar_model.h FillMissingElevations).
+    const std::size_t na = step.plots[0].size(), nb = step.plots[1].size();
+    pair_lin_.resize(na * nb);
+    if (!step_has_2d_) return;
+    for (std::size_t i = 0; i < na; ++i) {
+      for (std::size_t j = 0; j < nb; ++j) {
+        const PlotRecord& a = step.plots[0][i];
+        const PlotRecord& b = step.plots[1][j];
+        if (a.meas.has_el && b.meas.has_el) continue;
+        pair_lin_[i * nb + j] = LinearizePair(a.meas, a.pose, at.head<kRadarBiasDim>(), b.meas, b.pose,
+                                              at.tail<kRadarBiasDim>(), opt_.filter.noise);
+      }
+    }
   }
 
-  // ln κ of this step (clutter density of the differences).
-  double LogKappa(const RegistrationStep& step) const {
+  bool IsReduced(int i, int j) const { return !lin_a_[i].has_el || !lin_b_[j].has_el; }
+  const PlotLinearization& LinA(int i, int j) const {
+    return IsReduced(i, j) ? pair_lin_[i * lin_b_.size() + j].first : lin_a_[i];
+  }
+  const PlotLinearization& LinB(int i, int j) const {
+    return IsReduced(i, j) ? pair_lin_[i * lin_b_.size() + j].second : lin_b_[j];
+  }
+
+  // ln κ_d of this step for a pair of dimension d (clutter density of the differences, per m^d). κ_3 is the
+  // density of the 3-D differences; a reduced pair's differences are their projections on a d-dimensional
+  // subspace, whose density is n_false / V^(d/3) for n_false differences spread over a volume V = n_false / κ_3:
+  // ln κ_d = (1 − d/3) ln n_false + (d/3) ln κ_3.
+  double LogKappa(const RegistrationStep& step, int dim) const {
     const double na = static_cast<double>(step.plots[0].size()), nb = static_cast<double>(step.plots[1].size());
     const double n_false = na * nb - std::min(na, nb);
-    if (opt_.clutter_density > 0) return std::log(opt_.clutter_density);
+    if (dim == 3) {
+      if (opt_.clutter_density > 0) return std::log(opt_.clutter_density);
+      return n_false <= 0 ? kLogKappaNoClutter : LogKappa3(step, n_false);
+    }
+    const double f = dim / 3.0;
+    if (opt_.clutter_density > 0) return (1.0 - f) * std::log(std::max(n_false, 1.0)) + f * std::log(opt_.clutter_density);
     if (n_false <= 0) return kLogKappaNoClutter;
+    return (1.0 - f) * std::log(n_false) + f * LogKappa3(step, n_false);
+  }
+
+  double LogKappa3(const RegistrationStep& step, double n_false) const {
     double volume = 1.0;
     std::array<Vec3, 2> lo, hi;
     for (int r = 0; r < 2; ++r) {
@@ -196,6 +230,10 @@ class BernoulliFilter {
       const PlotTerms& ta = terms_a_[i];
       for (int j = 0; j < nb; ++j) {
         if (opt_.exclusive_plots() ? path.UsesB(j) : path.UsesPair(i, j)) continue;
+        if (IsReduced(i, j)) {
+          ScoreReducedPair(p, i, j);
+          continue;
+        }
         const PlotTerms& tb = terms_b_[j];
         ++stats_.counters.pairs_evaluated;
         const Mat3 X = ta.W * lin_b_[j].J.transpose();
@@ -219,12 +257,43 @@ class BernoulliFilter {
     }
   }
 
+  // ScorePath for a pair with a 2-D plot: the reduced pair (dimension d < 3), its own gate and clutter density.
+  void ScoreReducedPair(int p, int i, int j) {
+    const Path& path = paths_[p];
+    ++stats_.counters.pairs_evaluated;
+    const ReducedPair rp = ReducePair(LinA(i, j), LinB(i, j), path.m);
+    const MatX3 S = rp.H * path.P * rp.H.transpose() + rp.R;
+    const Eigen::LLT<MatX3> llt(0.5 * (S + S.transpose()));
+    if (llt.info() != Eigen::Success) {
+      ++stats_.counters.innovation_not_pd;
+      return;
+    }
+    const double d2 = llt.matrixL().solve(rp.nu).squaredNorm();
+    if (d2 > gate_[rp.dim]) return;
+    ++stats_.gated_pairs;
+    const MatX3 L = llt.matrixL();
+    const double cost = 0.5 * d2 + 0.5 * rp.dim * kLog2Pi + L.diagonal().array().log().sum();  // −ln q
+    const double score = cost + member_offset_[rp.dim];
+    if (allow_stop_ && score >= 0) return;
+    cands_.push_back({p, i, j, path.score + score});
+  }
+
   void Update(const RegistrationStep& step, std::vector<std::pair<int, int>>* selected) {
-    const double log_kappa = LogKappa(step);
+    step_has_2d_ = false;
+    for (int r = 0; r < 2; ++r) {
+      for (const PlotRecord& p : step.plots[r]) step_has_2d_ = step_has_2d_ || !p.meas.has_el;
+    }
+    const double log_kappa = LogKappa(step, 3);
     const double pd = opt_.detection_probability;
     allow_stop_ = pd < 1.0;
     // Member score = −ln q + ln κ − ln(p_D / (1 − p_D)).
     const double member_offset = log_kappa - (allow_stop_ ? std::log(pd / (1.0 - pd)) : 0.0);
+    if (step_has_2d_) {
+      for (int d = 1; d <= 2; ++d) {
+        member_offset_[d] = LogKappa(step, d) - (allow_stop_ ? std::log(pd / (1.0 - pd)) : 0.0);
+        gate_[d] = GateForDimension(opt_.gate_d2, d);
+      }
+    }
     stats_.differences += static_cast<std::int64_t>(step.plots[0].size() * step.plots[1].size());
     if (opt_.filter.linearization == Linearization::kMeasured) Linearize(step, BiasVector::Zero());
 
@@ -267,7 +336,7 @@ class BernoulliFilter {
           if (c.j < 0) {
             child.stopped = true;
           } else {
-            if (!UpdateWithPair(lin_a_[c.i], lin_b_[c.j], &child.m, &child.P, &stats_.counters)) continue;
+            if (!UpdateWithPair(LinA(c.i, c.j), LinB(c.i, c.j), &child.m, &child.P, &stats_.counters)) continue;
             child.ia[child.n] = c.i;
             child.ib[child.n] = c.j;
             ++child.n;
@@ -364,6 +433,10 @@ class BernoulliFilter {
   bool allow_stop_ = true;
   std::vector<Component> comps_, children_;
   std::vector<PlotLinearization> lin_a_, lin_b_;
+  // Pairs with a 2-D plot (step_has_2d_): the pair's two linearisations, index i·n_b + j.
+  std::vector<std::pair<PlotLinearization, PlotLinearization>> pair_lin_;
+  bool step_has_2d_ = false;
+  std::array<double, 3> member_offset_{}, gate_{};  // reduced pairs, by dimension d = 1, 2
   std::vector<PlotTerms> terms_a_, terms_b_;
   std::vector<Path> paths_, next_;
   std::vector<Candidate> cands_;

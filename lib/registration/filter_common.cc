@@ -90,9 +90,43 @@ bool SymmetrizeAndRepair(BiasMatrix* P) {
   return true;
 }
 
+namespace {
+
+// UpdateWithPair for a pair with a 2-D plot: the same Joseph-form update on the reduced pair (dimension < 3).
+bool UpdateReduced(const PlotLinearization& a, const PlotLinearization& b, BiasVector* m, BiasMatrix* P,
+                   FilterCounters* counters, double* d2, double* log_q, int* dim) {
+  const ReducedPair rp = ReducePair(a, b, *m);
+  if (dim) *dim = rp.dim;
+  const Eigen::Matrix<double, kBiasDim, Eigen::Dynamic, 0, kBiasDim, 3> PHt = *P * rp.H.transpose();
+  MatX3 S = rp.H * PHt + rp.R;
+  S = 0.5 * (S + S.transpose()).eval();
+  const Eigen::LLT<MatX3> llt(S);
+  if (llt.info() != Eigen::Success) {
+    ++counters->innovation_not_pd;
+    return false;
+  }
+  const Eigen::Matrix<double, kBiasDim, Eigen::Dynamic, 0, kBiasDim, 3> K = llt.solve(PHt.transpose()).transpose();
+  const VecX3 w = llt.matrixL().solve(rp.nu);
+  if (d2) *d2 = w.squaredNorm();
+  if (log_q) {
+    const MatX3 L = llt.matrixL();
+    *log_q = -0.5 * w.squaredNorm() - 0.5 * rp.dim * kLog2Pi - L.diagonal().array().log().sum();
+  }
+  *m += K * rp.nu;
+  const BiasMatrix A = BiasMatrix::Identity() - K * rp.H;
+  *P = A * *P * A.transpose() + K * rp.R * K.transpose();
+  if (SymmetrizeAndRepair(P)) ++counters->covariance_repairs;
+  ++counters->updates;
+  return true;
+}
+
+}  // namespace
+
 bool UpdateWithPair(const PlotLinearization& a, const PlotLinearization& b, BiasVector* m, BiasMatrix* P,
-                    FilterCounters* counters, double* d2, double* log_q) {
+                    FilterCounters* counters, double* d2, double* log_q, int* dim) {
   ++counters->pairs_evaluated;
+  if (!a.has_el || !b.has_el) return UpdateReduced(a, b, m, P, counters, d2, log_q, dim);
+  if (dim) *dim = 3;
   const Vec3 nu = b.PointAt(m->tail<kRadarBiasDim>()) - a.PointAt(m->head<kRadarBiasDim>());
   Eigen::Matrix<double, 3, kBiasDim> H;
   H.leftCols<kRadarBiasDim>() = a.J;
@@ -121,6 +155,19 @@ bool UpdateWithPair(const PlotLinearization& a, const PlotLinearization& b, Bias
   return true;
 }
 
+BiasMask UnobservableBiases(const RegistrationInput& input, const BiasMatrix& P, const RadarBias& prior_sigma) {
+  BiasMask out{};
+  for (int r = 0; r < 2; ++r) {
+    if (!input.two_d[r]) continue;
+    out[r][kBiasEl] = true;
+    for (int i : {kBiasPitch, kBiasRoll}) {
+      const double var = P(r * kRadarBiasDim + i, r * kRadarBiasDim + i);
+      out[r][i] = !(std::isfinite(var) && std::sqrt(std::max(0.0, var)) <= kUnresolvedSigmaRatio * prior_sigma[i]);
+    }
+  }
+  return out;
+}
+
 io::CsvWriter BiasesCsv(const RegistrationInput& input, const RegistrationResult& result, bool sigmas) {
   std::vector<std::string> cols{"t_s"};
   for (int r = 0; r < 2; ++r) {
@@ -135,11 +182,22 @@ io::CsvWriter BiasesCsv(const RegistrationInput& input, const RegistrationResult
   io::CsvWriter csv(cols);
   for (const StepEstimate& s : result.steps) {
     csv.Add(s.t_s, kTimeDecimals);
-    for (int j = 0; j < kBiasDim; ++j) csv.Add(s.x[j] * BiasToFileUnit(j % kRadarBiasDim), kValueDecimals);
+    const auto hidden = [&](int j) { return result.unobservable[j / kRadarBiasDim][j % kRadarBiasDim]; };
+    for (int j = 0; j < kBiasDim; ++j) {
+      if (hidden(j)) {
+        csv.AddEmpty();
+      } else {
+        csv.Add(s.x[j] * BiasToFileUnit(j % kRadarBiasDim), kValueDecimals);
+      }
+    }
     csv.Add(RowStatusName(s.status));
     if (sigmas) {
       for (int j = 0; j < kBiasDim; ++j) {
-        csv.Add(s.sigma[j] * BiasToFileUnit(j % kRadarBiasDim), kValueDecimals);
+        if (hidden(j)) {
+          csv.AddEmpty();
+        } else {
+          csv.Add(s.sigma[j] * BiasToFileUnit(j % kRadarBiasDim), kValueDecimals);
+        }
       }
     }
     csv.EndRow();
@@ -147,16 +205,23 @@ io::CsvWriter BiasesCsv(const RegistrationInput& input, const RegistrationResult
   return csv;
 }
 
-io::Json EstimateJson(const RegistrationInput& input, const BiasVector& x, const BiasMatrix& P) {
+io::Json EstimateJson(const RegistrationInput& input, const BiasVector& x, const BiasMatrix& P,
+                      const BiasMask& unobservable) {
   io::Json j;
   io::Json corr = io::Json::array();
   std::vector<std::string> names;
+  const auto hidden = [&](int k) { return unobservable[k / kRadarBiasDim][k % kRadarBiasDim]; };
   for (int r = 0; r < 2; ++r) {
     for (int i = 0; i < kRadarBiasDim; ++i) {
       const int k = r * kRadarBiasDim + i;
       const double u = BiasToFileUnit(i);
-      j["estimate"][input.radars[r]][BiasColumnSuffix(i)] = x[k] * u;
-      j["sigma"][input.radars[r]][BiasColumnSuffix(i)] = std::sqrt(std::max(0.0, P(k, k))) * u;
+      if (hidden(k)) {
+        j["estimate"][input.radars[r]][BiasColumnSuffix(i)] = nullptr;
+        j["sigma"][input.radars[r]][BiasColumnSuffix(i)] = nullptr;
+      } else {
+        j["estimate"][input.radars[r]][BiasColumnSuffix(i)] = x[k] * u;
+        j["sigma"][input.radars[r]][BiasColumnSuffix(i)] = std::sqrt(std::max(0.0, P(k, k))) * u;
+      }
       names.push_back(input.radars[r] + "_" + BiasColumnSuffix(i));
     }
   }
@@ -164,7 +229,11 @@ io::Json EstimateJson(const RegistrationInput& input, const BiasVector& x, const
     io::Json row = io::Json::array();
     for (int b = 0; b < kBiasDim; ++b) {
       const double d = std::sqrt(std::max(0.0, P(a, a)) * std::max(0.0, P(b, b)));
-      row.push_back(d > 0 ? P(a, b) / d : 0.0);
+      if (hidden(a) || hidden(b)) {
+        row.push_back(nullptr);
+      } else {
+        row.push_back(d > 0 ? P(a, b) / d : 0.0);
+      }
     }
     corr.push_back(row);
   }
@@ -198,6 +267,25 @@ io::RunSummary RegistrationResult::Summary(const RegistrationInput& input) const
                    " rows had the pitch folded into [-90, 90] (yaw and roll +180); read as the continuous angles");
     }
   }
+  for (int r = 0; r < 2; ++r) {
+    const std::string radar = "radar '" + input.radars[r] + "'";
+    if (input.two_d[r]) {
+      std::string msg = radar + " is 2-D (no el_deg): its el bias is unobservable (no elevation is measured, so a "
+                                "plot's elevation is unknown and its bias cannot be told from it)";
+      const bool pitch = unobservable[r][kBiasPitch], roll = unobservable[r][kBiasRoll];
+      if (pitch || roll) {
+        msg += std::string(", and its ") + (pitch && roll ? "pitch and roll biases are" : pitch ? "pitch bias is" : "roll bias is") +
+               " unobservable in this trial (a 2-D plot moves with them only through the target's elevation in the "
+               "radar frame and the platform's tilt; the data left their 1-sigma above half the prior's)";
+      }
+      out.Warn("radar_2d_unobservable", msg + "; left empty");
+    } else if (input.summary.plots_without_el[r] > 0) {
+      out.Warn("radar_plots_without_el",
+               radar + ": " + std::to_string(input.summary.plots_without_el[r]) + " of " +
+                   std::to_string(input.summary.plots[r]) +
+                   " plots have no el_deg: used as 2-D plots (elevation unknown); its el bias comes from the others");
+    }
+  }
   const std::int64_t repairs = SumMembers(stats, "covariance_repairs");
   if (repairs > 0) out.Flag("covariance_repaired", std::to_string(repairs) + " covariance repair(s)");
   if (stats.contains("termination") && stats["termination"].is_string()) {
@@ -223,7 +311,7 @@ io::Json RegistrationResult::ToJson(const RegistrationInput& input) const {
   io::Json j;
   j["radars"] = {input.radars[0], input.radars[1]};
   j["input"] = input.summary.ToJson(input.radars);
-  const io::Json est = EstimateJson(input, x, P);
+  const io::Json est = EstimateJson(input, x, P, unobservable);
   for (auto it = est.begin(); it != est.end(); ++it) j[it.key()] = it.value();
   j["stats"] = stats;
   if (j["stats"].contains("options")) {

@@ -10,6 +10,7 @@
 //   definite afterwards is repaired (eigenvalues clamped) and counted.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -59,10 +60,21 @@ struct FilterCounters {
 // floor and returns true (a repair).
 bool SymmetrizeAndRepair(BiasMatrix* P);
 
-// Joseph-form update of (m, P) with the pair (a, b): ν = g_b(m_b) − g_a(m_a). Returns false
-// (nothing changed) if S is not positive definite. d2 = νᵀ S⁻¹ ν; log_q = ln N(ν; 0, S).
+// Joseph-form update of (m, P) with the pair (a, b): ν = g_b(m_b) − g_a(m_a); with a 2-D plot, the reduced
+// pair of radar_model.h (ReducePair: ν, H, R of dimension 3 − number of 2-D plots). Returns false (nothing
+// changed) if S is not positive definite. d2 = νᵀ S⁻¹ ν; log_q = ln N(ν; 0, S); dim = the dimension of ν.
 bool UpdateWithPair(const PlotLinearization& a, const PlotLinearization& b, BiasVector* m, BiasMatrix* P,
-                    FilterCounters* counters, double* d2 = nullptr, double* log_q = nullptr);
+                    FilterCounters* counters, double* d2 = nullptr, double* log_q = nullptr, int* dim = nullptr);
+
+// Per radar and bias: true where the data cannot give it (docs/rk-register.md "2-D radars"), written as empty.
+using BiasMask = std::array<std::array<bool, kRadarBiasDim>, 2>;
+// A 2-D radar's pitch or roll bias whose final 1σ is above this fraction of its prior 1σ counts as unresolved: the
+// data did not reduce its variance four-fold (a 2-D plot feels those biases only through the target's elevation in
+// the radar frame and the platform's tilt, which a trial of low targets and a level platform does not provide).
+inline constexpr double kUnresolvedSigmaRatio = 0.5;
+// The el bias of every 2-D radar (input.two_d), always; its pitch and roll where sqrt(P) > kUnresolvedSigmaRatio ·
+// prior_sigma (or P is not finite). Nothing for a radar with el_deg.
+BiasMask UnobservableBiases(const RegistrationInput& input, const BiasMatrix& P, const RadarBias& prior_sigma);
 
 // Per-step output of any method.
 struct StepEstimate {
@@ -80,6 +92,7 @@ struct RegistrationResult {
   BiasVector x = BiasVector::Zero();  // final estimate
   BiasMatrix P = BiasMatrix::Zero();  // its covariance
   io::Json stats = io::Json::object();  // method-specific statistics (counters, options)
+  BiasMask unobservable{};  // biases left empty in the outputs (UnobservableBiases), set by each method
 
   // The report's body (docs/rk-register.md "Report"): radars, input, estimate, sigma, correlation,
   // stats, options, and the "summary" rk-run copies: the final estimate and its 1-sigma per radar.
@@ -91,10 +104,12 @@ struct RegistrationResult {
 };
 
 // Biases CSV of SPEC.md §2.1: t_s + per radar R: R_range_m,R_az_deg,R_el_deg,R_yaw_deg,
-// R_pitch_deg,R_roll_deg, then status; with `sigmas`, R_range_sigma_m … R_roll_sigma_deg after.
+// R_pitch_deg,R_roll_deg, then status; with `sigmas`, R_range_sigma_m … R_roll_sigma_deg after. The biases
+// in result.unobservable are empty cells (value and sigma), in every row.
 io::CsvWriter BiasesCsv(const RegistrationInput& input, const RegistrationResult& result, bool sigmas);
 // Final estimate, 1-sigma and correlation for the report: {"<radar>": {"range_m": .., ...},
-// "sigma": {...}, "correlation": 12x12}.
-io::Json EstimateJson(const RegistrationInput& input, const BiasVector& x, const BiasMatrix& P);
+// "sigma": {...}, "correlation": 12x12}; the biases in `unobservable` are null (and their correlations).
+io::Json EstimateJson(const RegistrationInput& input, const BiasVector& x, const BiasMatrix& P,
+                      const BiasMask& unobservable = {});
 
 }  // namespace rk::registration

@@ -90,6 +90,9 @@ io::Json InputSummary::ToJson(const std::array<std::string, 2>& radars) const {
     j["nav_rows"][radars[r]] = nav_rows[r];
     j["nav_unfolded_rows"][radars[r]] = nav_unfolded_rows[r];
   }
+  if (plots_without_el[0] + plots_without_el[1] > 0) {  // 2-D plots only: a 3-D trial's report stays as it was
+    for (int r = 0; r < 2; ++r) j["plots_without_el"][radars[r]] = plots_without_el[r];
+  }
   j["steps"] = steps;
   j["steps_one_radar"] = steps_one_radar;
   j["clutter_plots"] = clutter_plots;
@@ -223,9 +226,13 @@ RegistrationInput ReadRegistrationInput(const io::CsvTable& plots, const io::Csv
     p.meas.range_m = plots.Double(r, p_range);
     if (!(p.meas.range_m > 0)) throw plots.CellError(r, p_range, "range must be > 0 m");
     p.meas.az_rad = geo::DegToRad(plots.Double(r, p_az));
-    const double el = plots.Double(r, p_el);
-    if (!(el >= -90 && el <= 90)) throw plots.CellError(r, p_el, "elevation outside [-90, 90] deg");
-    p.meas.el_rad = geo::DegToRad(el);
+    if (const std::optional<double> el = plots.OptionalDouble(r, p_el)) {
+      if (!(*el >= -90 && *el <= 90)) throw plots.CellError(r, p_el, "elevation outside [-90, 90] deg");
+      p.meas.el_rad = geo::DegToRad(*el);
+    } else {
+      p.meas.has_el = false;  // a 2-D plot: el_rad is filled per pair (FillMissingElevations)
+      ++in.summary.plots_without_el[k];
+    }
     if (p_track >= 0) {
       const std::string id(plots.Cell(r, p_track));
       if (id.empty()) {
@@ -261,6 +268,13 @@ RegistrationInput ReadRegistrationInput(const io::CsvTable& plots, const io::Csv
                       "no plots of radar '" + in.radars[k] + "' (one radar missing; need plots of both)");
     }
   }
+  for (int k = 0; k < 2; ++k) in.two_d[k] = in.summary.plots_without_el[k] == in.summary.plots[k];
+  if (in.two_d[0] && in.two_d[1]) {
+    throw ProcessingError("both radars are 2-D (no el_deg in any plot of '" + in.radars[0] + "' or '" +
+                          in.radars[1] + "'): a pair of plots then gives one equation, and on simulated trials the "
+                          "biases come out many sigmas off (docs/rk-register.md \"2-D radars\"); nothing is "
+                          "estimated: at least one radar must measure elevation");
+  }
   in.summary.steps = in.steps.size();
   for (const RegistrationStep& st : in.steps) {
     if (!st.HasBothRadars()) ++in.summary.steps_one_radar;
@@ -272,7 +286,8 @@ io::CsvRowRule PlotsRowRule() {
   io::CsvRowRule rule;
   rule.non_decreasing = "t_s";
   rule.texts = {"radar"};
-  rule.numbers = {"range_m", "az_deg", "el_deg"};
+  rule.numbers = {"range_m", "az_deg"};
+  rule.optional_numbers = {"el_deg"};  // empty: a 2-D radar's plot
   return rule;
 }
 

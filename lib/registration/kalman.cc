@@ -42,7 +42,7 @@ KfResult RunKalman(const RegistrationInput& in, const KfOptions& opt, const std:
   BiasMatrix P = InitialCovariance(opt.filter);
   const BiasMatrix Q = ProcessCovariance(opt.filter);
   double nis_sum = 0;
-  std::vector<PlotLinearization> lin_a, lin_b;
+  std::int64_t dof_sum = 0;
   for (std::size_t k = 0; k < in.steps.size(); ++k) {
     const RegistrationStep& step = in.steps[k];
     ++out.counters.steps;
@@ -55,13 +55,15 @@ KfResult RunKalman(const RegistrationInput& in, const KfOptions& opt, const std:
       for (std::size_t j = 0; j < step.plots[1].size(); ++j) {
         const PlotRecord& b = step.plots[1][j];
         if (b.track != a.track) continue;
-        const PlotLinearization la = LinearizePlot(a.meas, a.pose, lin_at.head<kRadarBiasDim>(), opt.filter.noise);
-        const PlotLinearization lb = LinearizePlot(b.meas, b.pose, lin_at.tail<kRadarBiasDim>(), opt.filter.noise);
+        const auto [la, lb] = LinearizePair(a.meas, a.pose, lin_at.head<kRadarBiasDim>(), b.meas, b.pose,
+                                            lin_at.tail<kRadarBiasDim>(), opt.filter.noise);
         double d2 = 0;
-        if (UpdateWithPair(la, lb, &m, &P, &out.counters, &d2)) {
+        int dim = 3;
+        if (UpdateWithPair(la, lb, &m, &P, &out.counters, &d2, nullptr, &dim)) {
           used.emplace_back(static_cast<int>(i), static_cast<int>(j));
           nis_sum += d2;
-          if (d2 > kChi2Dof3P999) ++out.large_innovations;
+          dof_sum += dim;
+          if (d2 > GateForDimension(kChi2Dof3P999, dim)) ++out.large_innovations;
         }
       }
     }
@@ -82,9 +84,12 @@ KfResult RunKalman(const RegistrationInput& in, const KfOptions& opt, const std:
   out.result.x = m;
   out.result.P = P;
   out.mean_nis = out.counters.updates > 0 ? nis_sum / static_cast<double>(out.counters.updates) : 0.0;
+  out.mean_dof = out.counters.updates > 0 ? static_cast<double>(dof_sum) / static_cast<double>(out.counters.updates) : 0.0;
+  out.result.unobservable = UnobservableBiases(in, P, opt.filter.initial_sigma);
   out.result.stats = out.counters.ToJson();
   out.result.stats["large_innovations"] = out.large_innovations;
   out.result.stats["mean_nis"] = out.mean_nis;
+  if (out.mean_dof < 3.0) out.result.stats["mean_nis_dof"] = out.mean_dof;  // pairs with 2-D plots only
   out.result.stats["options"] = opt.ToJson();
   return out;
 }

@@ -3,7 +3,7 @@
 // walk (filter_common.h), updated each step with the pairs whose plots carry the same track_id
 // in both radars (sequentially, Joseph form). No gating: the association is given. A pair whose
 // d² exceeds the chi-square 0.999 bound is still used but counted (a sign of a wrong track_id or
-// of the model not fitting).
+// of the model not fitting). Pairs with a 2-D plot update with the reduced pair (radar_model.h), fewer dof.
 // track = "all": every common target (centralised, the best a known association can do);
 // track = <id>: that target only (the paper's Figs. 1–2 show one such filter per target).
 #pragma once
@@ -29,8 +29,9 @@ struct KfResult {
   RegistrationResult result;
   std::vector<std::vector<std::pair<int, int>>> used;  // per step, the pairs used
   FilterCounters counters;
-  std::int64_t large_innovations = 0;  // pairs with d² > 16.27 (chi-square 3 dof, 0.999)
-  double mean_nis = 0.0;               // mean d² over the updates (3 when consistent)
+  std::int64_t large_innovations = 0;  // pairs with d² > the chi-square 0.999 quantile of their dimension (3 dof: 16.27)
+  double mean_nis = 0.0;               // mean d² over the updates (mean_dof when consistent)
+  double mean_dof = 0.0;               // mean dimension of the updates: 3, less with 2-D plots (radar_model.h)
 };
 
 // Throws DataError if the plots have no track_id column, UsageError if `track` names no track.

@@ -1,5 +1,7 @@
 #include "registration/radar_model.h"
 
+#include <Eigen/Householder>
+#include <Eigen/QR>
 #include <cmath>
 
 #include "geo/angles.h"
@@ -118,7 +120,9 @@ PlotLinearization LinearizePlot(const RadarMeasurement& m, const PlatformPose& p
   lin.J.leftCols<3>() = A;
   lin.J.rightCols<3>() = T * AttitudeBiasJacobian(p_platform, pitch, roll);
   const Vec3 var(noise.sigma_range_m * noise.sigma_range_m, noise.sigma_az_rad() * noise.sigma_az_rad(),
-                 noise.sigma_el_rad() * noise.sigma_el_rad());
+                 m.has_el ? noise.sigma_el_rad() * noise.sigma_el_rad() : 0.0);
+  lin.has_el = m.has_el;
+  lin.el_direction = -A.col(kBiasEl);
   lin.noise_cov = A * var.asDiagonal() * A.transpose();
   lin.noise_cov = 0.5 * (lin.noise_cov + lin.noise_cov.transpose()).eval();
   return lin;
@@ -131,6 +135,136 @@ PairMeasurement MakePairMeasurement(const PlotLinearization& a, const PlotLinear
   pm.H.rightCols<kRadarBiasDim>() = -b.J;
   pm.R = a.noise_cov + b.noise_cov;
   return pm;
+}
+
+double ElevationToward(const Vec3& p_ecef, const RadarMeasurement& m, const PlatformPose& pose, const RadarBias& b) {
+  const Mat3 T = pose.R_ecef_enu * RotationEnuFromPlatform(pose.yaw_rad - b[kBiasYaw], pose.pitch_rad - b[kBiasPitch],
+                                                           pose.roll_rad - b[kBiasRoll]);
+  const Vec3 d = T.transpose() * (p_ecef - pose.p_ecef);
+  const double th = m.az_rad - b[kBiasAz];
+  return std::atan2(d.z(), d.x() * std::sin(th) + d.y() * std::cos(th)) + b[kBiasEl];
+}
+
+namespace {
+
+// Grid step and golden-section iterations of the two-arc closest approach: 2° brackets the minimum of a smooth
+// distance (the arcs' curvature radius is the range), 40 iterations shrink the 4° bracket to 1e-8 rad.
+constexpr double kArcGridStepRad = 2.0 * geo::kPi / 180.0;
+constexpr int kGoldenIterations = 40;
+
+}  // namespace
+
+void FillMissingElevations(RadarMeasurement* a, const PlatformPose& pose_a, const RadarBias& b_a, RadarMeasurement* b,
+                           const PlatformPose& pose_b, const RadarBias& b_b) {
+  if (a->has_el && b->has_el) return;
+  if (a->has_el) {
+    b->el_rad = ElevationToward(CorrectedEcefPoint(*a, pose_a, b_a), *b, pose_b, b_b);
+    return;
+  }
+  if (b->has_el) {
+    a->el_rad = ElevationToward(CorrectedEcefPoint(*b, pose_b, b_b), *a, pose_a, b_a);
+    return;
+  }
+  // Both 2-D: squared gap between a's arc point at corrected elevation e and b's arc.
+  RadarMeasurement ma = *a, mb = *b;
+  const auto gap = [&](double e) {
+    ma.el_rad = e + b_a[kBiasEl];
+    const Vec3 pa = CorrectedEcefPoint(ma, pose_a, b_a);
+    mb.el_rad = ElevationToward(pa, mb, pose_b, b_b);
+    return (CorrectedEcefPoint(mb, pose_b, b_b) - pa).squaredNorm();
+  };
+  double best_e = -geo::kPi / 2, best = gap(best_e);
+  for (double e = -geo::kPi / 2 + kArcGridStepRad; e <= geo::kPi / 2 + 1e-12; e += kArcGridStepRad) {
+    const double g = gap(e);
+    if (g < best) {
+      best = g;
+      best_e = e;
+    }
+  }
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  double lo = best_e - kArcGridStepRad, hi = best_e + kArcGridStepRad;
+  double x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo), f1 = gap(x1), f2 = gap(x2);
+  for (int it = 0; it < kGoldenIterations; ++it) {
+    if (f1 < f2) {
+      hi = x2;
+      x2 = x1;
+      f2 = f1;
+      x1 = hi - phi * (hi - lo);
+      f1 = gap(x1);
+    } else {
+      lo = x1;
+      x1 = x2;
+      f1 = f2;
+      x2 = lo + phi * (hi - lo);
+      f2 = gap(x2);
+    }
+  }
+  const double e = 0.5 * (lo + hi);
+  a->el_rad = e + b_a[kBiasEl];
+  b->el_rad = ElevationToward(CorrectedEcefPoint(*a, pose_a, b_a), *b, pose_b, b_b);
+}
+
+std::pair<PlotLinearization, PlotLinearization> LinearizePair(const RadarMeasurement& a, const PlatformPose& pose_a,
+                                                              const RadarBias& b0_a, const RadarMeasurement& b,
+                                                              const PlatformPose& pose_b, const RadarBias& b0_b,
+                                                              const MeasurementNoise& noise) {
+  RadarMeasurement ma = a, mb = b;
+  FillMissingElevations(&ma, pose_a, b0_a, &mb, pose_b, b0_b);
+  return {LinearizePlot(ma, pose_a, b0_a, noise), LinearizePlot(mb, pose_b, b0_b, noise)};
+}
+
+ReducedPair ReducePair(const PlotLinearization& a, const PlotLinearization& b, const BiasVector& m) {
+  ReducedPair rp;
+  const Vec3 nu = b.PointAt(m.tail<kRadarBiasDim>()) - a.PointAt(m.head<kRadarBiasDim>());
+  Eigen::Matrix<double, 3, kBiasDim> H;
+  H.leftCols<kRadarBiasDim>() = a.J;
+  H.rightCols<kRadarBiasDim>() = -b.J;
+  if (!a.has_el) H.col(kBiasEl).setZero();
+  if (!b.has_el) H.col(kRadarBiasDim + kBiasEl).setZero();
+  const Mat3 R = a.noise_cov + b.noise_cov;
+  Eigen::Matrix<double, 3, 2> N;
+  int k = 0;
+  if (!a.has_el) N.col(k++) = a.el_direction;
+  if (!b.has_el) N.col(k++) = b.el_direction;
+  rp.dim = 3 - k;
+  if (k == 0) {
+    rp.Ut = Mat3::Identity();
+  } else {
+    // Q's last 3 − k columns are orthogonal to N's columns (to both even when they are parallel).
+    const Eigen::HouseholderQR<Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 2>> qr(N.leftCols(k));
+    const Mat3 Q = qr.householderQ();
+    rp.Ut = Q.rightCols(rp.dim).transpose();
+  }
+  rp.nu = rp.Ut * nu;
+  rp.H = rp.Ut * H;
+  rp.R = rp.Ut * R * rp.Ut.transpose();
+  rp.R = 0.5 * (rp.R + rp.R.transpose()).eval();
+  return rp;
+}
+
+namespace {
+
+// χ² distribution functions for 1 to 3 degrees of freedom.
+double ChiSquareCdf(double x, int dof) {
+  if (!(x > 0)) return 0.0;
+  if (dof == 1) return std::erf(std::sqrt(0.5 * x));
+  if (dof == 2) return 1.0 - std::exp(-0.5 * x);
+  return std::erf(std::sqrt(0.5 * x)) - std::sqrt(2.0 * x / geo::kPi) * std::exp(-0.5 * x);
+}
+
+}  // namespace
+
+double GateForDimension(double gate_d2_3dof, int dim) {
+  if (dim >= 3) return gate_d2_3dof;
+  const double p = ChiSquareCdf(gate_d2_3dof, 3);
+  if (!(p < 1.0)) return gate_d2_3dof;  // a gate beyond double precision: "never gate"
+  if (dim == 2) return -2.0 * std::log1p(-p);
+  double lo = 0.0, hi = gate_d2_3dof;  // the 1-dof quantile is below the 3-dof one
+  for (int it = 0; it < 200 && hi - lo > 1e-12 * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (ChiSquareCdf(mid, 1) < p ? lo : hi) = mid;
+  }
+  return 0.5 * (lo + hi);
 }
 
 bool ParseLinearization(const std::string& name, Linearization* lin) {

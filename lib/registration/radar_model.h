@@ -35,6 +35,7 @@
 
 #include <Eigen/Core>
 #include <string>
+#include <utility>
 
 #include "geo/angles.h"
 #include "io/options.h"
@@ -100,8 +101,12 @@ PlatformPose MakePlatformPose(double lat_rad, double lon_rad, double h_m, double
                               double roll_rad);
 
 // One measured plot (r, θ, φ) as read from the file, radians inside.
+// has_el false: a 2-D radar's plot (el_deg empty). Its el_rad is then no measurement but the elevation the model
+// is linearised about, set per pair by FillMissingElevations (docs/rk-register.md "2-D radars"); it carries no
+// noise, and the pair's difference is taken only across the direction that elevation moves the plot.
 struct RadarMeasurement {
   double range_m = 0.0, az_rad = 0.0, el_rad = 0.0;
+  bool has_el = true;
 };
 
 // Exact ECEF point of a plot after removing the radar's bias b (see the header comment).
@@ -113,6 +118,8 @@ struct PlotLinearization {
   Mat36 J = Mat36::Zero();           // ∂p/∂b at b0 = T_ic T_ie [M, D']
   Mat3 noise_cov = Mat3::Zero();     // A R Aᵀ, A = T_ic T_ie M (= J's first three columns)
   RadarBias b0 = RadarBias::Zero();  // linearisation point
+  bool has_el = true;                // false: a 2-D plot (noise_cov without σ_φ; el_direction is a nuisance)
+  Vec3 el_direction = Vec3::Zero();  // ∂p/∂φ (m/rad, ECEF) = −J's el column: where an unknown elevation moves it
   // g(m) = p(b0) + J (m − b0): the linearised corrected point for bias m.
   Vec3 PointAt(const RadarBias& m) const { return point_ecef + J * (m - b0); }
 };
@@ -127,6 +134,48 @@ struct PairMeasurement {
   Mat3 R = Mat3::Zero();  // G R Gᵀ
 };
 PairMeasurement MakePairMeasurement(const PlotLinearization& a, const PlotLinearization& b);
+
+// --- 2-D plots (docs/rk-register.md "2-D radars") ---
+// A 2-D plot (has_el false) puts the target somewhere on the arc p(φ) of its range and azimuth, φ unknown. The
+// pair's difference p_b − p_a is then known only across the arcs' directions ∂p/∂φ: with U (3×d, orthonormal
+// columns) spanning the complement of the pair's el_directions, d = 3 − (number of 2-D plots), the reduced
+// pseudo-measurement is Uᵀ z = Uᵀ H x + Uᵀ G v, noise Uᵀ G R Gᵀ U (the nuisance elevations eliminated exactly
+// to first order: Uᵀ ∂p/∂φ = 0). The el bias of a 2-D plot enters only along ∂p/∂φ, so its column vanishes.
+
+// Elevation (rad) that puts a plot of this radar (pose, bias b) closest to the ECEF point p_ecef: the point's
+// elevation atan2(z, h) in the bias-corrected platform frame (h along the plot's corrected azimuth), plus b's el
+// bias (CorrectedEcefPoint subtracts it). Unclamped: a point behind the radar gives |φ| > π/2.
+double ElevationToward(const Vec3& p_ecef, const RadarMeasurement& meas, const PlatformPose& pose, const RadarBias& b);
+
+// Gives a pair's 2-D plots their elevations (no-op for two 3-D plots). One 2-D plot: toward the other plot's
+// corrected point. Two: the closest approach of the two arcs — a's elevation by a 2° grid over [−90°, 90°] and a
+// golden-section refinement of |p_a(φ_a) − p_b(ElevationToward(p_a(φ_a)))|, then b's toward a's point.
+void FillMissingElevations(RadarMeasurement* a, const PlatformPose& pose_a, const RadarBias& b_a,
+                           RadarMeasurement* b, const PlatformPose& pose_b, const RadarBias& b_b);
+
+// Both plots linearised about (b0_a, b0_b) with the 2-D plots' elevations filled at those biases.
+std::pair<PlotLinearization, PlotLinearization> LinearizePair(const RadarMeasurement& a, const PlatformPose& pose_a,
+                                                              const RadarBias& b0_a, const RadarMeasurement& b,
+                                                              const PlatformPose& pose_b, const RadarBias& b0_b,
+                                                              const MeasurementNoise& noise);
+
+// The pair's reduced pseudo-measurement (above): ν = Uᵀ (g_b(m_b) − g_a(m_a)), H = Uᵀ [J_a, −J_b] with the 2-D
+// plots' el columns set to exactly 0, R = Uᵀ (G R Gᵀ) U; dim = d (3 when both plots have el: U = I).
+using MatX3 = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
+using VecX3 = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
+using MatX3B = Eigen::Matrix<double, Eigen::Dynamic, kBiasDim, 0, 3, kBiasDim>;
+struct ReducedPair {
+  int dim = 3;
+  Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 3, 3> Ut;  // dim × 3
+  VecX3 nu;
+  MatX3B H;
+  MatX3 R;
+};
+ReducedPair ReducePair(const PlotLinearization& a, const PlotLinearization& b, const BiasVector& m);
+
+// The χ²_d quantile with the probability of χ²_3's `gate_d2_3dof` (gates are given for 3 dof, the pair of two
+// 3-D plots): 16.27 (0.999) → 13.82 for d = 2, 10.83 for d = 1. Returns gate_d2_3dof for d = 3.
+double GateForDimension(double gate_d2_3dof, int dim);
 
 // Where the model is linearised each step.
 enum class Linearization {

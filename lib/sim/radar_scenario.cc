@@ -134,7 +134,9 @@ bool RadarSimOptions::Check(std::string* why) const {
 io::Json RadarSimOptions::ToJson() const {
   const io::Json sim = RadarSimOptionsToJson(*this);
   io::Json j = Table().ToJson(*this);
-  for (const char* key : {"clutter_rate", "origin", "names"}) j[key] = sim[key];
+  for (const char* key : {"clutter_rate", "origin", "names", "two_d"}) {
+    if (sim.contains(key)) j[key] = sim[key];
+  }
   return j;
 }
 
@@ -155,6 +157,12 @@ io::Json RadarSimOptionsToJson(const RadarSimOptions& o) {
   j["clutter_margin_m"] = o.clutter_margin_m;
   j["clutter_margin_deg"] = geo::RadToDeg(o.clutter_margin_rad());
   j["names"] = {o.names[0], o.names[1]};
+  if (o.two_d[0] || o.two_d[1]) {  // only with --2d: the files of a 3-D trial stay as they were
+    j["two_d"] = io::Json::array();
+    for (int r = 0; r < 2; ++r) {
+      if (o.two_d[r]) j["two_d"].push_back(o.names[r]);
+    }
+  }
   j["seed"] = o.seed;
   return j;
 }
@@ -418,7 +426,12 @@ io::CsvWriter PlotsCsv(const RadarSimulator& sim, RadarTrialSummary* out) {
   io::CsvWriter plots({"t_s", "radar", "range_m", "az_deg", "el_deg", "track_id"});
   for (const SimRadarPlot& p : sim.plots()) {
     plots.Add(p.t_s, kTimeDecimals).Add(so.names[p.radar]).Add(p.range_m, kRangeDecimals);
-    plots.Add(geo::WrapDeg360(geo::RadToDeg(p.az_rad)), kAngleDecimals).Add(geo::RadToDeg(p.el_rad), kAngleDecimals);
+    plots.Add(geo::WrapDeg360(geo::RadToDeg(p.az_rad)), kAngleDecimals);
+    if (so.two_d[p.radar]) {
+      plots.AddEmpty();  // a 2-D radar's plot (SPEC.md §2.1)
+    } else {
+      plots.Add(geo::RadToDeg(p.el_rad), kAngleDecimals);
+    }
     if (p.target >= 0) {
       plots.Add(p.target + 1);
       ++sum.target_plots;

@@ -85,10 +85,14 @@ struct RadarSimOptions {
   double clutter_margin_m = 20000.0;
   double clutter_margin_deg = 5.0;
   std::array<std::string, 2> names{"a", "b"};
+  // Per radar: a 2-D radar, whose plots are written with an empty el_deg (SPEC.md §2.1; --2d). It is simulated
+  // exactly as a 3-D one (same random streams, same true biases in truth/biases.csv, el bias included): only
+  // the file leaves the elevation out.
+  std::array<bool, 2> two_d{false, false};
   std::uint64_t seed = 1;
 
   // Every number and choice option; not in it: --clutter (negative = the scenario's default),
-  // --origin and --names (composite values), registered by the app.
+  // --origin, --names and --2d (composite values), registered by the app.
   static const io::OptionTable<RadarSimOptions>& Table();
   // Table().Check, then the clutter rate, the origin, radar b's offset and the names.
   bool Check(std::string* why) const;

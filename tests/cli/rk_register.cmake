@@ -9,3 +9,8 @@ rk_cli_script(rk_register/rk_register_good REQUIRES sim_radar_data)
 rk_cli_script(rk_register/rk_register_time_offset)
 
 rk_cli_script(rk_register/rk_register_bad_input REQUIRES sim_radar_data)
+
+# 2-D radars (docs/rk-register.md "2-D radars"): rk-sim radar --2d; the el bias of the 2-D radar empty with a
+# warning, the others within 4.5 sigma of the truth; both 2-D refused (exit 1); ASTERIX columns ignored; a
+# non-numeric el_deg still exit 3 with file:line:col.
+rk_cli_script(rk_register/rk_register_two_d)

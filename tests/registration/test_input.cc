@@ -134,12 +134,39 @@ TEST(RegistrationInput, ThirdRadarInNav) {
 TEST(RegistrationInput, NaNAndEmptyValues) {
   ExpectDataError("t_s,radar,range_m,az_deg,el_deg\n5,a,1000,nan,0\n5,b,1,0,0\n", kNav, "plots.csv:2:10:",
                   "not a finite number");
-  ExpectDataError("t_s,radar,range_m,az_deg,el_deg\n5,a,1000,1,\n", kNav, "plots.csv:2:", "empty value");
+  ExpectDataError("t_s,radar,range_m,az_deg,el_deg\n5,a,1000,,1\n", kNav, "plots.csv:2:", "empty value");
+  // An empty el_deg is a 2-D plot (test_two_d.cc); text there is still an error at its cell.
+  ExpectDataError("t_s,radar,range_m,az_deg,el_deg\n5,a,1000,1,abc\n", kNav, "plots.csv:2:12:", "not a number");
   ExpectDataError("t_s,radar,range_m,az_deg,el_deg\n5,a,1000,1,2\n",
                   "t_s,radar,lat_deg,lon_deg,h_m,yaw_deg,pitch_deg,roll_deg\n0,a,0,0,0,NaN,0,0\n", "nav.csv:2:",
                   "not a finite number");
   ExpectDataError("t_s,radar,range_m,az_deg,el_deg\n5,a,-1,1,2\n", kNav, "plots.csv:2:", "range must be > 0");
   ExpectDataError("t_s,radar,range_m,az_deg,el_deg\n5,a,10,1,91\n", kNav, "plots.csv:2:", "elevation outside");
+}
+
+// SPEC.md §2.1: an empty el_deg is a 2-D radar's plot; rk-import asterix's extra columns are ignored. A radar is
+// 2-D when all its plots lack el_deg; a radar with some is not (its other plots carry the el bias).
+TEST(RegistrationInput, EmptyElevationIsATwoDPlotAndAsterixColumnsAreIgnored) {
+  const RegistrationInput in = Read(
+      "t_s,radar,range_m,az_deg,el_deg,sac,sic,flight_level,height_m,mode3a,address,el_source\n"
+      "5,a,1000,10,,25,10,350,,1234,3C6586,\n"
+      "5,b,2000,20,,25,11,,,,,\n"
+      "6,a,1000,11,2,25,10,350,10668,1234,3C6586,mode_c\n"
+      "6,b,2000,21,,25,11,,,,,\n");
+  EXPECT_FALSE(in.two_d[0]);  // mixed: one plot with el_deg
+  EXPECT_TRUE(in.two_d[1]);
+  EXPECT_EQ(in.summary.plots_without_el[0], 1u);
+  EXPECT_EQ(in.summary.plots_without_el[1], 2u);
+  ASSERT_EQ(in.steps.size(), 2u);
+  EXPECT_FALSE(in.steps[0].plots[0][0].meas.has_el);
+  EXPECT_TRUE(in.steps[1].plots[0][0].meas.has_el);
+  EXPECT_NEAR(in.steps[1].plots[0][0].meas.el_rad, DegToRadForTest(2), kInterpTol);
+  EXPECT_FALSE(in.steps[1].plots[1][0].meas.has_el);
+  EXPECT_EQ(in.summary.ToJson(in.radars)["plots_without_el"]["b"], 2);
+  // Without 2-D plots the report's input block has no plots_without_el (a 3-D trial's report is unchanged).
+  const RegistrationInput in3 = Read("t_s,radar,range_m,az_deg,el_deg\n5,a,1000,10,1\n5,b,2000,20,2\n");
+  EXPECT_FALSE(in3.two_d[0] || in3.two_d[1]);
+  EXPECT_FALSE(in3.summary.ToJson(in3.radars).contains("plots_without_el"));
 }
 
 TEST(RegistrationInput, TimesOutOfOrder) {

@@ -23,7 +23,12 @@ inline RegistrationInput ReadSimulated(const sim::RadarSimulator& sim, const Inp
   io::CsvWriter plots(cols);
   for (const sim::SimRadarPlot& p : sim.plots()) {
     plots.Add(p.t_s, 9).Add(so.names[p.radar]).Add(p.range_m, 3);
-    plots.Add(geo::WrapDeg360(geo::RadToDeg(p.az_rad)), 9).Add(geo::RadToDeg(p.el_rad), 9);
+    plots.Add(geo::WrapDeg360(geo::RadToDeg(p.az_rad)), 9);
+    if (so.two_d[p.radar]) {
+      plots.AddEmpty();  // a 2-D radar's plot, as rk-sim radar --2d writes it
+    } else {
+      plots.Add(geo::RadToDeg(p.el_rad), 9);
+    }
     if (with_track_id) {
       if (p.target >= 0) {
         plots.Add(p.target + 1);
