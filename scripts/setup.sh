@@ -7,6 +7,8 @@
 #   scripts/setup.sh --slurm    also Slurm and munge (for the rk-slurm test, tests/run/slurm_array_test.sh)
 #   scripts/setup.sh --fuzz     also clang and libFuzzer, and the fuzz harnesses in build-fuzz/ (tests/fuzz)
 #   scripts/setup.sh --browser  also Debian's chromium, for the headless-browser test of the report pages
+#   scripts/setup.sh --tshark   also Debian's tshark (Wireshark's ASTERIX dissector), the independent decoder the
+#                               radar-feed test checks rk-import asterix against
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 ASAN=0
@@ -14,6 +16,7 @@ RELEASE=1
 SLURM=0
 FUZZ=0
 BROWSER=0
+TSHARK=0
 for arg in "$@"; do
   case "$arg" in
     --asan) ASAN=1 ;;
@@ -21,6 +24,7 @@ for arg in "$@"; do
     --slurm) SLURM=1 ;;
     --fuzz) FUZZ=1 ;;
     --browser) BROWSER=1 ;;
+    --tshark) TSHARK=1 ;;
     *) echo "setup.sh: error: unknown option $arg" >&2; exit 2 ;;
   esac
 done
@@ -43,6 +47,8 @@ if [ "$FUZZ" = 1 ]; then PACKAGES+=(clang libclang-rt-14-dev); fi
 # Headless Chromium opens the report pages in ctest (rk_report_pages_in_chromium); nobody needs a browser to
 # build or run rangekit, so only the test set-up installs it.
 if [ "$BROWSER" = 1 ]; then PACKAGES+=(chromium); fi
+# tshark only for the test that compares rk-import asterix with Wireshark's decoder (import_cli_asterix_real).
+if [ "$TSHARK" = 1 ]; then PACKAGES+=(tshark); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

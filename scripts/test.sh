@@ -10,7 +10,8 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # unless Slurm is installed (RK_SLURM_TEST=1 installs it here too).
 # CI also installs clang and builds the libFuzzer harnesses (build-fuzz/, tests/fuzz) for a smoke run of
 # a few seconds each after the suite; RK_FUZZ_TEST=1 does the same here.
-SETUP=(--asan-only)
+# tshark (Wireshark's ASTERIX dissector) is the independent decoder of the radar-feed test: always installed.
+SETUP=(--asan-only --tshark)
 if [ "${CI:-}" = true ] || [ "${RK_SLURM_TEST:-}" = 1 ]; then SETUP+=(--slurm); fi
 FUZZ=0
 if [ "${CI:-}" = true ] || [ "${RK_FUZZ_TEST:-}" = 1 ]; then FUZZ=1; SETUP+=(--fuzz); fi

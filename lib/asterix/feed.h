@@ -10,8 +10,10 @@
 // sectors). The median capture-minus-record latency is in the report, with a warning when the capture clock
 // and the radar's differ by more than a minute (the date would be wrong if they differed by 12 h).
 //
-// Duplicates. A record whose octets equal another's seen within the last 60 s (a redundant feed sends every
-// datagram on two multicast groups) is written once; the report counts duplicates per source (sender → group).
+// Duplicates. A record whose octets equal another's seen within 5 to 10 s of its own time (a redundant feed sends
+// every datagram on two multicast groups) is written once, whether the copies come in one capture or in several
+// inputs read one after the other (records further apart in time are never copies: each carries its time of
+// day); the report counts duplicates per source (sender → group).
 //
 // Elevation. For a radar whose position radars.json gives, el_deg is the geometric elevation of the straight
 // line from the radar to the target at its slant range and height on the WGS-84 ellipsoid

@@ -12,7 +12,8 @@ std::int32_t Signed(std::uint32_t v, int bits) {
   return static_cast<std::int32_t>(v ^ sign) - static_cast<std::int32_t>(sign);
 }
 
-// Octets of a sequence of parts chained by FX (bit 1 of a part's last octet): first part `first`, then `next`.
+// Octets of a sequence of parts chained by FX (bit 1 of a part's last octet): first part `first`, then
+// `next`.
 std::size_t FxChainLength(const std::uint8_t* p, std::size_t avail, std::size_t first, std::size_t next,
                           const char** why) {
   std::size_t n = first;
@@ -105,8 +106,11 @@ bool Place(RecordLayout* out, std::size_t frn, std::size_t offset, std::size_t l
 }  // namespace
 
 ItemRef RecordLayout::Find(std::uint16_t id) const {
-  const std::size_t n = uap->items.size();
-  for (std::size_t i = 0; i < n; ++i) {
+  if (id < kMaxItemId) {
+    const std::size_t frn = uap->frn_by_id[id];
+    return frn == 0 ? ItemRef{} : items[frn - 1];
+  }
+  for (std::size_t i = 0; i < uap->items.size(); ++i) {
     if (uap->items[i].id == id && uap->items[i].kind != ItemKind::kSpare) return items[i];
   }
   return {};
@@ -139,68 +143,74 @@ bool WalkRecord(const CategorySpec& category, const std::uint8_t* data, std::siz
     }
   }
   std::size_t pos = fspec;
-  for (std::size_t frn = 1; frn <= fspec * 7; ++frn) {
-    const std::size_t octet = (frn - 1) / 7;
-    const unsigned bit = 7 - static_cast<unsigned>((frn - 1) % 7);
-    if (!(data[octet] & (1u << bit))) continue;
-    // CAT001: the plot and track UAPs share FRN 1 (010) and 2 (020); I001/020 TYP chooses from FRN 3 on.
-    if (frn == 3 && !category.track_uap.items.empty()) {
-      const ItemRef typ = out->items[1];
-      if (typ.size == 0) {
-        *error = {pos, "CAT001 record without I001/020: plot or track layout unknown"};
+  // The FRNs set, in order: per FSPEC octet, its presence bits from the highest.
+  bool uap_chosen = false;  // CAT001: from the first FRN past 2, whether or not FRN 3 is present
+  for (std::size_t octet = 0; octet < fspec; ++octet) {
+    for (unsigned bits = data[octet] & 0xFEu; bits != 0;) {
+      const unsigned top = 31u - static_cast<unsigned>(__builtin_clz(bits));  // 7 (FRN 7·octet + 1) .. 1
+      bits &= ~(1u << top);
+      const std::size_t frn = octet * 7 + (8 - top);
+      // CAT001: the plot and track UAPs share FRN 1 (010) and 2 (020); I001/020 TYP chooses from FRN 3 on.
+      if (frn >= 3 && !uap_chosen && !category.track_uap.items.empty()) {
+        uap_chosen = true;
+        const ItemRef typ = out->items[1];
+        if (typ.size == 0) {
+          *error = {pos, "CAT001 record without I001/020: plot or track layout unknown"};
+          return false;
+        }
+        if (data[typ.offset] & 0x80) out->uap = &category.track_uap;
+      }
+      if (frn > out->uap->items.size()) {
+        *error = {octet, "FSPEC sets a field reference number beyond the category's UAP"};
         return false;
       }
-      if (data[typ.offset] & 0x80) out->uap = &category.track_uap;
-    }
-    if (frn > out->uap->items.size()) {
-      *error = {octet, "FSPEC sets a field reference number beyond the category's UAP"};
-      return false;
-    }
-    const ItemSpec& spec = out->uap->items[frn - 1];
-    if (spec.kind == ItemKind::kSpare) {
-      *error = {octet, "FSPEC sets a field reference number its UAP does not use"};
-      return false;
-    }
-    std::size_t length = 0;
-    if (spec.kind == ItemKind::kRfs) {
-      // N, then N × (FRN, item).
-      if (pos >= avail) {
-        *error = {pos, "item runs past the end of its data block"};
+      const ItemSpec& spec = out->uap->items[frn - 1];
+      if (spec.kind == ItemKind::kSpare) {
+        *error = {octet, "FSPEC sets a field reference number its UAP does not use"};
         return false;
       }
-      const std::size_t count = data[pos];
-      std::size_t p = pos + 1;
-      for (std::size_t k = 0; k < count; ++k) {
-        if (p >= avail) {
-          *error = {p, "random field sequencing runs past the end of its data block"};
+      std::size_t length = 0;
+      if (spec.kind == ItemKind::kRfs) {
+        // N, then N × (FRN, item).
+        if (pos >= avail) {
+          *error = {pos, "item runs past the end of its data block"};
           return false;
         }
-        const std::size_t inner = data[p];
-        if (inner == 0 || inner > out->uap->items.size() || out->uap->items[inner - 1].kind == ItemKind::kRfs ||
-            out->uap->items[inner - 1].kind == ItemKind::kSpare) {
-          *error = {p, "random field sequencing names a field reference number its UAP does not use"};
+        const std::size_t count = data[pos];
+        std::size_t p = pos + 1;
+        for (std::size_t k = 0; k < count; ++k) {
+          if (p >= avail) {
+            *error = {p, "random field sequencing runs past the end of its data block"};
+            return false;
+          }
+          const std::size_t inner = data[p];
+          if (inner == 0 || inner > out->uap->items.size() ||
+              out->uap->items[inner - 1].kind == ItemKind::kRfs ||
+              out->uap->items[inner - 1].kind == ItemKind::kSpare) {
+            *error = {p, "random field sequencing names a field reference number its UAP does not use"};
+            return false;
+          }
+          const std::size_t n = ItemLength(out->uap->items[inner - 1], data + p + 1, avail - p - 1, &why);
+          if (n == 0 || !Place(out, inner, p + 1, n, &why)) {
+            *error = {p + 1, why};
+            return false;
+          }
+          p += 1 + n;
+        }
+        length = p - pos;
+      } else {
+        length = ItemLength(spec, data + pos, avail - pos, &why);
+        if (length == 0) {
+          *error = {pos, why};
           return false;
         }
-        const std::size_t n = ItemLength(out->uap->items[inner - 1], data + p + 1, avail - p - 1, &why);
-        if (n == 0 || !Place(out, inner, p + 1, n, &why)) {
-          *error = {p + 1, why};
-          return false;
-        }
-        p += 1 + n;
       }
-      length = p - pos;
-    } else {
-      length = ItemLength(spec, data + pos, avail - pos, &why);
-      if (length == 0) {
+      if (!Place(out, frn, pos, length, &why)) {
         *error = {pos, why};
         return false;
       }
+      pos += length;
     }
-    if (!Place(out, frn, pos, length, &why)) {
-      *error = {pos, why};
-      return false;
-    }
-    pos += length;
   }
   out->size = pos;
   return true;
@@ -253,7 +263,8 @@ TargetReport DecodeTargetReport(const RecordLayout& r) {
   if (!cat001) {
     if (const ItemRef i = r.Find(110); i.size) t.height_m = Signed(Be16(r.At(i)), 14) * 25.0 * kMetresPerFoot;
     if (const ItemRef i = r.Find(220); i.size) t.address = static_cast<std::int32_t>(Be24(r.At(i)));
-    if (const ItemRef i = r.Find(161); i.size) t.track_number = static_cast<std::int32_t>(Be16(r.At(i)) & 0x0FFF);
+    if (const ItemRef i = r.Find(161); i.size)
+      t.track_number = static_cast<std::int32_t>(Be16(r.At(i)) & 0x0FFF);
   } else if (const ItemRef i = r.Find(161); i.size) {
     t.track_number = static_cast<std::int32_t>(Be16(r.At(i)));
   }
@@ -276,7 +287,8 @@ ServiceMessage DecodeServiceMessage(const RecordLayout& r) {
 
 std::array<char, 5> Mode3aText(int code) {
   std::array<char, 5> s{};
-  for (int d = 0; d < 4; ++d) s[static_cast<std::size_t>(d)] = static_cast<char>('0' + ((code >> (9 - 3 * d)) & 7));
+  for (int d = 0; d < 4; ++d)
+    s[static_cast<std::size_t>(d)] = static_cast<char>('0' + ((code >> (9 - 3 * d)) & 7));
   s[4] = '\0';
   return s;
 }

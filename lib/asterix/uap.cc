@@ -128,9 +128,9 @@ constexpr std::array<ItemSpec, 22> kCat001Track = {
 };
 
 constexpr CategorySpec kCategories[] = {
-    {48, "CAT048", {kCat048}, {}},
-    {34, "CAT034", {kCat034}, {}},
-    {1, "CAT001", {kCat001Plot}, {kCat001Track}},
+    {48, "CAT048", MakeUap(kCat048), {}},
+    {34, "CAT034", MakeUap(kCat034), {}},
+    {1, "CAT001", MakeUap(kCat001Plot), MakeUap(kCat001Track)},
 };
 
 static_assert(kCat048.size() <= kMaxFrn && kCat034.size() <= kMaxFrn && kCat001Plot.size() <= kMaxFrn &&

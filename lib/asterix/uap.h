@@ -6,6 +6,7 @@
 // with it. Every item the tables know is skipped correctly by its length, decoded or not.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <span>
@@ -41,10 +42,23 @@ inline constexpr std::uint16_t kSpecialPurpose = 1001;     // SP
 inline constexpr std::uint16_t kReservedExpansion = 1002;  // RE
 inline constexpr std::uint16_t kRandomFields = 1003;       // RFS
 
-// A user application profile: items[FRN − 1].
+// Item numbers below this are indexed by Uap::frn_by_id (every numbered item of the categories here).
+inline constexpr std::size_t kMaxItemId = 261;
+
+// A user application profile: items[FRN − 1], and the FRN of each item number (0: not in this UAP), so that a
+// decoder finds an item without searching.
 struct Uap {
   std::span<const ItemSpec> items;
+  std::array<std::uint8_t, kMaxItemId> frn_by_id{};
 };
+
+constexpr Uap MakeUap(std::span<const ItemSpec> items) {
+  Uap u{items, {}};
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (items[i].kind != ItemKind::kSpare && items[i].id < kMaxItemId) u.frn_by_id[items[i].id] = static_cast<std::uint8_t>(i + 1);
+  }
+  return u;
+}
 
 // Longest UAP of the categories here (28 FRNs: 4 FSPEC octets).
 inline constexpr std::size_t kMaxFrn = 28;

@@ -3,7 +3,7 @@
 
 #include <cctype>
 #include <cmath>
-#include <cstdio>
+#include <string_view>
 
 #include "formats/stations.h"
 #include "io/csv.h"
@@ -26,31 +26,36 @@ const char* ElevationSourceName(ElevationSource s) {
 
 void WriteAsterixPlots(const std::string& path, const std::vector<std::string>& radar_names,
                        const std::vector<AsterixPlotRow>& rows, const std::vector<std::string>& comments) {
+  // Written in pieces of about 4 MB (io::OutputFile): a feed of millions of plots never sits in memory as text.
+  io::OutputFile file(path);
   io::CsvWriter out(io::SplitList(kAsterixPlotsColumns));
   for (const std::string& c : comments) out.Comment(c);
+  constexpr std::size_t kPiece = 4 << 20;
   // Decimals that hold each item's resolution exactly or below it: time 1/128 s (7 decimals), ρ 1/256 NM
   // (7.234375 m: 4 decimals to 0.1 mm), θ 360/2^16 deg (0.0054931640625: 8 decimals to 1e-8 deg), height 25 ft.
   for (const AsterixPlotRow& r : rows) {
     out.Add(r.t_s, 7).Add(radar_names.at(r.radar)).Add(r.range_m, 4).Add(r.az_deg, 8).Add(r.el_deg, 6);
-    if (r.track_id >= 0) out.Add(r.track_id); else out.AddEmpty();
-    out.Add(int{r.sac}).Add(int{r.sic}).Add(r.flight_level, 2).Add(r.height_m, 2);
-    if (r.mode3a >= 0) {
-      char m[8];
-      std::snprintf(m, sizeof m, "%04o", static_cast<unsigned>(r.mode3a) & 07777u);
-      out.Add(m);
+    if (r.track_id >= 0) out.Add(std::int64_t{r.track_id}); else out.AddEmpty();
+    out.Add(int{r.sac}).Add(int{r.sic}).Add(double{r.flight_level}, 2).Add(double{r.height_m}, 2);
+    if (r.mode3a >= 0) {  // four octal digits
+      const char m[4] = {static_cast<char>('0' + ((r.mode3a >> 9) & 7)), static_cast<char>('0' + ((r.mode3a >> 6) & 7)),
+                         static_cast<char>('0' + ((r.mode3a >> 3) & 7)), static_cast<char>('0' + (r.mode3a & 7))};
+      out.Add(std::string_view(m, 4));
     } else {
       out.AddEmpty();
     }
-    if (r.address >= 0) {
-      char a[8];
-      std::snprintf(a, sizeof a, "%06X", static_cast<unsigned>(r.address) & 0xFFFFFFu);
-      out.Add(a);
+    if (r.address >= 0) {  // six upper-case hexadecimal digits
+      char a[6];
+      for (int k = 0; k < 6; ++k) a[k] = "0123456789ABCDEF"[(r.address >> (20 - 4 * k)) & 15];
+      out.Add(std::string_view(a, 6));
     } else {
       out.AddEmpty();
     }
     out.Add(ElevationSourceName(r.el_source)).EndRow();
+    if (out.str().size() >= kPiece) out.DrainTo(&file);
   }
-  out.Write(path);
+  out.DrainTo(&file);
+  file.Commit();
 }
 
 namespace {

@@ -21,18 +21,18 @@ inline constexpr const char* kAsterixPlotsColumns =
 enum class ElevationSource : std::uint8_t { kNone, k3d, kModeC };
 const char* ElevationSourceName(ElevationSource s);  // "", "3d", "mode_c"
 
-// One plot; NaN / −1 = empty cell.
+// One plot; NaN / −1 = empty cell. 56 octets: a feed holds millions of them until they are sorted by time.
 struct AsterixPlotRow {
   double t_s = 0.0;
-  std::uint32_t radar = 0;  // index into the writer's radar names
   double range_m = 0.0, az_deg = 0.0;
-  double el_deg = 0.0;  // NaN: a 2-D plot
-  std::int64_t track_id = -1;
+  double el_deg = 0.0;       // NaN: a 2-D plot
+  std::int32_t track_id = -1;
+  std::uint16_t radar = 0;   // index into the writer's radar names
   std::uint8_t sac = 0, sic = 0;
-  double flight_level = 0.0;  // NaN: none (or not validated)
-  double height_m = 0.0;      // NaN: none
-  int mode3a = -1;            // 12-bit code, written as 4 octal digits
+  float flight_level = 0.0f;  // NaN: none (or not validated); quarters of a flight level are exact in a float
+  float height_m = 0.0f;      // NaN: none; multiples of 25 ft (7.62 m), written to the centimetre
   std::int32_t address = -1;  // 24-bit, written as 6 hex digits
+  std::int16_t mode3a = -1;   // 12-bit code, written as 4 octal digits
   ElevationSource el_source = ElevationSource::kNone;
 };
 

@@ -878,6 +878,12 @@ std::string CsvWriter::TakeText() {
   return out;
 }
 
+void CsvWriter::DrainTo(OutputFile* file) {
+  RK_CHECK(fields_in_row_ == 0, "unfinished row");
+  file->Write(text_);
+  text_.clear();
+}
+
 std::vector<std::string> SplitList(std::string_view list, char sep) {
   std::vector<std::string> out;
   std::size_t start = 0;

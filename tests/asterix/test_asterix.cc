@@ -115,11 +115,13 @@ TEST(AsterixRecord, Cat001PlotAndTrackLayoutsFollowTyp) {
                               {14, {0x01, 0x02}}});
   // Random field sequencing (plot FRN 21): I001/131 (FRN 10) and I001/150 (FRN 15) given inside it.
   const Bytes rfs = Record({{1, {25, 3}}, {2, {0x20}}, {3, Cat({Be(1, 2), Be(2, 2)})}, {21, {2, 10, 0x7F, 15, 0x00}}});
-  const Bytes data = Block(1, {plot, track, rfs});
+  // A track record without FRN 3 (no I001/161): still the track layout, its ρ at FRN 4.
+  const Bytes track_no_161 = Record({{1, {25, 3}}, {2, {0x80}}, {4, Cat({Be(256, 2), Be(0, 2)})}});
+  const Bytes data = Block(1, {plot, track, rfs, track_no_161});
   Collect c;
   WalkBlocks(data.data(), data.size(), &c);
   ASSERT_TRUE(c.bad.empty()) << c.bad[0].second;
-  ASSERT_EQ(c.records.size(), 3u);
+  ASSERT_EQ(c.records.size(), 4u);
   const TargetReport p = DecodeTargetReport(c.records[0]);
   EXPECT_FALSE(p.track_record);
   EXPECT_NEAR(p.rho_m, 1852.0, kRangeTol);
@@ -131,6 +133,8 @@ TEST(AsterixRecord, Cat001PlotAndTrackLayoutsFollowTyp) {
   EXPECT_NEAR(t.rho_m, 30000 / 128.0 * 1852, kRangeTol);  // 234 NM: a track's ρ read with the track layout
   EXPECT_NEAR(t.truncated_time_of_day_s, 5.0, kTodTol);
   EXPECT_NEAR(DecodeTargetReport(c.records[2]).rho_m, 1852.0 / 128, kRangeTol);
+  EXPECT_TRUE(DecodeTargetReport(c.records[3]).track_record);
+  EXPECT_NEAR(DecodeTargetReport(c.records[3]).rho_m, 2 * 1852.0, kRangeTol);
 }
 
 TEST(AsterixRecord, Cat034ServiceMessages) {

@@ -42,8 +42,8 @@ PY
 # The raw stream of the same reports: its date from --epoch-utc, the same plots.
 rk-import asterix --input "$d/feed.ast" --radars "$d/radars.json" --epoch-utc $epoch -o "$d/raw.csv" 2> /dev/null
 diff <(grep -v '^#' "$d/plots.csv") <(grep -v '^#' "$d/raw.csv")
-# Two inputs, one after the other, and stdout.
-rk-import asterix --input "$d/feed.pcap" --input "$d/feed.ast" --epoch-utc $epoch -o - 2> /dev/null | grep -vc '^#' | grep -qx 25
+# Two inputs, one after the other (bad.pcap holds feed.pcap's first report again: written once), and stdout.
+rk-import asterix --input "$d/bad.pcap" --input "$d/feed.pcap" --epoch-utc $epoch -o - 2> /dev/null | grep -vc '^#' | grep -qx 25
 # Bad records: skipped with file, byte offset and packet; counted; exit 0.
 rk-import asterix --input "$d/bad.pcap" --epoch-utc $epoch -o "$d/bad.csv" --report "$d/bad.json" 2> "$d/bad.err"
 cat "$d/bad.err"
