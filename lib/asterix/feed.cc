@@ -10,6 +10,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <new>
 #include <string_view>
 
 #include "asterix/block.h"
@@ -165,7 +166,12 @@ class Importer : public BlockVisitor {
     std::error_code ec;
     const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
     if (!ec) {
-      result_.rows.reserve(std::min<std::size_t>(result_.rows.size() + bytes / 12, std::size_t{1} << 26));
+      // At most 16 M rows ahead (0.9 GB of address space); a system that refuses even that (strict overcommit)
+      // just grows the vector as it goes.
+      try {
+        result_.rows.reserve(std::min<std::size_t>(result_.rows.size() + bytes / 12, result_.rows.size() + (1u << 24)));
+      } catch (const std::bad_alloc&) {
+      }
       // Huge pages where the kernel offers them on request (transparent_hugepage=madvise, Debian's default): one
       // page fault per 2 MiB of rows instead of per 4 KiB.
       const auto begin = reinterpret_cast<std::uintptr_t>(result_.rows.data() + result_.rows.size());
