@@ -18,6 +18,7 @@
 #include "geo/wgs84.h"
 #include "io/error.h"
 #include "io/number_text.h"
+#include "numeric/robust_stats.h"
 
 namespace rk::asterix {
 namespace {
@@ -51,13 +52,6 @@ double NearestTruncated(double truncated, double reference) {
     }
   }
   return best;
-}
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
 }
 
 // Hashes of the records seen lately, for a redundant feed's copies: two generations of an open-addressing set,
@@ -235,7 +229,8 @@ class Importer : public BlockVisitor {
       for (std::size_t i = 1; i < r.north_markers_t_s.size(); ++i) {
         scans.push_back(r.north_markers_t_s[i] - r.north_markers_t_s[i - 1]);
       }
-      j["scan_period_s"] = Median(scans);             // from the north markers (null: fewer than two)
+      // From the north markers (null: fewer than two).
+      j["scan_period_s"] = scans.empty() ? std::numeric_limits<double>::quiet_NaN() : numeric::UpperMedian(scans);
       j["antenna_rotation_period_s"] = r.rotation_period_s;  // I034/041, as the radar states it
       radars.push_back(std::move(j));
       if (r.height_unreachable > 0) {
@@ -265,7 +260,8 @@ class Importer : public BlockVisitor {
       sources.push_back({{"source", src.name}, {"datagrams", src.datagrams}, {"records", src.records},
                          {"duplicates", src.duplicates}});
     }
-    const double latency = Median(latency_s_);
+    const double latency =
+        latency_s_.empty() ? std::numeric_limits<double>::quiet_NaN() : numeric::UpperMedian(latency_s_);
     if (std::isfinite(latency) && std::abs(latency) > 60.0) {
       s.Warn("capture_clock", "packets were captured a median " + io::NumberText(latency) +
                                   " s after their records' time of day: check the capture host's clock (the date "

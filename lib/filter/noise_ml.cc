@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "geo/angles.h"
+#include "numeric/golden_section.h"
 #include "numeric/robust_stats.h"
 
 namespace rk::filter {
@@ -115,28 +117,9 @@ double MinimiseLog(const std::function<double(double)>& f, double u0, int* evalu
     }
   }
   *on_bound = best == 0 || best == steps;
-  double a = u0 - kGridHalfWidth + (best - 1) * kGridStep, b = a + 2 * kGridStep;
-  const double g = 0.5 * (std::sqrt(5.0) - 1.0);
-  double c = b - g * (b - a), d = a + g * (b - a);
-  double fc = f(c), fd = f(d);
-  *evaluations += 2;
-  while (b - a > kGoldenTol) {
-    if (fc < fd) {
-      b = d;
-      d = c;
-      fd = fc;
-      c = b - g * (b - a);
-      fc = f(c);
-    } else {
-      a = c;
-      c = d;
-      fc = fd;
-      d = a + g * (b - a);
-      fd = f(d);
-    }
-    ++*evaluations;
-  }
-  return 0.5 * (a + b);
+  const double a = u0 - kGridHalfWidth + (best - 1) * kGridStep;
+  return numeric::GoldenSectionMinimum(f, a, a + 2 * kGridStep, kGoldenTol, std::numeric_limits<int>::max(),
+                                       evaluations);
 }
 
 }  // namespace

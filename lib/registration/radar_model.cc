@@ -6,6 +6,7 @@
 
 #include "geo/angles.h"
 #include "geo/wgs84.h"
+#include "numeric/golden_section.h"
 
 namespace rk::registration {
 
@@ -181,25 +182,8 @@ void FillMissingElevations(RadarMeasurement* a, const PlatformPose& pose_a, cons
       best_e = e;
     }
   }
-  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
-  double lo = best_e - kArcGridStepRad, hi = best_e + kArcGridStepRad;
-  double x1 = hi - phi * (hi - lo), x2 = lo + phi * (hi - lo), f1 = gap(x1), f2 = gap(x2);
-  for (int it = 0; it < kGoldenIterations; ++it) {
-    if (f1 < f2) {
-      hi = x2;
-      x2 = x1;
-      f2 = f1;
-      x1 = hi - phi * (hi - lo);
-      f1 = gap(x1);
-    } else {
-      lo = x1;
-      x1 = x2;
-      f1 = f2;
-      x2 = lo + phi * (hi - lo);
-      f2 = gap(x2);
-    }
-  }
-  const double e = 0.5 * (lo + hi);
+  const double e = numeric::GoldenSectionMinimum(gap, best_e - kArcGridStepRad, best_e + kArcGridStepRad, 0.0,
+                                                 kGoldenIterations);
   a->el_rad = e + b_a[kBiasEl];
   b->el_rad = ElevationToward(CorrectedEcefPoint(*a, pose_a, b_a), *b, pose_b, b_b);
 }
