@@ -20,6 +20,7 @@ namespace rk::app {
 Command AddBeaconCommand(CLI::App& app);      // extract_beacon_cmd.cpp
 Command AddFeaturesCommand(CLI::App& app);    // extract_features_cmd.cpp
 Command AddSilhouetteCommand(CLI::App& app);  // extract_silhouette_cmd.cpp
+Command AddPointsCommand(CLI::App& app);      // extract_points_cmd.cpp
 
 // --video, --frames | --fps [--t0] | the recording's own times [--epoch-utc], --bad-rows: the recording and
 // its frame times (formats/frame_times.h, video/recording_times.h). Paths and optional values, so

@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
       {"beacon", rk::app::AddBeaconCommand},
       {"features", rk::app::AddFeaturesCommand},
       {"silhouette", rk::app::AddSilhouetteCommand},
+      {"points", rk::app::AddPointsCommand},
   };
   // clang-format on
   return rk::app::RunTool("rk-extract", "rk-extract: recorded video -> per-frame image measurements",

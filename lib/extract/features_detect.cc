@@ -7,67 +7,18 @@
 #include <algorithm>
 #include <cmath>
 
+#include "extract/disk_model.h"
+#include "extract/ncc_search.h"
 #include "numeric/levenberg_marquardt.h"
 #include "numeric/robust_stats.h"
 
 namespace rk::extract {
 namespace {
 
-constexpr double kInvSqrt2 = 0.70710678118654752440;
-constexpr double kInvSqrt2Pi = 0.39894228040143267794;
+constexpr double kInvSqrt2 = kDiskInvSqrt2;
 
-using Vec8 = Eigen::Matrix<double, 8, 1>;
-using Mat8 = Eigen::Matrix<double, 8, 8>;
-
-// The blurred-disk model of a marker over the window of ±half px about (x0, y0): the SSE of
-// θ = (cx, cy, ρ, s, a, b0, bx, by) (the plane is about (x0, y0)) and, with H and g, the Gauss–Newton
-// normal equations.
-class DiskModel {
- public:
-  DiskModel(const cv::Mat& image, int x0, int y0, int half) : image_(image), x0_(x0), y0_(y0), half_(half) {}
-
-  double operator()(const Vec8& t, Mat8* H, Vec8* g) const {
-    double sse = 0.0;
-    if (H) {
-      H->setZero();
-      g->setZero();
-    }
-    const double k = 1.0 / t(3);
-    for (int y = y0_ - half_; y <= y0_ + half_; ++y) {
-      const float* row = image_.ptr<float>(y);
-      const double dy = y - t(1);
-      for (int x = x0_ - half_; x <= x0_ + half_; ++x) {
-        const double dx = x - t(0);
-        const double r = std::sqrt(dx * dx + dy * dy);
-        const double z = (t(2) - r) * k;
-        const double Phi = 0.5 * std::erfc(-z * kInvSqrt2);
-        const double model = t(5) + t(6) * (x - x0_) + t(7) * (y - y0_) + t(4) * Phi;
-        const double res = model - row[x];
-        sse += res * res;
-        if (H) {
-          const double aphi = t(4) * kInvSqrt2Pi * std::exp(-0.5 * z * z) * k;  // a φ(z) / s
-          Vec8 J;
-          J(0) = r > 1e-12 ? aphi * dx / r : 0.0;
-          J(1) = r > 1e-12 ? aphi * dy / r : 0.0;
-          J(2) = aphi;
-          J(3) = -aphi * z;
-          J(4) = Phi;
-          J(5) = 1.0;
-          J(6) = x - x0_;
-          J(7) = y - y0_;
-          H->selfadjointView<Eigen::Upper>().rankUpdate(J);
-          *g += J * res;
-        }
-      }
-    }
-    if (H) *H = H->selfadjointView<Eigen::Upper>();
-    return sse;
-  }
-
- private:
-  const cv::Mat& image_;
-  const int x0_, y0_, half_;
-};
+using Vec8 = DiskModel::Vec8;
+using Mat8 = DiskModel::Mat8;
 
 // The fit's start: the background from the median of the window's border, the amplitude from the centre pixel.
 Vec8 StartParameters(const cv::Mat& image, const Eigen::Vector2d& start, int x0, int y0, int half, double radius_px,
@@ -176,46 +127,13 @@ MarkerMeasurement MarkerDetector::Measure(const Eigen::Vector2d& predicted, doub
   }
   MakeTemplate(radius_px, edge_px, half);
   cv::matchTemplate(image_(region), templ_, ncc_map_, cv::TM_CCOEFF_NORMED);
-  double best = -2.0;
-  for (int y = 0; y < ncc_map_.rows; ++y) {
-    const float* row = ncc_map_.ptr<float>(y);
-    for (int x = 0; x < ncc_map_.cols; ++x) best = std::max(best, static_cast<double>(row[x]));
-  }
-  if (!(best >= opt_.ncc_min)) {
-    m.ncc = best;
+  const NccPeak peak = NearestNearBestPeak(ncc_map_, region.tl(), half, half, predicted, 0.05, opt_.ncc_min, 0.0);
+  if (!peak.found) {
+    m.ncc = peak.best;
     m.why = "low correlation";
     return m;
   }
-  // The local maximum nearest the prediction among those nearly as good as the best.
-  double best_d2 = 1e300, score = best;
-  Eigen::Vector2d peak = predicted;
-  for (int y = 0; y < ncc_map_.rows; ++y) {
-    const float* row = ncc_map_.ptr<float>(y);
-    for (int x = 0; x < ncc_map_.cols; ++x) {
-      const double v = row[x];
-      if (v < best - 0.05) continue;
-      bool is_max = true;
-      for (int dy = -1; dy <= 1 && is_max; ++dy) {
-        for (int dx = -1; dx <= 1; ++dx) {
-          const int yy = y + dy, xx = x + dx;
-          if ((dx || dy) && yy >= 0 && xx >= 0 && yy < ncc_map_.rows && xx < ncc_map_.cols &&
-              ncc_map_.at<float>(yy, xx) > v) {
-            is_max = false;
-            break;
-          }
-        }
-      }
-      if (!is_max) continue;
-      const Eigen::Vector2d p(region.x + x + half, region.y + y + half);
-      const double d2 = (p - predicted).squaredNorm();
-      if (d2 < best_d2) {
-        best_d2 = d2;
-        peak = p;
-        score = v;
-      }
-    }
-  }
-  return Fit(peak, radius_px, edge_px, score);
+  return Fit(peak.px, radius_px, edge_px, peak.score);
 }
 
 MarkerMeasurement MarkerDetector::Fit(const Eigen::Vector2d& start, double radius_px, double edge_px, double ncc) {

@@ -1,0 +1,160 @@
+// Shared parts of the point measurers; see point_measure.h.
+#include "extract/point_measure.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+
+#include "extract/point_measurers.h"
+#include "numeric/robust_stats.h"
+
+namespace rk::extract {
+
+std::unique_ptr<PointMeasurer> MakePointMeasurer(formats::PointMethod method, std::optional<double> size_px,
+                                                 const PointMeasureOptions& options) {
+  switch (method) {
+    case formats::PointMethod::kCorrelation: return MakeCorrelationMeasurer(size_px, options);
+    case formats::PointMethod::kCentroidDark: return MakeCentroidMeasurer(true, size_px, options);
+    case formats::PointMethod::kCentroidBright: return MakeCentroidMeasurer(false, size_px, options);
+    case formats::PointMethod::kQuadrant: return MakeQuadrantMeasurer(size_px, options);
+    case formats::PointMethod::kCircle: return MakeCircleMeasurer(size_px, options);
+  }
+  return nullptr;
+}
+
+bool CopyFloatRoi(const cv::Mat& frame, const cv::Rect& rect, cv::Mat* roi) {
+  if (rect.x < 0 || rect.y < 0 || rect.width <= 0 || rect.height <= 0 || rect.x + rect.width > frame.cols ||
+      rect.y + rect.height > frame.rows) {
+    return false;
+  }
+  frame(rect).convertTo(*roi, CV_32F);
+  return true;
+}
+
+double WindowNoise(const cv::Mat& roi) {
+  std::vector<double> d;
+  d.reserve(static_cast<std::size_t>(roi.rows) * static_cast<std::size_t>(roi.cols));
+  for (int y = 0; y < roi.rows; ++y) {
+    const float* r = roi.ptr<float>(y);
+    for (int x = 0; x + 1 < roi.cols; ++x) d.push_back(static_cast<double>(r[x + 1]) - r[x]);
+  }
+  if (d.size() < 8) return 1.0;
+  return std::max(1.4826 * numeric::UpperMedianAndMadInPlace(d).mad / std::sqrt(2.0), 0.3);
+}
+
+double OtsuThreshold(const cv::Mat& roi, double* separability) {
+  double lo = 0, hi = 0;
+  cv::minMaxLoc(roi, &lo, &hi);
+  *separability = 0.0;
+  if (!(hi > lo)) return lo;
+  constexpr int kBins = 256;
+  std::array<double, kBins> hist{};
+  const double scale = (kBins - 1) / (hi - lo);
+  double n = 0, sum = 0, sum2 = 0;
+  for (int y = 0; y < roi.rows; ++y) {
+    const float* r = roi.ptr<float>(y);
+    for (int x = 0; x < roi.cols; ++x) {
+      hist[static_cast<std::size_t>(std::lround((r[x] - lo) * scale))] += 1.0;
+      n += 1;
+      sum += r[x];
+      sum2 += static_cast<double>(r[x]) * r[x];
+    }
+  }
+  const double var_t = sum2 / n - (sum / n) * (sum / n);
+  double w0 = 0, s0 = 0, best = -1, thr = lo;
+  double total = 0;
+  for (int i = 0; i < kBins; ++i) total += hist[static_cast<std::size_t>(i)] * (lo + i / scale);
+  for (int i = 0; i + 1 < kBins; ++i) {
+    const double v = lo + i / scale;
+    w0 += hist[static_cast<std::size_t>(i)];
+    s0 += hist[static_cast<std::size_t>(i)] * v;
+    const double w1 = n - w0;
+    if (w0 <= 0 || w1 <= 0) continue;
+    const double m0 = s0 / w0, m1 = (total - s0) / w1;
+    const double between = w0 * w1 * (m0 - m1) * (m0 - m1) / (n * n);
+    if (between > best) {
+      best = between;
+      thr = v + 0.5 / scale;
+    }
+  }
+  if (var_t > 0 && best > 0) *separability = std::min(1.0, best / var_t);
+  return thr;
+}
+
+namespace {
+
+// Keys' cubic-convolution kernel (a = −0.5) weights and their derivatives for the fractional offset f.
+void CubicWeights(double f, double w[4], double dw[4]) {
+  const double f2 = f * f, f3 = f2 * f;
+  w[0] = -0.5 * f3 + f2 - 0.5 * f;
+  w[1] = 1.5 * f3 - 2.5 * f2 + 1.0;
+  w[2] = -1.5 * f3 + 2.0 * f2 + 0.5 * f;
+  w[3] = 0.5 * f3 - 0.5 * f2;
+  dw[0] = -1.5 * f2 + 2.0 * f - 0.5;
+  dw[1] = 4.5 * f2 - 5.0 * f;
+  dw[2] = -4.5 * f2 + 4.0 * f + 0.5;
+  dw[3] = 1.5 * f2 - f;
+}
+
+}  // namespace
+
+bool CubicSample(const cv::Mat& img, double x, double y, double* v, double* gx, double* gy) {
+  const double fx0 = std::floor(x), fy0 = std::floor(y);
+  const int x0 = static_cast<int>(fx0), y0 = static_cast<int>(fy0);
+  if (x0 < 1 || y0 < 1 || x0 + 2 >= img.cols || y0 + 2 >= img.rows) return false;
+  double wx[4], dwx[4], wy[4], dwy[4];
+  CubicWeights(x - fx0, wx, dwx);
+  CubicWeights(y - fy0, wy, dwy);
+  double val = 0, dx = 0, dy = 0;
+  for (int j = 0; j < 4; ++j) {
+    const float* r = img.ptr<float>(y0 - 1 + j) + (x0 - 1);
+    const double rv = wx[0] * r[0] + wx[1] * r[1] + wx[2] * r[2] + wx[3] * r[3];
+    const double rd = dwx[0] * r[0] + dwx[1] * r[1] + dwx[2] * r[2] + dwx[3] * r[3];
+    val += wy[j] * rv;
+    dx += wy[j] * rd;
+    dy += dwy[j] * rv;
+  }
+  *v = val;
+  *gx = dx;
+  *gy = dy;
+  return true;
+}
+
+std::vector<PointCandidate> TemplatePeaks(const cv::Mat& frame, const cv::Mat& templ, const Eigen::Vector2d& center,
+                                          double search_px, int max_n, double min_score, double min_sep) {
+  std::vector<PointCandidate> out;
+  const int hx = templ.cols / 2, hy = templ.rows / 2;
+  const int S = std::max(1, static_cast<int>(std::ceil(search_px)));
+  const int cx = static_cast<int>(std::lround(center.x())), cy = static_cast<int>(std::lround(center.y()));
+  const cv::Rect want(cx - hx - S, cy - hy - S, 2 * (hx + S) + 1, 2 * (hy + S) + 1);
+  const cv::Rect region = want & cv::Rect(0, 0, frame.cols, frame.rows);
+  if (region.width <= templ.cols + 1 || region.height <= templ.rows + 1) return out;
+  cv::Mat roi, map;
+  frame(region).convertTo(roi, CV_32F);
+  cv::matchTemplate(roi, templ, map, cv::TM_CCOEFF_NORMED);
+  for (int y = 1; y + 1 < map.rows; ++y) {
+    const float* r = map.ptr<float>(y);
+    for (int x = 1; x + 1 < map.cols; ++x) {
+      const float v = r[x];
+      if (!(v >= min_score)) continue;
+      bool is_max = true;
+      for (int dy = -1; dy <= 1 && is_max; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+          if ((dx || dy) && map.at<float>(y + dy, x + dx) > v) is_max = false;
+      if (is_max) out.push_back({Eigen::Vector2d(region.x + x + hx, region.y + y + hy), v});
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const PointCandidate& a, const PointCandidate& b) { return a.score > b.score; });
+  std::vector<PointCandidate> kept;
+  for (const PointCandidate& c : out) {
+    bool near = false;
+    for (const PointCandidate& k : kept) near = near || (k.px - c.px).norm() < min_sep;
+    if (!near) kept.push_back(c);
+    if (static_cast<int>(kept.size()) >= max_n) break;
+  }
+  return kept;
+}
+
+}  // namespace rk::extract

@@ -1,0 +1,317 @@
+// Seeded points tracking; the method is described in points_tracker.h.
+#include "extract/points_tracker.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <Eigen/Dense>
+#include <algorithm>
+#include <cmath>
+
+#include "io/error.h"
+
+namespace rk::extract {
+
+const io::OptionTable<PointsTrackOptions>& PointsTrackOptions::Table() {
+  using B = io::Bounds;
+  using O = PointsTrackOptions;
+  static const io::OptionTable<O> table =
+      io::OptionTable<O>()
+          .Real("--ncc-min", [](O& o) -> double& { return o.measure.ncc_min; }, "", B::Open(-1, 1),
+                "Correlation with the template or the model needed to accept a measurement")
+          .Real("--min-contrast", [](O& o) -> double& { return o.measure.min_contrast_sigmas; }, "",
+                B::AtLeast(0), "Smallest marker contrast accepted, in noise sigmas of its window")
+          .Real("--sigma-floor", [](O& o) -> double& { return o.measure.sigma_floor_px; }, "px", B::AtLeast(0),
+                "Added in quadrature to every row's sigma (px)")
+          .Real("--maneuver-time", &O::maneuver_time_s, "s", B::Positive().Finite(),
+                "Singer maneuver time constant 1/a (s)")
+          .Real("--accel-sigma", &O::accel_sigma_px_s2, "px/s^2", B::Positive().Finite(),
+                "Singer RMS image acceleration (px/s^2)")
+          .Real("--init-vel-sigma", &O::init_vel_sigma_px_s, "px/s", B::Positive().Finite(),
+                "Image velocity uncertainty at a seed or a restart (px/s)")
+          .Real("--gate-sigma", &O::gate_sigma, "", B::Positive(), "Search half-width in predicted sigmas")
+          .Real("--gate-chi2", &O::gate_chi2, "", B::Positive(),
+                "Mahalanobis gate (2 dof) for a match while tracking; a re-acquisition beyond it restarts the "
+                "filter")
+          .Real("--window-min", &O::window_min_px, "px", B::AtLeast(1), "Smallest search half-width (px)")
+          .Real("--window-max", &O::window_max_px, "px", B::AtLeast(1), "Largest search half-width while tracking (px)")
+          .Real("--reacquire-px", &O::reacquire_px, "px", B::AtLeast(1),
+                "Re-acquisition searches at least this far about the prediction (px)")
+          .Real("--seed-search", &O::seed_search_px, "px", B::Positive(),
+                "Search half-width at a seed without search_px (px)")
+          .Real("--context-min", &O::context_min, "", B::Closed(-1, 1),
+                "NCC of a match's surroundings with the point's at its last good frame needed to accept it (look-alikes)")
+          .Real("--predict-max-sigma", &O::predict_max_sigma_px, "px", B::AtLeast(0),
+                "A hidden point is predicted while the prediction's 1 sigma is below this (px), then lost")
+          .Real("--predict-max-gap", &O::predict_max_gap_s, "s", B::AtLeast(0),
+                "... and for at most this long (s)");
+  return table;
+}
+
+bool PointsTrackOptions::Check(std::string* why) const {
+  if (!Table().Check(*this, why)) return false;
+  if (window_max_px < window_min_px) {
+    *why = "--window-max must be >= --window-min";
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+track::SingerAxisOptions PointAxis(const PointsTrackOptions& o) {
+  track::SingerAxisOptions a;
+  a.maneuver_time_s = o.maneuver_time_s;
+  a.accel_sigma = o.accel_sigma_px_s2;
+  return a;
+}
+
+constexpr double kMinMeasVar = 1e-6;  // px²: a floor on R so that S stays invertible
+
+// The ring between half sizes r_in and r_out (pixels of a (2 r_out + 1)² patch), its NCC with another patch.
+double RingNcc(const cv::Mat& a, const cv::Mat& b, int r_in) {
+  const int R = a.cols / 2;
+  double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0, n = 0;
+  for (int y = 0; y < a.rows; ++y)
+    for (int x = 0; x < a.cols; ++x) {
+      if (std::max(std::abs(x - R), std::abs(y - R)) <= r_in) continue;
+      const double u = a.at<float>(y, x), v = b.at<float>(y, x);
+      sa += u;
+      sb += v;
+      saa += u * u;
+      sbb += v * v;
+      sab += u * v;
+      n += 1;
+    }
+  const double va = saa - sa * sa / n, vb = sbb - sb * sb / n;
+  if (!(va > 0 && vb > 0)) return 0.0;
+  return (sab - sa * sb / n) / std::sqrt(va * vb);
+}
+
+}  // namespace
+
+struct PointsTracker::Point {
+  std::size_t index = 0;
+  std::string id;
+  formats::PointMethod method{};
+  std::unique_ptr<PointMeasurer> measurer;
+  track::SingerFilter<2> kf;
+  bool started = false;
+  bool tracking = false;        // the last frame was accepted
+  double last_t = 0.0, miss_since = 0.0;
+  Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
+  cv::Mat context;              // surroundings at the last good frame (CV_32F, (2 r + 1)²)
+  int context_inner = 0;
+  explicit Point(const PointsTrackOptions& o) : kf({PointAxis(o), PointAxis(o)}) {}
+};
+
+PointsTracker::~PointsTracker() = default;
+
+PointsTracker::PointsTracker(const formats::Seeds& seeds, const PointsTrackOptions& options) : opt_(options) {
+  std::string why;
+  if (!opt_.Check(&why)) throw UsageError(why);
+  for (std::size_t i = 0; i < seeds.ids.size(); ++i) {
+    auto p = std::make_unique<Point>(opt_);
+    p->index = i;
+    p->id = seeds.ids[i];
+    PointSummary s;
+    s.id = p->id;
+    for (const formats::SeedRow& r : seeds.rows) {
+      if (r.id == p->id) {
+        p->method = r.method;
+        p->measurer = MakePointMeasurer(r.method, r.size_px, opt_.measure);
+        break;
+      }
+    }
+    s.method = p->method;
+    points_.push_back(std::move(p));
+    summary_.push_back(s);
+  }
+  pending_ = seeds.rows;
+  std::stable_sort(pending_.begin(), pending_.end(),
+                   [](const formats::SeedRow& a, const formats::SeedRow& b) { return a.frame < b.frame; });
+}
+
+PointsFrameResult PointsTracker::Process(const cv::Mat& frame, std::int64_t frame_index, double t_s) {
+  PointsFrameResult out;
+  out.frame = frame_index;
+  out.t_s = t_s;
+  while (next_seed_ < pending_.size() && pending_[next_seed_].frame < frame_index) ++next_seed_;  // frames not processed
+  std::vector<const formats::SeedRow*> here(points_.size(), nullptr);
+  while (next_seed_ < pending_.size() && pending_[next_seed_].frame == frame_index) {
+    const formats::SeedRow* r = &pending_[next_seed_++];
+    for (const auto& p : points_) {
+      if (p->id == r->id) here[p->index] = r;
+    }
+  }
+  out.points.reserve(points_.size());
+  for (const auto& p : points_) {
+    PointSummary& sum = summary_[p->index];
+    PointRow row = Step(*p, frame, t_s, here[p->index], sum);
+    ++sum.rows_by_status[static_cast<int>(row.status)];
+    if (row.has_score) {
+      sum.score_sum += row.score;
+      ++sum.scored;
+    }
+    out.points.push_back(row);
+  }
+  return out;
+}
+
+PointRow PointsTracker::Step(Point& p, const cv::Mat& frame, double t_s, const formats::SeedRow* seed,
+                             PointSummary& sum) {
+  if (seed) {
+    PointRow r = Reseed(p, frame, *seed, sum);
+    p.last_t = t_s;
+    if (!p.tracking) p.miss_since = t_s;
+    return r;
+  }
+  if (!p.started) return PointRow{};  // before its first seed: lost, no position
+  const double dt = std::max(0.0, t_s - p.last_t);
+  p.last_t = t_s;
+  return Track(p, frame, dt, sum);
+}
+
+PointRow PointsTracker::Reseed(Point& p, const cv::Mat& frame, const formats::SeedRow& seed, PointSummary& sum) {
+  ++sum.seeds;
+  const Eigen::Vector2d at(seed.x_px, seed.y_px);
+  const PointMeasurement m = p.measurer->Seed(frame, at, seed.search_px.value_or(opt_.seed_search_px));
+  p.started = true;
+  if (!m.ok) {
+    ++sum.seed_failures;
+    seed_failures_.push_back({seed.line, p.id, m.why});
+    p.kf.Initialise(at, Eigen::Matrix2d::Identity(), opt_.init_vel_sigma_px_s, opt_.accel_sigma_px_s2);
+    p.R = Eigen::Matrix2d::Identity();
+    p.tracking = false;
+    p.context.release();
+    PointRow r;
+    r.status = RowStatus::kInvalid;
+    return r;
+  }
+  p.R = m.cov;
+  p.R.diagonal().array() += kMinMeasVar;
+  p.kf.Initialise(m.px, p.R, opt_.init_vel_sigma_px_s, opt_.accel_sigma_px_s2);
+  return AcceptRow(p, frame, m, false, false);
+}
+
+PointRow PointsTracker::Track(Point& p, const cv::Mat& frame, double dt, PointSummary& sum) {
+  p.kf.Predict(dt);
+  const Eigen::Vector2d pred = p.kf.PredictedMeasurement();
+  const Eigen::Matrix2d S = p.kf.InnovationCovariance(p.R);
+  const double spread = opt_.gate_sigma * std::sqrt(std::max(S(0, 0), S(1, 1)));
+  const double window = std::clamp(spread, opt_.window_min_px, opt_.window_max_px);
+  if (p.tracking) {
+    const PointMeasurement m = p.measurer->Measure(frame, pred, window);
+    if (m.ok) {
+      Eigen::Matrix2d R = m.cov;
+      R.diagonal().array() += kMinMeasVar;
+      if (p.kf.Mahalanobis2(m.px, R) <= opt_.gate_chi2) {
+        // Its surroundings too: a marker that vanished and an identical one in its place are not one point.
+        if (ContextScore(p, frame, m.px) >= opt_.context_min) return AcceptRow(p, frame, m, false, false);
+        ++sum.lookalikes_refused;  // the point itself is not seen: predicted, then lost
+      }
+    }
+    p.tracking = false;
+    p.miss_since = p.last_t;
+    return MissRow(p, false);
+  }
+  bool invalid = false;
+  PointMeasurement m;
+  if (Reacquire(p, frame, std::max(spread, opt_.reacquire_px), &m, sum, &invalid)) {
+    Eigen::Matrix2d R = m.cov;
+    R.diagonal().array() += kMinMeasVar;
+    const bool restart = p.kf.Mahalanobis2(m.px, R) > opt_.gate_chi2;
+    if (restart) ++sum.restarts;
+    return AcceptRow(p, frame, m, true, restart);
+  }
+  return MissRow(p, invalid);
+}
+
+bool PointsTracker::Reacquire(Point& p, const cv::Mat& frame, double search, PointMeasurement* out,
+                              PointSummary& sum, bool* invalid) {
+  const Eigen::Vector2d pred = p.kf.PredictedMeasurement();
+  const std::vector<PointCandidate> cands = p.measurer->Candidates(frame, pred, search, 8);
+  const bool has_context = !p.context.empty();
+  double best = -2, second = -2;
+  for (const PointCandidate& c : cands) {
+    const PointMeasurement m = p.measurer->Measure(frame, c.px, 2.0);
+    if (!m.ok) continue;
+    const double ctx = ContextScore(p, frame, m.px);
+    if (ctx < opt_.context_min) {
+      ++sum.lookalikes_refused;
+      continue;
+    }
+    if ((m.px - out->px).norm() < 1.0 && best > -2) continue;  // the same marker found twice
+    if (ctx > best) {
+      second = best;
+      best = ctx;
+      *out = m;
+    } else if (ctx > second) {
+      second = ctx;
+    }
+  }
+  if (best <= -2) return false;
+  if (second > best - 0.05 && has_context) {
+    ++sum.ambiguous;
+    *invalid = true;
+    return false;
+  }
+  return true;
+}
+
+double PointsTracker::ContextScore(Point& p, const cv::Mat& frame, const Eigen::Vector2d& px) {
+  if (p.context.empty()) return 1.0;
+  const int R = p.context.cols / 2;
+  const int ix = static_cast<int>(std::lround(px.x())), iy = static_cast<int>(std::lround(px.y()));
+  if (!CopyFloatRoi(frame, cv::Rect(ix - R, iy - R, 2 * R + 1, 2 * R + 1), &patch_)) return 1.0;  // at the border
+  return RingNcc(p.context, patch_, p.context_inner);
+}
+
+PointRow PointsTracker::AcceptRow(Point& p, const cv::Mat& frame, const PointMeasurement& m, bool reacquired,
+                                  bool restart) {
+  Eigen::Matrix2d R = m.cov;
+  R.diagonal().array() += kMinMeasVar;
+  if (restart) {
+    p.kf.Initialise(m.px, R, opt_.init_vel_sigma_px_s, opt_.accel_sigma_px_s2);
+  } else if (reacquired || p.tracking) {
+    p.kf.Update(m.px, R);
+  }
+  p.R = R;
+  p.tracking = true;
+  p.measurer->Accept(m);
+  // The surroundings, for telling this point from a look-alike after it was hidden.
+  const int inner = p.measurer->SupportHalfPx();
+  const int outer = std::max(2 * inner, inner + 6);
+  const int ix = static_cast<int>(std::lround(m.px.x())), iy = static_cast<int>(std::lround(m.px.y()));
+  cv::Mat ctx;
+  if (CopyFloatRoi(frame, cv::Rect(ix - outer, iy - outer, 2 * outer + 1, 2 * outer + 1), &ctx)) {
+    p.context = ctx;
+    p.context_inner = inner;
+  }
+  PointRow r;
+  r.status = reacquired ? RowStatus::kReacquired : RowStatus::kOk;
+  r.has_xy = true;
+  r.px = m.px;
+  r.sigma_px = m.cov.diagonal().cwiseSqrt();
+  r.score = m.score;
+  r.has_score = true;
+  return r;
+}
+
+PointRow PointsTracker::MissRow(Point& p, bool invalid) {
+  PointRow r;
+  const Eigen::Matrix2d S = p.kf.InnovationCovariance(Eigen::Matrix2d::Zero());
+  const double sigma = std::sqrt(std::max(S(0, 0), S(1, 1)));
+  if (invalid) {
+    r.status = RowStatus::kInvalid;
+  } else if (sigma <= opt_.predict_max_sigma_px && p.last_t - p.miss_since <= opt_.predict_max_gap_s) {
+    r.status = RowStatus::kPredicted;
+    r.has_xy = true;
+    r.px = p.kf.PredictedMeasurement();
+    r.sigma_px = S.diagonal().cwiseSqrt();
+  } else {
+    r.status = RowStatus::kLost;
+  }
+  return r;
+}
+
+}  // namespace rk::extract

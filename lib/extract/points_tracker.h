@@ -1,0 +1,125 @@
+// rk-extract points: any number of user-seeded points tracked through a recording, each with its own method
+// (point_measure.h) and motion model.
+//
+// Per point, per frame:
+//   1. A seeds-file row at this frame (re)starts the point: its measurer learns the appearance there and
+//      measures it within ±search_px (seeds `search_px`, else --seed-search); the row is `ok` (or `invalid`
+//      with the user's position kept as the filter's start, when the method finds nothing there).
+//   2. Otherwise the Singer filter (track/singer.h, 2-D in px, the one owner of the motion model) predicts
+//      the point; the search half-width is gate_sigma · √S (S the innovation covariance with the last
+//      measurement's own covariance), within [--window-min, --window-max] px.
+//   3. While tracking, the nearest good match in the window whose Mahalanobis d² ≤ gate_chi2 is accepted
+//      (`ok`) and updates the filter with its own 2×2 covariance.
+//   4. After a frame without one (hidden by a cloud, by the target's own wing, out of the frame, blurred)
+//      the point is `predicted` (the filter's position and σ = √diag S with R = 0) while that σ is below
+//      --predict-max-sigma and the gap shorter than --predict-max-gap, then `lost` (no position).
+//      Every accepted match, also while tracking, must have surroundings like the point's (below): an
+//      identical marker that appears where the hidden one was predicted is not taken for it.
+//      Re-acquisition looks at every candidate of the method within ±max(window, --reacquire-px) of the
+//      prediction (not only the nearest), so a point that moved anywhere while hidden (a reversal) is found
+//      the frame it returns; a candidate is taken only if its surroundings (the ring between the method's
+//      support and twice it, where a look-alike marker differs from the real one) correlate with those
+//      stored at the point's last good frame (NCC ≥ --context-min), the best such; two nearly equal
+//      (within 0.05) are ambiguous and give `invalid`; a candidate whose surroundings do not match (a
+//      look-alike) is refused and counted, and the point stays predicted or lost.
+//      The first accepted row after a miss is `reacquired`; one outside the gate restarts the filter.
+// σ per row: the method's own (point_measure.h), written as sigma_x_px, sigma_y_px; score the method's.
+#pragma once
+
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <opencv2/core.hpp>
+#include <string>
+#include <vector>
+
+#include "extract/point_measure.h"
+#include "formats/seeds.h"
+#include "io/json_util.h"
+#include "io/options.h"
+#include "io/row_status.h"
+#include "track/singer.h"
+
+namespace rk::extract {
+
+struct PointsTrackOptions {
+  PointMeasureOptions measure;
+  double maneuver_time_s = 0.2;         // Singer τ_m (s)
+  double accel_sigma_px_s2 = 2000.0;    // Singer σ_m, RMS image acceleration (px/s²)
+  double init_vel_sigma_px_s = 200.0;   // velocity uncertainty at a seed or a restart (px/s)
+  double gate_sigma = 4.0;              // search half-width in innovation sigmas
+  double gate_chi2 = 18.4;              // Mahalanobis gate d² (2 dof, 99.99 %)
+  double window_min_px = 3.0;           // search half-width bounds while tracking (px)
+  double window_max_px = 40.0;
+  double reacquire_px = 150.0;          // re-acquisition searches ±this about the prediction at least (px)
+  double seed_search_px = 3.0;          // search at a seed without search_px (px)
+  double context_min = 0.5;             // NCC of the surroundings needed to re-acquire
+  double predict_max_sigma_px = 5.0;    // `predicted` while the prediction's 1σ is below this (px) ...
+  double predict_max_gap_s = 0.5;       // ... and the gap shorter than this (s); then `lost`
+
+  static const io::OptionTable<PointsTrackOptions>& Table();
+  bool Check(std::string* why) const;
+  io::Json ToJson() const { return Table().ToJson(*this); }
+};
+
+struct PointRow {
+  RowStatus status = RowStatus::kLost;
+  bool has_xy = false;
+  Eigen::Vector2d px{0, 0};
+  Eigen::Vector2d sigma_px{0, 0};
+  double score = 0.0;
+  bool has_score = false;
+};
+
+struct PointsFrameResult {
+  std::int64_t frame = 0;
+  double t_s = 0.0;
+  std::vector<PointRow> points;  // one per id, in the seeds file's order of first appearance
+};
+
+struct PointSummary {
+  std::string id;
+  formats::PointMethod method = formats::PointMethod::kCorrelation;
+  std::int64_t rows_by_status[5] = {0, 0, 0, 0, 0};  // RowStatus order
+  std::int64_t seeds = 0, seed_failures = 0, restarts = 0, lookalikes_refused = 0, ambiguous = 0;
+  double score_sum = 0.0;
+  std::int64_t scored = 0;
+};
+
+class PointsTracker {
+ public:
+  PointsTracker(const formats::Seeds& seeds, const PointsTrackOptions& options);
+  ~PointsTracker();
+  PointsTracker(const PointsTracker&) = delete;
+  PointsTracker& operator=(const PointsTracker&) = delete;
+  PointsFrameResult Process(const cv::Mat& frame, std::int64_t frame_index, double t_s);
+  const std::vector<PointSummary>& summary() const { return summary_; }
+  // Seed rows whose method found nothing at the seed (line, id, why), for warnings.
+  struct SeedFailure {
+    std::size_t line = 0;
+    std::string id, why;
+  };
+  const std::vector<SeedFailure>& seed_failures() const { return seed_failures_; }
+
+ private:
+  struct Point;
+  PointRow Step(Point& p, const cv::Mat& frame, double t_s, const formats::SeedRow* seed, PointSummary& sum);
+  PointRow Reseed(Point& p, const cv::Mat& frame, const formats::SeedRow& seed, PointSummary& sum);
+  PointRow Track(Point& p, const cv::Mat& frame, double dt, PointSummary& sum);
+  bool Reacquire(Point& p, const cv::Mat& frame, double search, PointMeasurement* m, PointSummary& sum, bool* invalid);
+  PointRow AcceptRow(Point& p, const cv::Mat& frame, const PointMeasurement& m, bool reacquired, bool restart);
+  PointRow MissRow(Point& p, bool invalid);
+  // NCC of the ring around px (between the method's support and twice it) with the point's at its last good
+  // frame; 1 when there is nothing to compare.
+  double ContextScore(Point& p, const cv::Mat& frame, const Eigen::Vector2d& px);
+
+  PointsTrackOptions opt_;
+  std::vector<std::unique_ptr<Point>> points_;
+  std::vector<formats::SeedRow> pending_;  // the seed rows (a copy) in frame order
+  std::size_t next_seed_ = 0;
+  std::vector<PointSummary> summary_;
+  std::vector<SeedFailure> seed_failures_;
+  cv::Mat patch_;
+};
+
+}  // namespace rk::extract
