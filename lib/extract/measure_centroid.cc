@@ -34,7 +34,8 @@ class CentroidMeasurer final : public PointMeasurer {
     const int S = std::max(1, static_cast<int>(std::ceil(search_px)));
     const int w = static_cast<int>(std::ceil(size_)) + 3 + S;
     const int ix = static_cast<int>(std::lround(predicted.x())), iy = static_cast<int>(std::lround(predicted.y()));
-    const cv::Rect want(ix - w, iy - w, 2 * w + 1, 2 * w + 1);
+    // The window, cut to the frame (a point near the border is still measured if its support fits).
+    const cv::Rect want = cv::Rect(ix - w, iy - w, 2 * w + 1, 2 * w + 1) & cv::Rect(0, 0, frame.cols, frame.rows);
     if (!CopyFloatRoi(frame, want, &roi_)) {
       m.why = "at the image border";
       return m;

@@ -17,7 +17,8 @@ namespace {
 using CVec8 = DiskModel::Vec8;
 using CMat8 = DiskModel::Mat8;
 
-constexpr double kCircleOutlierSigmas = 3.5;  // a rim pixel this many noise σ off the model is left out
+constexpr double kCircleOutlierSigmas = 3.5;  // a rim pixel this many robust σ off the model is left out
+constexpr double kCircleMaxExcluded = 0.2;    // ... unless that would leave out more than this share of the band
 
 // Levenberg–Marquardt on the disc model from *th; radius ≥ 0.5 px, edge in [0.3, 10] px.
 numeric::LmSummary FitDisk(const DiskModel& model, int max_iterations, CVec8* th, CMat8* H) {
@@ -77,8 +78,9 @@ class CircleMeasurer final : public PointMeasurer {
     const int h = templ_.cols / 2, S = std::max(1, static_cast<int>(std::ceil(search_px)));
     const int ix = static_cast<int>(std::lround(predicted.x())), iy = static_cast<int>(std::lround(predicted.y()));
     const int pad = h + S + 3;
-    const cv::Rect want(ix - pad, iy - pad, 2 * pad + 1, 2 * pad + 1);
-    if (!CopyFloatRoi(frame, want, &roi_)) {
+    // The window, cut to the frame (a point near the border is still measured if its support fits).
+    const cv::Rect want = cv::Rect(ix - pad, iy - pad, 2 * pad + 1, 2 * pad + 1) & cv::Rect(0, 0, frame.cols, frame.rows);
+    if (!CopyFloatRoi(frame, want, &roi_) || (!templ_.empty() && (want.width <= templ_.cols || want.height <= templ_.rows))) {
       m.why = "at the image border";
       return m;
     }
@@ -192,19 +194,30 @@ PointMeasurement CircleMeasurer::Fit(const cv::Point& tl, const Eigen::Vector2d&
   model.SetExcluded(&excluded_);
   CMat8 H;
   numeric::LmSummary s;
+  std::vector<double> res;
   for (int pass = 0; pass < 3; ++pass) {
     s = FitDisk(model, opt_.max_iterations, &th, &H);
+    // Outliers: residuals beyond 3.5 robust σ (MAD of the residuals, at least the pixel noise). A model that
+    // misses everywhere (a textured or shaded disc) is not an outlier: at most a fifth of the band goes.
+    res.clear();
+    for (int y = ly - half; y <= ly + half; ++y)
+      for (int x = lx - half; x <= lx + half; ++x)
+        if (model.Used(x, y)) res.push_back(std::abs(model.Value(th, x, y) - roi_.at<float>(y, x)));
+    const double used = static_cast<double>(res.size());
+    const double thr = kCircleOutlierSigmas * std::max(noise, 1.4826 * numeric::Median(res));
+    cv::Mat next = excluded_.clone();
     int added = 0;
     for (int y = ly - half; y <= ly + half; ++y)
       for (int x = lx - half; x <= lx + half; ++x) {
-        if (!model.Used(x, y)) continue;
-        if (std::abs(model.Value(th, x, y) - roi_.at<float>(y, x)) > kCircleOutlierSigmas * noise) {
-          excluded_.at<std::uint8_t>(y, x) = 1;
+        if (model.Used(x, y) && std::abs(model.Value(th, x, y) - roi_.at<float>(y, x)) > thr) {
+          next.at<std::uint8_t>(y, x) = 1;
           ++added;
         }
       }
     if (added == 0) break;
-    cv::dilate(excluded_, excluded_, cv::Mat());
+    cv::dilate(next, next, cv::Mat());
+    if (cv::countNonZero(next) > kCircleMaxExcluded * (used + cv::countNonZero(excluded_))) break;
+    next.copyTo(excluded_);
   }
   const double sse = s.cost;
   const bool converged = s.status == numeric::LmStatus::kConverged || s.status == numeric::LmStatus::kNonFiniteStep;

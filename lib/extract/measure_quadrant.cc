@@ -104,8 +104,9 @@ class QuadrantMeasurer final : public PointMeasurer {
     MakeTemplate(th1_, th2_, edge_, sign_);
     const int h = half_, S = std::max(1, static_cast<int>(std::ceil(search_px)));
     const int ix = static_cast<int>(std::lround(predicted.x())), iy = static_cast<int>(std::lround(predicted.y()));
-    const cv::Rect want(ix - h - S - 2, iy - h - S - 2, 2 * (h + S + 2) + 1, 2 * (h + S + 2) + 1);
-    if (!CopyFloatRoi(frame, want, &roi_)) {
+    // The window, cut to the frame (a point near the border is still measured if its support fits).
+    const cv::Rect want = cv::Rect(ix - h - S - 2, iy - h - S - 2, 2 * (h + S + 2) + 1, 2 * (h + S + 2) + 1) & cv::Rect(0, 0, frame.cols, frame.rows);
+    if (!CopyFloatRoi(frame, want, &roi_) || (!templ_.empty() && (want.width <= templ_.cols || want.height <= templ_.rows))) {
       m.why = "at the image border";
       return m;
     }

@@ -63,8 +63,12 @@ PointsRunResult RunPoints(const std::vector<std::string>& videos, const formats:
                 p.rows_by_status[static_cast<int>(RowStatus::kReacquired)];
   }
   if (measured == 0) {
+    std::string why;
+    for (const PointsTracker::SeedFailure& f : res.seed_failures) {
+      why += "; line " + std::to_string(f.line) + ", '" + f.id + "': " + f.why;
+    }
     throw ProcessingError("nothing measured: no seeded point was found by its method in any of the " +
-                          std::to_string(res.frames) + " frames");
+                          std::to_string(res.frames) + " frames" + (why.empty() ? "" : " (at the seeds" + why + ")"));
   }
   return res;
 }

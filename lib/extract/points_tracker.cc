@@ -66,6 +66,8 @@ track::SingerAxisOptions PointAxis(const PointsTrackOptions& o) {
 }
 
 constexpr double kMinMeasVar = 1e-6;  // px²: a floor on R so that S stays invertible
+constexpr int kSettleUpdates = 2;
+constexpr double kFlatContextVar = 1.0;  // DN²: surroundings whose variance is below this are flat     // measurements after a (re)start before the χ² gate applies
 
 // The ring between half sizes r_in and r_out (pixels of a (2 r_out + 1)² patch), its NCC with another patch.
 double RingNcc(const cv::Mat& a, const cv::Mat& b, int r_in) {
@@ -83,7 +85,8 @@ double RingNcc(const cv::Mat& a, const cv::Mat& b, int r_in) {
       n += 1;
     }
   const double va = saa - sa * sa / n, vb = sbb - sb * sb / n;
-  if (!(va > 0 && vb > 0)) return 0.0;
+  // Flat surroundings (a clear or saturated sky) tell nothing: no verdict.
+  if (!(va > kFlatContextVar * n && vb > kFlatContextVar * n)) return 1.0;
   return (sab - sa * sb / n) / std::sqrt(va * vb);
 }
 
@@ -99,6 +102,9 @@ struct PointsTracker::Point {
   bool tracking = false;        // the last frame was accepted
   double last_t = 0.0, miss_since = 0.0;
   Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
+  int settle = 0;               // measurements since the filter (re)started (velocity known from the 2nd)
+  Eigen::Vector2d first_z{0, 0};  // the (re)start's measurement and time, for the two-point velocity
+  double first_t = 0.0;
   cv::Mat context;              // surroundings at the last good frame (CV_32F, (2 r + 1)²)
   int context_inner = 0;
   explicit Point(const PointsTrackOptions& o) : kf({PointAxis(o), PointAxis(o)}) {}
@@ -160,8 +166,8 @@ PointsFrameResult PointsTracker::Process(const cv::Mat& frame, std::int64_t fram
 PointRow PointsTracker::Step(Point& p, const cv::Mat& frame, double t_s, const formats::SeedRow* seed,
                              PointSummary& sum) {
   if (seed) {
-    PointRow r = Reseed(p, frame, *seed, sum);
     p.last_t = t_s;
+    PointRow r = Reseed(p, frame, *seed, sum);
     if (!p.tracking) p.miss_since = t_s;
     return r;
   }
@@ -181,6 +187,7 @@ PointRow PointsTracker::Reseed(Point& p, const cv::Mat& frame, const formats::Se
     seed_failures_.push_back({seed.line, p.id, m.why});
     p.kf.Initialise(at, Eigen::Matrix2d::Identity(), opt_.init_vel_sigma_px_s, opt_.accel_sigma_px_s2);
     p.R = Eigen::Matrix2d::Identity();
+    p.settle = 0;
     p.tracking = false;
     p.context.release();
     PointRow r;
@@ -190,7 +197,8 @@ PointRow PointsTracker::Reseed(Point& p, const cv::Mat& frame, const formats::Se
   p.R = m.cov;
   p.R.diagonal().array() += kMinMeasVar;
   p.kf.Initialise(m.px, p.R, opt_.init_vel_sigma_px_s, opt_.accel_sigma_px_s2);
-  return AcceptRow(p, frame, m, false, false);
+  p.tracking = false;
+  return AcceptRow(p, frame, m, false, true);
 }
 
 PointRow PointsTracker::Track(Point& p, const cv::Mat& frame, double dt, PointSummary& sum) {
@@ -198,13 +206,15 @@ PointRow PointsTracker::Track(Point& p, const cv::Mat& frame, double dt, PointSu
   const Eigen::Vector2d pred = p.kf.PredictedMeasurement();
   const Eigen::Matrix2d S = p.kf.InnovationCovariance(p.R);
   const double spread = opt_.gate_sigma * std::sqrt(std::max(S(0, 0), S(1, 1)));
-  const double window = std::clamp(spread, opt_.window_min_px, opt_.window_max_px);
+  // Until the filter has two measurements its velocity is a guess: the largest window, no χ² gate.
+  const bool settling = p.settle < kSettleUpdates;
+  const double window = settling ? opt_.window_max_px : std::clamp(spread, opt_.window_min_px, opt_.window_max_px);
   if (p.tracking) {
     const PointMeasurement m = p.measurer->Measure(frame, pred, window);
     if (m.ok) {
       Eigen::Matrix2d R = m.cov;
       R.diagonal().array() += kMinMeasVar;
-      if (p.kf.Mahalanobis2(m.px, R) <= opt_.gate_chi2) {
+      if (settling || p.kf.Mahalanobis2(m.px, R) <= opt_.gate_chi2) {
         // Its surroundings too: a marker that vanished and an identical one in its place are not one point.
         if (ContextScore(p, frame, m.px) >= opt_.context_min) return AcceptRow(p, frame, m, false, false);
         ++sum.lookalikes_refused;  // the point itself is not seen: predicted, then lost
@@ -272,15 +282,36 @@ PointRow PointsTracker::AcceptRow(Point& p, const cv::Mat& frame, const PointMea
   R.diagonal().array() += kMinMeasVar;
   if (restart) {
     p.kf.Initialise(m.px, R, opt_.init_vel_sigma_px_s, opt_.accel_sigma_px_s2);
-  } else if (reacquired || p.tracking) {
+    p.settle = 1;
+    p.first_z = m.px;
+    p.first_t = p.last_t;
+  } else if (p.settle == 1 && p.last_t > p.first_t) {
+    // Two-point start: the velocity from the first two measurements (a high-speed camera's image velocity
+    // can be 10⁵ px/s, far beyond any prior), its variance from theirs.
+    const double dt = p.last_t - p.first_t;
+    track::SingerFilter<2>::State x = track::SingerFilter<2>::State::Zero();
+    track::SingerFilter<2>::Cov P = track::SingerFilter<2>::Cov::Zero();
+    const Eigen::Vector2d v = (m.px - p.first_z) / dt;
+    for (int i = 0; i < 2; ++i) {
+      x(3 * i) = m.px(i);
+      x(3 * i + 1) = v(i);
+      P(3 * i, 3 * i) = R(i, i);
+      P(3 * i, 3 * i + 1) = P(3 * i + 1, 3 * i) = R(i, i) / dt;
+      P(3 * i + 1, 3 * i + 1) = (R(i, i) + p.R(i, i)) / (dt * dt);
+      P(3 * i + 2, 3 * i + 2) = opt_.accel_sigma_px_s2 * opt_.accel_sigma_px_s2;
+    }
+    p.kf.set_state(x, P);
+    p.settle = 2;
+  } else {
     p.kf.Update(m.px, R);
+    ++p.settle;
   }
   p.R = R;
   p.tracking = true;
   p.measurer->Accept(m);
   // The surroundings, for telling this point from a look-alike after it was hidden.
   const int inner = p.measurer->SupportHalfPx();
-  const int outer = std::max(2 * inner, inner + 6);
+  const int outer = std::clamp(2 * inner, inner + 6, inner + 40);
   const int ix = static_cast<int>(std::lround(m.px.x())), iy = static_cast<int>(std::lround(m.px.y()));
   cv::Mat ctx;
   if (CopyFloatRoi(frame, cv::Rect(ix - outer, iy - outer, 2 * outer + 1, 2 * outer + 1), &ctx)) {

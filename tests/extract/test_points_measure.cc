@@ -97,7 +97,6 @@ Stats RunMeasurer(formats::PointMethod method, std::optional<double> size,
     const Eigen::Vector2d c = c0 + Eigen::Vector2d(u(rng), u(rng));
     const cv::Mat img = NoisyFrame(Integrate(scene(c, k)), 100 + static_cast<std::uint64_t>(k), read_noise, bits);
     const PointMeasurement r = m->Measure(img, c + Eigen::Vector2d(0.7, -0.7), 3.0);
-    if (getenv("RK_DEBUG_POINTS")) std::printf("k %d ok %d why %s err %.4f %.4f sig %.4f %.4f\n", k, r.ok, r.why, r.px.x() - c.x(), r.px.y() - c.y(), std::sqrt(r.cov(0,0)), std::sqrt(r.cov(1,1)));
     if (!r.ok) {
       ++st.failures;
       continue;
