@@ -108,8 +108,10 @@ struct MarkerShade {
 };
 
 // Adds the mean over the sub-exposures and the n x n lattice of `shade` around each placement to `img`
-// (CV_32FC1 frame); `reach_px` bounds the marker's support in the image.
-void AddMarker(cv::Mat* img, MarkerShade shade, const std::vector<Placed>& where, double reach_px, int n) {
+// (CV_32FC1 frame); `reach_px` bounds the marker's support in the image. A plate hides `behind` (the frame
+// before the marker).
+void AddMarker(cv::Mat* img, MarkerShade shade, const std::vector<Placed>& where, double reach_px, int n,
+               const cv::Mat* behind = nullptr) {
   const double w = 1.0 / (n * n * static_cast<double>(where.size()));
   const bool plate = shade.plate;
   for (const Placed& pl : where) {
@@ -120,7 +122,7 @@ void AddMarker(cv::Mat* img, MarkerShade shade, const std::vector<Placed>& where
     for (int y = y0; y <= y1; ++y) {
       float* row = img->ptr<float>(y);
       for (int x = x0; x <= x1; ++x) {
-        if (plate) shade.behind_dn = row[x];
+        if (plate) shade.behind_dn = behind->at<float>(y, x);
         double sum = 0;
         for (int a = 0; a < n; ++a) {
           const double dy = y - 0.5 + (a + 0.5) / n - pl.p.y();
@@ -250,7 +252,8 @@ cv::Mat PointsSimulator::Signal(int k, int n) const {
                        poses[j].scale});
     }
     const double reach = (q2.half_px + kPlateMarginPx) * M_SQRT2 * poses.back().scale * 1.01 + 5 * sigma + 1;
-    AddMarker(&img, MarkerShade{&q2, sigma, true}, where, reach, n);
+    const cv::Mat behind = img.clone();
+    AddMarker(&img, MarkerShade{&q2, sigma, true}, where, reach, n, &behind);
   }
   DrawClouds(&img, *this, TimeS(k));
   return img;
@@ -258,29 +261,28 @@ cv::Mat PointsSimulator::Signal(int k, int n) const {
 
 cv::Mat PointsSimulator::Frame(int k) const {
   using points_detail::kDeepScale;
-  const cv::Mat signal = Signal(k);
   const bool deep = opt_.bits == 16;
   const double unit = deep ? kDeepScale : 1.0, max_dn = deep ? 4095.0 : 255.0;
   const double read = opt_.read_noise_dn * unit, gain = opt_.gain_e_per_dn / unit;
-  cv::Mat normal(signal.size(), CV_32FC1);
+  // Shot and read noise as one Gaussian of variance mean / gain + read² (the Poisson is normal above a few
+  // electrons: the sky and the markers have hundreds), whole-frame vector operations.
+  cv::Mat mean;
+  Signal(k).convertTo(mean, CV_32FC1, unit);
+  mean = cv::max(mean, 0.0);
+  cv::Mat normal(mean.size(), CV_32FC1), sd;
   std::mt19937_64 stream = RandomStream(opt_.seed, kPointsNoiseStream, static_cast<std::uint64_t>(k));
   cv::RNG rng(stream());
   rng.fill(normal, cv::RNG::NORMAL, 0.0, 1.0);
-  cv::Mat out(signal.size(), deep ? CV_16UC1 : CV_8UC1);
-  for (int y = 0; y < signal.rows; ++y) {
-    const float* in = signal.ptr<float>(y);
-    const float* nz = normal.ptr<float>(y);
-    for (int x = 0; x < signal.cols; ++x) {
-      const double mean = std::max(0.0, unit * in[x]);
-      const double sd = std::sqrt((gain > 0 ? mean / gain : 0.0) + read * read);
-      const double v = std::clamp(std::round(mean + sd * nz[x]), 0.0, max_dn);
-      if (deep) {
-        out.ptr<std::uint16_t>(y)[x] = static_cast<std::uint16_t>(v);
-      } else {
-        out.ptr<std::uint8_t>(y)[x] = static_cast<std::uint8_t>(v);
-      }
-    }
+  if (gain > 0) {
+    mean.convertTo(sd, CV_32FC1, 1.0 / gain, read * read);
+    cv::sqrt(sd, sd);
+    mean += sd.mul(normal);
+  } else if (read > 0) {
+    cv::scaleAdd(normal, read, mean, mean);
   }
+  mean = cv::min(mean, max_dn);
+  cv::Mat out;
+  mean.convertTo(out, deep ? CV_16UC1 : CV_8UC1);  // rounds to the nearest, clips at 0
   return out;
 }
 

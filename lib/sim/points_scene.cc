@@ -12,7 +12,7 @@ namespace points_detail {
 
 constexpr double kDeg = M_PI / 180.0;
 // Reversal: the motion's normalised time of reversal, its smoothing time and the half-width of q2's hide.
-constexpr double kReversalU = 0.5, kReversalTauU = 0.03, kHideHalfU = 0.1;
+constexpr double kReversalU = 0.5, kReversalTauU = 0.03, kHideHalfU = 0.17;
 constexpr double kReversalSpeedPx = 330.0;  // translation speed before the reversal (body px per run)
 constexpr double kLookalikeSidePx = 3.0;    // the look-alike's offset beside q2's predicted path (body px)
 
@@ -163,7 +163,7 @@ void PointsSimulator::BuildMarkers() {
   add("c1", "circle", -12, -60, 8, 8);
   add("b1", "centroid-bright", -12, 60, 1.5, 6);
   add("d1", "centroid-dark", 60, -70, 6, 6);
-  add("t1", "correlation", 15, 0, 11, 11 * M_SQRT2);
+  add("t1", "correlation", 0, 0, 11, 11 * M_SQRT2);
   add("t2", "correlation", -100, 0, 11, 11 * M_SQRT2);
   // Textures: 24 sinusoids each, wavelengths 3.5..10 body px, random directions and phases, 28 DN std.
   std::mt19937_64 rng = RandomStream(opt_.seed, kPointsSceneStream);
@@ -221,16 +221,29 @@ void PointsSimulator::BuildClouds() {
   }
 }
 
-double PointsSimulator::Occlusion(const Eigen::Vector2d& p, double radius_px, double t_s) const {
-  // A cloud's opacity falls with the distance from its centre: its largest value over the marker's disc is
-  // at the disc's point nearest the centre.
-  double occ = 0;
+PointsSimulator::Cover PointsSimulator::Occlusion(const Eigen::Vector2d& p, double radius_px, double t_s) const {
+  // Over a disc: the largest and smallest opacity at its points nearest to and farthest from each cloud's
+  // centre (opacity falls with the distance), the mean by 6 equal-area rings of 16 points.
+  constexpr int kRings = 6, kSpokes = 16;
+  Cover cover;
+  std::vector<double> clear(kRings * kSpokes, 1.0);
   for (const Cloud& c : clouds_) {
+    const double d = (p - c.centre_px - c.velocity_px_s * t_s).norm();
     const Eigen::Vector2d centre = c.centre_px + c.velocity_px_s * t_s;
-    const double d = std::max(0.0, (p - centre).norm() - radius_px);
-    occ = std::max(occ, c.Opacity(centre + Eigen::Vector2d(d, 0), t_s));
+    cover.max = std::max(cover.max, c.Opacity(centre + Eigen::Vector2d(std::max(0.0, d - radius_px), 0), t_s));
+    cover.min = std::max(cover.min, c.Opacity(centre + Eigen::Vector2d(d + radius_px, 0), t_s));
+    for (int i = 0; i < kRings; ++i) {
+      const double r = radius_px * std::sqrt((i + 0.5) / kRings);
+      for (int j = 0; j < kSpokes; ++j) {
+        const double a = 2.0 * M_PI * j / kSpokes;
+        clear[i * kSpokes + j] *= 1.0 - c.Opacity(p + r * Eigen::Vector2d(std::cos(a), std::sin(a)), t_s);
+      }
+    }
   }
-  return occ;
+  double sum = 0;
+  for (double v : clear) sum += 1.0 - v;
+  cover.mean = clouds_.empty() ? 0.0 : sum / static_cast<double>(clear.size());
+  return cover;
 }
 
 // The look-alike moves on q2's constant-velocity prediction from the frame where q2 was last fully clear,
@@ -242,7 +255,7 @@ void PointsSimulator::BuildLookalike() {
   const double radius_px = q2.support_px * opt_.scale * 1.15 + 3.0 * opt_.psf_sigma_px;
   int last_clear = 0;
   for (int k = 0; k < opt_.frames; ++k) {
-    if (Occlusion(MarkerAt(q2, TimeS(k)), radius_px, TimeS(k)) > 0) break;
+    if (Occlusion(MarkerAt(q2, TimeS(k)), radius_px, TimeS(k)).max > 0) break;
     last_clear = k;
   }
   look_t0_ = TimeS(last_clear);
@@ -257,8 +270,8 @@ void PointsSimulator::BuildLookalike() {
     const Eigen::Vector2d p = LookalikeAt(t);
     const bool inside = p.x() > plate_px && p.y() > plate_px && p.x() < opt_.width - 1 - plate_px &&
                         p.y() < opt_.height - 1 - plate_px;
-    const bool q2_hidden = Occlusion(MarkerAt(q2, t), radius_px, t) >= 1.0;
-    look_shown_[static_cast<std::size_t>(k)] = inside && q2_hidden && Occlusion(p, plate_px, t) == 0.0;
+    const bool q2_hidden = Occlusion(MarkerAt(q2, t), radius_px, t).min >= 1.0;
+    look_shown_[static_cast<std::size_t>(k)] = inside && q2_hidden && Occlusion(p, plate_px, t).max == 0.0;
   }
 }
 
@@ -285,8 +298,9 @@ std::vector<PointTruth> PointsSimulator::Truth(int k) const {
     for (const Pose& ps : poses) p += ps.Apply(m.body) / static_cast<double>(poses.size());
     r.x_px = p.x(), r.y_px = p.y();
     const double support = m.support_px * pose.scale + 3.0 * opt_.psf_sigma_px;
-    r.occlusion = Occlusion(p, support, t);
-    r.visible = inside(p, support) && r.occlusion < kPointVisibleOcclusion;
+    const Cover cover = Occlusion(p, support, t);
+    r.occlusion = cover.mean;
+    r.visible = inside(p, support) && cover.max < kPointVisibleOcclusion;
     r.size_px = 2.0 * (m.method == "centroid-bright" ? 2.0 * m.half_px : m.half_px) * pose.scale;
     out.push_back(std::move(r));
   }

@@ -17,7 +17,7 @@
 // by 20 deg and growth 1.0 -> 1.3 over the run; a cloud hides c1 for an interval); kReversal (the motion
 // slows, reverses and comes back while a cloud hides q2); kLookalike (kReversal plus a second identical
 // quadrant on a dark plate, off the body, moving on q2's constant-velocity prediction from the time q2
-// was hidden, 3 px beside it, shown only while q2 is fully hidden and the look-alike itself is clear).
+// was last clear, 3 px beside it, shown only while q2 is fully hidden and the look-alike itself is clear).
 // Motion is defined over the run (normalised time u = k / (frames - 1)), so a longer run moves slower.
 //
 // Imaging. Isotropic Gaussian PSF (std psf_sigma_px), pixel-area integration, motion blur (the mean of
@@ -83,8 +83,10 @@ struct PointTruth {
   std::string id;      // q1, q2, c1, b1, d1, t1, t2; "lookalike" (kLookalike only)
   std::string method;  // SPEC.md §2.1 seeds method: quadrant, circle, centroid-bright, centroid-dark, correlation
   double x_px = 0, y_px = 0;  // SPEC.md §3 pixel coordinates (pixel (i, j) covers x in [j-0.5, j+0.5))
-  double occlusion = 0;       // largest cloud opacity over the marker's support, [0, 1]
-  bool visible = true;        // inside the image, occlusion < kPointVisibleOcclusion (the look-alike: shown)
+  double occlusion = 0;       // mean cloud opacity over the marker's support (half diagonal or radius + 3 sigma),
+                              // [0, 1]: 1 = fully hidden
+  bool visible = true;        // inside the image and every point of the support clear (opacity below
+                              // kPointVisibleOcclusion); the look-alike: shown
   double size_px = 0;         // the marker's side or diameter in the image (px)
 };
 constexpr double kPointVisibleOcclusion = 0.01;
@@ -158,7 +160,10 @@ class PointsSimulator {
   void BuildClouds();
   void BuildLookalike();
   double MotionU(double t_s) const;
-  double Occlusion(const Eigen::Vector2d& p, double radius_px, double t_s) const;
+  struct Cover {
+    double max = 0, min = 0, mean = 0;  // cloud opacity over a disc: largest, smallest (of the most opaque cloud), mean
+  };
+  Cover Occlusion(const Eigen::Vector2d& p, double radius_px, double t_s) const;
   Eigen::Vector2d MarkerAt(const Marker& m, double t_s) const;
 
   PointsSceneOptions opt_;
