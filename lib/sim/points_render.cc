@@ -51,6 +51,8 @@ struct MarkerShade {
   double sigma = 0.8;
   bool plate = false;      // the look-alike: a dark plate around the checker
   double behind_dn = 0;    // the look-alike: what the plate hides (the pixel's value before it)
+  mutable double amp_scale = -1;     // texture: the scale `amp` was computed for
+  mutable std::vector<double> amp;   // texture: attenuated amplitudes of the waves
 
   // Blurred box of half side h along one axis, and the blurred odd (checker) box.
   void Axis(double u, double h, double* box, double* odd) const {
@@ -76,11 +78,20 @@ struct MarkerShade {
     Axis(v, h, &bv, &ov);
     const double w = bu * bv;
     if (w < 1e-12) return 0.0;
+    if (scale != amp_scale) {
+      // Each sinusoid's amplitude times the PSF's transfer function at its image frequency k / scale.
+      amp_scale = scale;
+      amp.clear();
+      const double k2 = sigma * sigma / (scale * scale);
+      for (const Eigen::Vector4d& wave : m->waves) {
+        amp.push_back(wave[3] * std::exp(-0.5 * k2 * (wave[0] * wave[0] + wave[1] * wave[1])));
+      }
+    }
     double sum = kTextureMeanDn - kBodyDn;
-    const double bx = u / scale, by = v / scale, k2 = sigma * sigma / (scale * scale);
-    for (const Eigen::Vector4d& wave : m->waves) {
-      const double att = std::exp(-0.5 * k2 * (wave[0] * wave[0] + wave[1] * wave[1]));
-      sum += wave[3] * att * std::cos(wave[0] * bx + wave[1] * by + wave[2]);
+    const double bx = u / scale, by = v / scale;
+    for (std::size_t i = 0; i < amp.size(); ++i) {
+      const Eigen::Vector4d& wave = m->waves[i];
+      sum += amp[i] * std::cos(wave[0] * bx + wave[1] * by + wave[2]);
     }
     return w * sum;
   }
@@ -142,7 +153,11 @@ void AddMarker(cv::Mat* img, MarkerShade shade, const std::vector<Placed>& where
 void DrawSilhouette(cv::Mat* img, const cv::Rect& roi, const std::vector<PointsSimulator::Pose>& poses, int n,
                     double sigma) {
   const cv::Size fine(roi.width * n, roi.height * n);
-  cv::Mat acc = cv::Mat::zeros(fine, CV_32FC1), mask(fine, CV_8UC1);
+  // Scratch images kept per thread: fresh pages cost more than the drawing (docs/rk-sim.md "Speed").
+  thread_local cv::Mat acc, mask, cover;
+  acc.create(fine, CV_32FC1);
+  acc.setTo(0);
+  mask.create(fine, CV_8UC1);
   constexpr int kShift = 8;
   const std::vector<Eigen::Vector2d> outline = Outline();
   for (const PointsSimulator::Pose& pose : poses) {
@@ -160,7 +175,6 @@ void DrawSilhouette(cv::Mat* img, const cv::Rect& roi, const std::vector<PointsS
   }
   acc *= 1.0 / static_cast<double>(poses.size());
   cv::GaussianBlur(acc, acc, cv::Size(0, 0), sigma * n, sigma * n, cv::BORDER_REPLICATE);
-  cv::Mat cover;
   cv::resize(acc, cover, roi.size(), 0, 0, cv::INTER_AREA);
   for (int y = 0; y < roi.height; ++y) {
     float* row = img->ptr<float>(roi.y + y);
@@ -226,8 +240,15 @@ std::vector<double> PointsSimulator::ExposureTimes(int k) const {
 cv::Mat PointsSimulator::Signal(int k) const { return Signal(k, opt_.SupersampleN()); }
 
 cv::Mat PointsSimulator::Signal(int k, int n) const {
+  cv::Mat img;
+  RenderSignal(k, n, &img);
+  return img;
+}
+
+void PointsSimulator::RenderSignal(int k, int n, cv::Mat* out) const {
   using namespace points_detail;
-  cv::Mat img(opt_.height, opt_.width, CV_32FC1);
+  out->create(opt_.height, opt_.width, CV_32FC1);
+  cv::Mat& img = *out;
   for (int y = 0; y < img.rows; ++y) img.row(y).setTo(SkyDn(y, img.rows));
   const std::vector<double> times = ExposureTimes(k);
   std::vector<Pose> poses;
@@ -241,7 +262,9 @@ cv::Mat PointsSimulator::Signal(int k, int n) const {
       for (const Pose& pose : poses) {
         where.push_back({pose.Apply(m.body), std::cos(pose.theta_rad), std::sin(pose.theta_rad), pose.scale});
       }
-      AddMarker(&img, MarkerShade{&m, sigma}, where, m.support_px * poses.back().scale * 1.01 + 5 * sigma + 1, n);
+      MarkerShade shade;
+      shade.m = &m, shade.sigma = sigma;
+      AddMarker(&img, shade, where, m.support_px * poses.back().scale * 1.01 + 5 * sigma + 1, n);
     }
   }
   if (LookalikeShown(k)) {
@@ -253,10 +276,11 @@ cv::Mat PointsSimulator::Signal(int k, int n) const {
     }
     const double reach = (q2.half_px + kPlateMarginPx) * M_SQRT2 * poses.back().scale * 1.01 + 5 * sigma + 1;
     const cv::Mat behind = img.clone();
-    AddMarker(&img, MarkerShade{&q2, sigma, true}, where, reach, n, &behind);
+    MarkerShade shade;
+    shade.m = &q2, shade.sigma = sigma, shade.plate = true;
+    AddMarker(&img, shade, where, reach, n, &behind);
   }
   DrawClouds(&img, *this, TimeS(k));
-  return img;
 }
 
 cv::Mat PointsSimulator::Frame(int k) const {
@@ -265,22 +289,25 @@ cv::Mat PointsSimulator::Frame(int k) const {
   const double unit = deep ? kDeepScale : 1.0, max_dn = deep ? 4095.0 : 255.0;
   const double read = opt_.read_noise_dn * unit, gain = opt_.gain_e_per_dn / unit;
   // Shot and read noise as one Gaussian of variance mean / gain + read² (the Poisson is normal above a few
-  // electrons: the sky and the markers have hundreds), whole-frame vector operations.
-  cv::Mat mean;
-  Signal(k).convertTo(mean, CV_32FC1, unit);
-  mean = cv::max(mean, 0.0);
-  cv::Mat normal(mean.size(), CV_32FC1), sd;
+  // electrons: the sky and the markers have hundreds), by whole-frame vector operations in place on images
+  // kept per thread (a 5-megapixel float image's fresh pages cost ~70 ms here, the operations ~1 ms each).
+  thread_local cv::Mat mean, normal, sd;
+  RenderSignal(k, opt_.SupersampleN(), &mean);
+  if (deep) mean.convertTo(mean, CV_32FC1, unit);
+  cv::max(mean, 0.0, mean);
   std::mt19937_64 stream = RandomStream(opt_.seed, kPointsNoiseStream, static_cast<std::uint64_t>(k));
   cv::RNG rng(stream());
+  normal.create(mean.size(), CV_32FC1);
   rng.fill(normal, cv::RNG::NORMAL, 0.0, 1.0);
   if (gain > 0) {
     mean.convertTo(sd, CV_32FC1, 1.0 / gain, read * read);
     cv::sqrt(sd, sd);
-    mean += sd.mul(normal);
+    cv::multiply(sd, normal, sd);
+    cv::add(mean, sd, mean);
   } else if (read > 0) {
     cv::scaleAdd(normal, read, mean, mean);
   }
-  mean = cv::min(mean, max_dn);
+  cv::min(mean, max_dn, mean);
   cv::Mat out;
   mean.convertTo(out, deep ? CV_16UC1 : CV_8UC1);  // rounds to the nearest, clips at 0
   return out;

@@ -65,7 +65,7 @@ const io::OptionTable<PointsSceneOptions>& PointsSceneOptions::Table() {
           .Integer("--blur-steps", &O::blur_steps, "", io::Bounds::Closed(0, 64),
                    "Renders averaged over the exposure; 0 = auto (<= 0.25 px motion between them)")
           .Integer("--supersample", &O::supersample, "", io::Bounds::Closed(0, 16),
-                   "n x n samples per pixel; 0 = auto (max(2, ceil(2 / psf-sigma)))")
+                   "n x n samples per pixel; 0 = auto (max(2, ceil(1.6 / psf-sigma)))")
           .Real("--read-noise-dn", &O::read_noise_dn, "DN", io::Bounds::Closed(0.0, 100.0), "Read noise std (8-bit DN)")
           .Real("--gain-e-per-dn", &O::gain_e_per_dn, "e-/DN", io::Bounds::Closed(0.0, 1e6),
                 "Photo-electrons per 8-bit DN (shot noise); 0 = none")
@@ -95,7 +95,7 @@ io::Json PointsSceneOptions::ToJson() const {
 
 int PointsSceneOptions::SupersampleN() const {
   if (supersample > 0) return supersample;
-  return std::max(2, static_cast<int>(std::ceil(2.0 / psf_sigma_px)));
+  return std::max(2, static_cast<int>(std::ceil(1.6 / psf_sigma_px)));
 }
 
 Eigen::Vector2d PointsSimulator::Pose::Apply(const Eigen::Vector2d& body) const {

@@ -27,8 +27,9 @@
 // about its truth (quadrant: b + a erf(u/(sqrt2 sigma)) erf(v/(sqrt2 sigma)) in the marker's rotated
 // axes, with its finite square's blurred box, separable and exact under a similarity; the lamp a
 // Gaussian convolved with the PSF; the discs a radial profile Phi((R - r)/sigma)). Pixels are integrated
-// by an n x n sample lattice, which is exact up to aliasing of the Gaussian-band-limited image
-// (exp(-(2 pi n sigma)^2 / 2): < 1e-20 for the default n). The silhouette's edges (not a truth) are
+// by an n x n sample lattice: a symmetric pixel aperture (n points instead of the box), which changes pixel
+// values slightly but moves no centre, up to aliasing of the Gaussian-band-limited image at 2 pi n
+// (exp(-(2 pi n sigma)^2 / 2) < 1e-20 for the default n). The silhouette's edges (not a truth) are
 // rendered by a supersampled polygon fill, blurred and area-averaged. tests/sim/test_points_scene.cc
 // measures the truth against a 16 x 16 lattice and by symmetric centroids (docs/rk-sim.md "rk-sim points").
 // Only the target's region (and the clouds') is rendered densely; the rest of a frame is the gradient.
@@ -63,7 +64,7 @@ struct PointsSceneOptions {
   double psf_sigma_px = 0.8;       // Gaussian PSF std (px), [0.3, 5]
   double exposure_s = 0.0005;      // motion-blur exposure (s), [0, 1/fps]; 0 = none
   int blur_steps = 0;              // sub-exposure renders; 0 = enough that nothing moves > 0.25 px between them
-  int supersample = 0;             // n x n samples per pixel; 0 = max(2, ceil(2 / psf_sigma_px))
+  int supersample = 0;             // n x n samples per pixel; 0 = max(2, ceil(1.6 / psf_sigma_px))
   double read_noise_dn = 1.5;      // read noise std (8-bit DN)
   double gain_e_per_dn = 40.0;     // photo-electrons per 8-bit DN (shot noise); 0 = none (both 0: no noise)
   double scale = 1.0;              // body and marker size multiplier, [0.5, 4]
@@ -165,6 +166,8 @@ class PointsSimulator {
   };
   Cover Occlusion(const Eigen::Vector2d& p, double radius_px, double t_s) const;
   Eigen::Vector2d MarkerAt(const Marker& m, double t_s) const;
+  // Signal of frame k with an n x n lattice into `out` (reused when it has the frame's size and type).
+  void RenderSignal(int k, int n, cv::Mat* out) const;
 
   PointsSceneOptions opt_;
   std::vector<Marker> markers_;
