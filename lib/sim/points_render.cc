@@ -17,7 +17,8 @@ namespace points_detail {
 // Grey levels (8-bit DN).
 constexpr double kSkyTopDn = 170, kSkyBottomDn = 215, kBodyDn = 45;
 constexpr double kQuadDarkDn = 12, kQuadLightDn = 235;
-constexpr double kDiscDn = 160, kHighlightDn = 70, kHighlightSigmaPx = 1.8, kHighlightOffset = 0.45;
+// The highlight stays inside the disc: at the rim it adds < 0.1 DN, so the rim alone decides the centre.
+constexpr double kDiscDn = 160, kHighlightDn = 70, kHighlightSigmaPx = 1.2, kHighlightOffset = 0.35;
 constexpr double kLampDn = 180, kDarkDepthDn = 150, kTextureMeanDn = 110, kCloudDn = 235;
 constexpr double kPlateMarginPx = 6.0;  // the look-alike's dark plate reaches this far past its checker (body px)
 constexpr double kBlurStepPx = 0.25;    // auto blur steps: largest motion between two sub-exposures (px)

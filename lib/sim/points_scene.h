@@ -7,7 +7,8 @@
 // the growth. The body is a dark aircraft-like silhouette (fuselage, swept wings, tailplane) in front of a
 // vertical sky gradient; on it sit the markers, each with the method that suits it:
 //   q1, q2   quadrant: a black/white checker square (half side 8 px); truth = its saddle point;
-//   c1       circle: a light disc (radius 8 px) with an off-centre bright highlight; truth = the disc's centre;
+//   c1       circle: a light disc (radius 8 px) with a bright highlight inside (< 0.1 DN at the rim); truth =
+//            the disc's centre;
 //   b1       centroid-bright: a symmetric Gaussian lamp (std 1.5 px);
 //   d1       centroid-dark: a dark disc (radius 6 px) on the sky ahead of the wing, carried by the body;
 //   t1, t2   correlation: textured squares (band-limited: a sum of random sinusoids fixed in body
