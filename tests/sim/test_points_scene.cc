@@ -80,6 +80,31 @@ TEST(PointsScene, TruthIsTheImagesCentreOfSymmetry) {
   ExpectSymmetricAtTruth(PointsScenario::kMoving, 0);
 }
 
+// c1's rim is centred on the truth: intensity above the body under a smooth ring window 2 sigma outside the
+// radius, where the highlight inside the disc has faded (the window is centred on the truth: an off-centre
+// rim would pull it). Without motion blur: a growing disc smeared by motion has its leading rim from the
+// latest, largest disc (docs/rk-sim.md "Truth").
+TEST(PointsScene, CircleRimIsCentredOnTheTruth) {
+  for (PointsScenario sc : {PointsScenario::kStatic, PointsScenario::kMoving}) {
+    PointsSceneOptions o = PointsSmall(sc);
+    o.clouds = false;
+    o.exposure_s = 0;
+    const PointsSimulator sim(o);
+    const int k = 37;
+    const cv::Mat img = sim.Signal(k);
+    const std::vector<PointTruth> truth = sim.Truth(k);
+    const PointTruth& c1 = FindPoint(truth, "c1");
+    const PointsSimulator::Pose pose = sim.PoseAt(sim.TimeS(k));
+    const double sigma = o.psf_sigma_px, rim = 8 * pose.scale + 2 * sigma;
+    const cv::Point2d c = PointsCentroid(img, c1, pose.theta_rad, rim + 6 * sigma, [&](double v, int x, int y) {
+      const double r = std::hypot(x - c1.x_px, y - c1.y_px);
+      return (v - kPointsBodyDn) * std::exp(-0.5 * (r - rim) * (r - rim) / (sigma * sigma));
+    });
+    EXPECT_NEAR(c.x, c1.x_px, kPointsTruthTolPx) << PointsScenarioName(sc);
+    EXPECT_NEAR(c.y, c1.y_px, kPointsTruthTolPx) << PointsScenarioName(sc);
+  }
+}
+
 // The n x n lattice that integrates each pixel is a symmetric aperture (n points instead of the box): it
 // changes the pixel values slightly (~0.3 DN at a lamp's peak between n = 3 and 12), never the centres.
 TEST(PointsScene, PixelLatticeDoesNotMoveTheTruth) {
