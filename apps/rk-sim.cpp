@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
       {"device", rk::app::AddDeviceCommand},
       {"multistation", rk::app::AddMultistationCommand},
       {"pointing", rk::app::AddPointingCommand},
+      {"points", rk::app::AddPointsCommand},
   };
   // clang-format on
   return rk::app::RunTool(

@@ -14,5 +14,6 @@ Command AddRadarCommand(CLI::App& app);       // sim_radar_cmd.cpp
 Command AddDeviceCommand(CLI::App& app);      // sim_device_cmd.cpp
 Command AddMultistationCommand(CLI::App& app);  // sim_multistation_cmd.cpp
 Command AddPointingCommand(CLI::App& app);    // sim_pointing_cmd.cpp
+Command AddPointsCommand(CLI::App& app);      // sim_points_cmd.cpp
 
 }  // namespace rk::app

@@ -39,3 +39,11 @@ rk_cli_test(rk_sim_bad_servo_hold COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/sim_bad_
 rk_cli_script(rk_sim/rk_sim_servo_hold_report)
 # Options from the tables (issue 16 item 1): one message form per subcommand and nested table, report keys.
 rk_cli_script(rk_sim/rk_sim_option_bounds)
+# rk-sim points (issue 31): files, columns, a re-seed row at the truth, the report; bad values → 2, one line.
+rk_cli_script(rk_sim/rk_sim_points)
+rk_cli_test(rk_sim_points_bad_bits COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/sim_points_bad1 "bits" --
+  ${RK_SIM} points --out ${RK_CLI_DATA}/sim_points_bad1 --frames 3 --bits 12)
+rk_cli_test(rk_sim_points_bad_reseed COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/sim_points_bad2 "re-seed id 'q9'" --
+  ${RK_SIM} points --out ${RK_CLI_DATA}/sim_points_bad2 --frames 3 --reseed q9:1)
+rk_cli_test(rk_sim_points_bad_exposure COMMAND ${RK_EXPECT} 2 ${RK_CLI_DATA}/sim_points_bad3 "exposure" --
+  ${RK_SIM} points --out ${RK_CLI_DATA}/sim_points_bad3 --frames 3 --fps 1000 --exposure 0.002)
