@@ -77,7 +77,13 @@ int RunOi(const OiArgs& a, const Context& ctx) {
             : track::BoresightSource::FromLog(std::move(*turret_log), opt.turret_method, opt.turret_max_gap_s);
 
   const pose::AttitudeOiResult res = pose::RunAttitudeOi(points, model, camera, boresight, opt);
-  const io::RunSummary summary = res.Summary(a.turret, fixed.has_value(), points.unusable_rows);
+  io::RunSummary summary = res.Summary(a.turret, fixed.has_value(), points.unusable_rows);
+  if (points.ignored_rows > 0) {
+    std::string ids;
+    for (const std::string& id : points.ignored_ids) ids += (ids.empty() ? "" : ", ") + id;
+    summary.Warn("ids_not_in_model", std::to_string(points.ignored_rows) + " rows of points the target model does not "
+                                     "have (" + ids + ") are not used");
+  }
   cli::WarnAll(ctx.tool, ctx.common, summary);
   pose::PoseCsv(res).Write(a.output);
 

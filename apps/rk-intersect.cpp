@@ -50,18 +50,32 @@ int main(int argc, char** argv) {
     const rk::formats::StationsFile stations = rk::formats::LoadStations(stations_path);
     for (const auto& s : stations.stations) inputs.push_back({s.name, s.located});
     rk::cli::CheckStreams(common, inputs, {{"-o", out_path}});
-    std::vector<rk::intersect::StationTrack> tracks;
+    std::vector<rk::formats::LocatedFile> files;
+    bool by_id = false;
     for (const auto& s : stations.stations) {
-      tracks.emplace_back(rk::formats::ReadLocated(rk::io::CsvTable::Read(s.located, {bad_rows, rk::formats::LocatedRowRule()})),
-                          opt.Defaults());
+      files.push_back(rk::formats::ReadLocated(rk::io::CsvTable::Read(s.located, {bad_rows, rk::formats::LocatedRowRule()})));
+      by_id = by_id || files.back().has_id;
     }
     std::vector<double> at;
     if (!at_path.empty()) at = rk::intersect::ReadTimes(rk::io::CsvTable::Read(at_path, {bad_rows, {}}));
-    const std::vector<double> times = rk::intersect::OutputTimes(tracks, opt, at);
-    const rk::intersect::IntersectResult result = rk::intersect::Intersect(stations, tracks, times, opt);
-    const rk::io::RunSummary summary = result.Summary();
-    rk::cli::WarnAll(kTool, common, summary);
-    rk::intersect::TrajectoryCsv(result).Write(out_path);
+    rk::io::RunSummary summary;
+    if (by_id) {
+      // Located from points tracks: one trajectory per id.
+      std::vector<std::string> warnings;
+      const std::vector<rk::intersect::IntersectResult> results =
+          rk::intersect::IntersectById(stations, files, opt, at, &warnings);
+      summary = rk::intersect::SummaryById(results, warnings);
+      rk::cli::WarnAll(kTool, common, summary);
+      rk::intersect::TrajectoryCsv(results).Write(out_path);
+    } else {
+      std::vector<rk::intersect::StationTrack> tracks;
+      for (const auto& f : files) tracks.emplace_back(f, opt.Defaults());
+      const std::vector<double> times = rk::intersect::OutputTimes(tracks, opt, at);
+      const rk::intersect::IntersectResult result = rk::intersect::Intersect(stations, tracks, times, opt);
+      summary = result.Summary();
+      rk::cli::WarnAll(kTool, common, summary);
+      rk::intersect::TrajectoryCsv(result).Write(out_path);
+    }
 
     if (!common.report_path.empty()) {
       rk::io::Json report = rk::cli::MakeReport(kTool, argc, argv);

@@ -13,6 +13,7 @@
 #include "io/error.h"
 #include "io/file_util.h"
 #include "formats/beacon_track.h"
+#include "formats/image_points.h"
 #include "formats/range_log.h"
 #include "formats/turret_log.h"
 #include "locate/locate.h"
@@ -35,7 +36,8 @@ int main(int argc, char** argv) {
   std::string track_path, camera_path, turret_path, range_path, pointing_path, station_text, out_path;
   rk::locate::LocateOptions opt;
   app.add_option("--track", track_path,
-                 "Beacon track CSV: frame,t_s,x_px,y_px[,status][,sigma_x_px,sigma_y_px] ('-' = stdin)")
+                 "Beacon track CSV: frame,t_s,x_px,y_px[,status][,sigma_x_px,sigma_y_px], or a points track "
+                 "(rk-extract points: with an id column; one located series per id) ('-' = stdin)")
       ->required();
   app.add_option("--camera", camera_path, "Camera model JSON (SPEC.md section 3)")->required();
   app.add_option("--turret", turret_path, "Turret log CSV: t_s,az_deg,el_deg (boresight)")->required();
@@ -61,7 +63,15 @@ int main(int argc, char** argv) {
                            {"--range", range_path}, {"--pointing", pointing_path}},
                           {{"-o", out_path}});
 
-    const rk::formats::Track track = rk::formats::ReadTrack(rk::io::CsvTable::Read(track_path, {bad_rows, rk::formats::TrackRowRule()}));
+    // A beacon track, or a points track (an id column): one located series per id.
+    const rk::io::CsvTable track_table = rk::io::CsvTable::Read(track_path, {bad_rows, rk::formats::TrackRowRule()});
+    std::vector<std::pair<std::string, rk::formats::Track>> tracks;
+    if (track_table.HasColumn("id")) {
+      tracks = rk::formats::TracksById(rk::formats::ReadImagePoints(track_table));
+      if (tracks.empty()) throw rk::DataError(track_path, 0, 0, "the points track has no rows");
+    } else {
+      tracks.emplace_back("", rk::formats::ReadTrack(track_table));
+    }
     const rk::camera::CameraModel camera = rk::camera::LoadCameraModel(camera_path);
     opt.camera_source = camera_path;
     if (!pointing_path.empty()) opt.pointing = rk::camera::LoadPointingModel(pointing_path);
@@ -70,8 +80,20 @@ int main(int argc, char** argv) {
     std::optional<rk::formats::RangeLog> range;
     if (!range_path.empty()) range = rk::formats::ReadRangeLog(rk::io::CsvTable::Read(range_path, {bad_rows, rk::formats::RangeLogRowRule()}));
 
-    const rk::locate::LocateResult result =
-        rk::locate::Locate(track, camera, std::move(turret), range ? &*range : nullptr, opt);  // a long log: no copy
+    rk::locate::LocateResult result;
+    if (tracks.size() == 1 && tracks.front().first.empty()) {
+      result = rk::locate::Locate(tracks.front().second, camera, std::move(turret), range ? &*range : nullptr,
+                                  opt);  // a long log: no copy
+    } else {
+      std::vector<std::pair<std::string, rk::locate::LocateResult>> by_id;
+      for (std::size_t i = 0; i < tracks.size(); ++i) {
+        // The turret log is taken over by Locate: a copy for every id but the last.
+        rk::formats::TurretLog log = i + 1 < tracks.size() ? turret : std::move(turret);
+        by_id.emplace_back(tracks[i].first,
+                           rk::locate::Locate(tracks[i].second, camera, std::move(log), range ? &*range : nullptr, opt));
+      }
+      result = rk::locate::MergeById(std::move(by_id));
+    }
     const rk::io::RunSummary summary = rk::locate::LocateSummary(
         result, opt, {turret_path, range ? range_path : std::string(), turret_empty_samples});
     rk::cli::WarnAll(kTool, common, summary);

@@ -62,7 +62,9 @@ class CentroidMeasurer final : public PointMeasurer {
       m.why = "no blob";
       return m;
     }
-    return Centroid(labels, stats, pick, want.tl(), predicted, search_px);
+    PointMeasurement c = Centroid(labels, stats, pick, want.tl(), predicted, search_px);
+    c.score = eta;
+    return c;
   }
 
   std::vector<PointCandidate> Candidates(const cv::Mat& frame, const Eigen::Vector2d& center, double search_px,

@@ -34,8 +34,8 @@ const io::OptionTable<PointsTrackOptions>& PointsTrackOptions::Table() {
                 "filter")
           .Real("--window-min", &O::window_min_px, "px", B::AtLeast(1), "Smallest search half-width (px)")
           .Real("--window-max", &O::window_max_px, "px", B::AtLeast(1), "Largest search half-width while tracking (px)")
-          .Real("--reacquire-px", &O::reacquire_px, "px", B::AtLeast(1),
-                "Re-acquisition searches at least this far about the prediction (px)")
+          .Real("--reacquire-px", &O::reacquire_px, "px", B::AtLeast(0),
+                "Re-acquisition searches at least this far about the prediction (px); 0 = the whole frame")
           .Real("--seed-search", &O::seed_search_px, "px", B::Positive(),
                 "Search half-width at a seed without search_px (px)")
           .Real("--context-min", &O::context_min, "", B::Closed(-1, 1),
@@ -67,9 +67,13 @@ track::SingerAxisOptions PointAxis(const PointsTrackOptions& o) {
 
 constexpr double kMinMeasVar = 1e-6;  // px²: a floor on R so that S stays invertible
 constexpr int kSettleUpdates = 2;
-constexpr double kFlatContextVar = 1.0;  // DN²: surroundings whose variance is below this are flat     // measurements after a (re)start before the χ² gate applies
+constexpr double kStructureSnr = 3.0;    // surroundings whose variance beyond the noise's is below 3 σ_n² are flat
+constexpr double kClaimedPx = 3.0;       // a candidate this close to another point's measurement is that point     // measurements after a (re)start before the χ² gate applies
 
-// The ring between half sizes r_in and r_out (pixels of a (2 r_out + 1)² patch), its NCC with another patch.
+// NCC of the ring of a and b (same-size square patches) outside the centre square of half size r_in, divided
+// by the NCC that pixel noise alone leaves between two views of the same surroundings (σ_n from each
+// patch's neighbour differences), so that the threshold does not depend on the noise. Surroundings without
+// structure above the noise (a clear or saturated sky) tell nothing: 1 (no verdict).
 double RingNcc(const cv::Mat& a, const cv::Mat& b, int r_in) {
   const int R = a.cols / 2;
   double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0, n = 0;
@@ -84,10 +88,13 @@ double RingNcc(const cv::Mat& a, const cv::Mat& b, int r_in) {
       sab += u * v;
       n += 1;
     }
-  const double va = saa - sa * sa / n, vb = sbb - sb * sb / n;
-  // Flat surroundings (a clear or saturated sky) tell nothing: no verdict.
-  if (!(va > kFlatContextVar * n && vb > kFlatContextVar * n)) return 1.0;
-  return (sab - sa * sb / n) / std::sqrt(va * vb);
+  const double va = (saa - sa * sa / n) / n, vb = (sbb - sb * sb / n) / n;
+  const double na = WindowNoise(a), nb = WindowNoise(b);
+  const double signal_a = va - na * na, signal_b = vb - nb * nb;
+  if (!(signal_a > kStructureSnr * na * na && signal_b > kStructureSnr * nb * nb)) return 1.0;
+  const double ncc = (sab / n - sa * sb / (n * n)) / std::sqrt(va * vb);
+  const double expected = std::sqrt(signal_a / va * signal_b / vb);
+  return std::min(1.0, ncc / expected);
 }
 
 }  // namespace
@@ -105,6 +112,8 @@ struct PointsTracker::Point {
   int settle = 0;               // measurements since the filter (re)started (velocity known from the 2nd)
   Eigen::Vector2d first_z{0, 0};  // the (re)start's measurement and time, for the two-point velocity
   double first_t = 0.0;
+  Eigen::Vector2d last_z{0, 0};   // the last accepted measurement and its time
+  double last_z_t = 0.0;
   cv::Mat context;              // surroundings at the last good frame (CV_32F, (2 r + 1)²)
   int context_inner = 0;
   explicit Point(const PointsTrackOptions& o) : kf({PointAxis(o), PointAxis(o)}) {}
@@ -150,6 +159,7 @@ PointsFrameResult PointsTracker::Process(const cv::Mat& frame, std::int64_t fram
     }
   }
   out.points.reserve(points_.size());
+  claimed_.clear();
   for (const auto& p : points_) {
     PointSummary& sum = summary_[p->index];
     PointRow row = Step(*p, frame, t_s, here[p->index], sum);
@@ -196,7 +206,6 @@ PointRow PointsTracker::Reseed(Point& p, const cv::Mat& frame, const formats::Se
   }
   p.R = m.cov;
   p.R.diagonal().array() += kMinMeasVar;
-  p.kf.Initialise(m.px, p.R, opt_.init_vel_sigma_px_s, opt_.accel_sigma_px_s2);
   p.tracking = false;
   return AcceptRow(p, frame, m, false, true);
 }
@@ -214,11 +223,19 @@ PointRow PointsTracker::Track(Point& p, const cv::Mat& frame, double dt, PointSu
     if (m.ok) {
       Eigen::Matrix2d R = m.cov;
       R.diagonal().array() += kMinMeasVar;
-      if (settling || p.kf.Mahalanobis2(m.px, R) <= opt_.gate_chi2) {
-        // Its surroundings too: a marker that vanished and an identical one in its place are not one point.
-        if (ContextScore(p, frame, m.px) >= opt_.context_min) return AcceptRow(p, frame, m, false, false);
-        ++sum.lookalikes_refused;  // the point itself is not seen: predicted, then lost
+      // Its surroundings too: a marker that vanished and an identical one in its place are not one point.
+      if (ContextScore(p, frame, m.px) >= opt_.context_min) {
+        if (!settling && p.kf.Mahalanobis2(m.px, R) > opt_.gate_chi2) {
+          // The same marker where the model did not expect it (a manoeuvre beyond --accel-sigma): the
+          // motion restarts from its last two measurements.
+          ++sum.restarts;
+          p.settle = 1;
+          p.first_z = p.last_z;
+          p.first_t = p.last_z_t;
+        }
+        return AcceptRow(p, frame, m, false, false);
       }
+      ++sum.lookalikes_refused;  // the point itself is not seen: predicted, then lost
     }
     p.tracking = false;
     p.miss_since = p.last_t;
@@ -226,7 +243,9 @@ PointRow PointsTracker::Track(Point& p, const cv::Mat& frame, double dt, PointSu
   }
   bool invalid = false;
   PointMeasurement m;
-  if (Reacquire(p, frame, std::max(spread, opt_.reacquire_px), &m, sum, &invalid)) {
+  // The whole frame (--reacquire-px 0), or at least that far about the prediction.
+  const double reach = opt_.reacquire_px > 0 ? std::max(spread, opt_.reacquire_px) : std::max(frame.cols, frame.rows);
+  if (Reacquire(p, frame, reach, &m, sum, &invalid)) {
     Eigen::Matrix2d R = m.cov;
     R.diagonal().array() += kMinMeasVar;
     const bool restart = p.kf.Mahalanobis2(m.px, R) > opt_.gate_chi2;
@@ -245,6 +264,10 @@ bool PointsTracker::Reacquire(Point& p, const cv::Mat& frame, double search, Poi
   for (const PointCandidate& c : cands) {
     const PointMeasurement m = p.measurer->Measure(frame, c.px, 2.0);
     if (!m.ok) continue;
+    // Another point measured here this frame (an identical marker elsewhere on the target): not this one.
+    bool taken = false;
+    for (const Eigen::Vector2d& q : claimed_) taken = taken || (q - m.px).norm() < kClaimedPx;
+    if (taken) continue;
     const double ctx = ContextScore(p, frame, m.px);
     if (ctx < opt_.context_min) {
       ++sum.lookalikes_refused;
@@ -308,6 +331,9 @@ PointRow PointsTracker::AcceptRow(Point& p, const cv::Mat& frame, const PointMea
   }
   p.R = R;
   p.tracking = true;
+  p.last_z = m.px;
+  p.last_z_t = p.last_t;
+  claimed_.push_back(m.px);
   p.measurer->Accept(m);
   // The surroundings, for telling this point from a look-alike after it was hidden.
   const int inner = p.measurer->SupportHalfPx();

@@ -8,16 +8,18 @@
 //   2. Otherwise the Singer filter (track/singer.h, 2-D in px, the one owner of the motion model) predicts
 //      the point; the search half-width is gate_sigma · √S (S the innovation covariance with the last
 //      measurement's own covariance), within [--window-min, --window-max] px.
-//   3. While tracking, the nearest good match in the window whose Mahalanobis d² ≤ gate_chi2 is accepted
-//      (`ok`) and updates the filter with its own 2×2 covariance.
+//   3. While tracking, the nearest good match in the window is accepted (`ok`) and updates the filter with
+//      its own 2×2 covariance; one whose Mahalanobis d² exceeds gate_chi2 (a manoeuvre the model did not
+//      expect) restarts the motion from the point's last two measurements. The filter's velocity comes from
+//      the first two measurements after a seed (a high-speed camera's image velocity is beyond any prior).
 //   4. After a frame without one (hidden by a cloud, by the target's own wing, out of the frame, blurred)
 //      the point is `predicted` (the filter's position and σ = √diag S with R = 0) while that σ is below
 //      --predict-max-sigma and the gap shorter than --predict-max-gap, then `lost` (no position).
 //      Every accepted match, also while tracking, must have surroundings like the point's (below): an
 //      identical marker that appears where the hidden one was predicted is not taken for it.
-//      Re-acquisition looks at every candidate of the method within ±max(window, --reacquire-px) of the
-//      prediction (not only the nearest), so a point that moved anywhere while hidden (a reversal) is found
-//      the frame it returns; a candidate is taken only if its surroundings (the ring between the method's
+//      Re-acquisition looks at every candidate of the method in the whole frame (or ±--reacquire-px of the
+//      prediction), not only the nearest, so a point that moved anywhere while hidden (a reversal) is found
+//      the frame it returns; a candidate another point measured in this frame is that point, not this one; a candidate is taken only if its surroundings (the ring between the method's
 //      support and twice it, where a look-alike marker differs from the real one) correlate with those
 //      stored at the point's last good frame (NCC ≥ --context-min), the best such; two nearly equal
 //      (within 0.05) are ambiguous and give `invalid`; a candidate whose surroundings do not match (a
@@ -44,14 +46,15 @@ namespace rk::extract {
 
 struct PointsTrackOptions {
   PointMeasureOptions measure;
-  double maneuver_time_s = 0.2;         // Singer τ_m (s)
-  double accel_sigma_px_s2 = 2000.0;    // Singer σ_m, RMS image acceleration (px/s²)
+  double maneuver_time_s = 0.1;         // Singer τ_m (s)
+  double accel_sigma_px_s2 = 20000.0;   // Singer σ_m, RMS image acceleration (px/s²)
   double init_vel_sigma_px_s = 200.0;   // velocity uncertainty at a seed or a restart (px/s)
   double gate_sigma = 4.0;              // search half-width in innovation sigmas
   double gate_chi2 = 18.4;              // Mahalanobis gate d² (2 dof, 99.99 %)
   double window_min_px = 3.0;           // search half-width bounds while tracking (px)
   double window_max_px = 40.0;
-  double reacquire_px = 150.0;          // re-acquisition searches ±this about the prediction at least (px)
+  double reacquire_px = 0.0;            // re-acquisition searches ±this about the prediction at least (px);
+                                        // 0: the whole frame
   double seed_search_px = 3.0;          // search at a seed without search_px (px)
   double context_min = 0.5;             // NCC of the surroundings needed to re-acquire
   double predict_max_sigma_px = 5.0;    // `predicted` while the prediction's 1σ is below this (px) ...
@@ -119,6 +122,7 @@ class PointsTracker {
   std::size_t next_seed_ = 0;
   std::vector<PointSummary> summary_;
   std::vector<SeedFailure> seed_failures_;
+  std::vector<Eigen::Vector2d> claimed_;  // the points measured so far in this frame
   cv::Mat patch_;
 };
 

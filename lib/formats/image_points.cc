@@ -96,6 +96,30 @@ ImagePoints ReadImagePoints(const io::CsvTable& table) {
   return out;
 }
 
+std::vector<std::pair<std::string, Track>> TracksById(const ImagePoints& points) {
+  std::vector<std::pair<std::string, Track>> out;
+  std::map<std::string, std::size_t, std::less<>> index;
+  for (const ImagePointFrame& f : points.frames) {
+    for (const ImagePoint& p : f.points) {
+      auto [it, fresh] = index.try_emplace(p.id, out.size());
+      if (fresh) {
+        Track t;
+        t.source = points.source + " (id " + p.id + ")";
+        t.has_frame = points.has_frame;
+        out.emplace_back(p.id, std::move(t));
+      }
+      TrackRow r;
+      r.frame = f.frame;
+      r.t_s = f.t_s;
+      r.px = p.px;
+      r.status = p.px ? p.status : RowStatus::kLost;
+      r.sigma_px = p.sigma_px;
+      out[it->second].second.rows.push_back(r);
+    }
+  }
+  return out;
+}
+
 io::CsvRowRule ImagePointsRowRule() {
   io::CsvRowRule rule;
   rule.non_decreasing = "t_s";

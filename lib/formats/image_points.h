@@ -23,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include "formats/beacon_track.h"
 #include "io/csv.h"
 #include "io/row_status.h"
 
@@ -55,6 +56,11 @@ struct ImagePoints {
 ImagePoints ReadImagePoints(const io::CsvTable& table);
 // The cells ReadImagePoints needs of every row (for io::CsvReadOptions::rule, --bad-rows skip).
 io::CsvRowRule ImagePointsRowRule();
+// A points track (or any image points) as one track per id, ids in order of first appearance, each row of
+// the id's frames with its position, status and σ (rk-locate of a points track: one located series per id).
+// A frame without a row of an id gives that id no row there.
+std::vector<std::pair<std::string, Track>> TracksById(const ImagePoints& points);
+
 // A writer's header: the required columns in SPEC order with `status` (every rangekit writer gives it), then
 // the producer's own (sigma_px, ncc, ...).
 std::vector<std::string> ImagePointsColumns(const std::vector<std::string>& extra = {});

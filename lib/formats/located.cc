@@ -1,7 +1,9 @@
 // Located-target writer and reader; format in located.h.
 #include "formats/located.h"
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "geo/angles.h"
 #include "io/error.h"
@@ -18,7 +20,9 @@ constexpr int kCorrelationDecimals = 6;
 std::vector<std::string> Columns(const LocatedLayout& l) {
   std::vector<std::string> c;
   if (l.frame) c.push_back("frame");
-  for (const char* n : {"t_s", "az_deg", "el_deg", "range_m", "e_m", "n_m", "u_m", "status"}) c.push_back(n);
+  c.push_back("t_s");
+  if (l.id) c.push_back("id");
+  for (const char* n : {"az_deg", "el_deg", "range_m", "e_m", "n_m", "u_m", "status"}) c.push_back(n);
   if (l.locate_extras) {
     for (const char* n : {"range_status", "boresight_az_deg", "boresight_el_deg"}) c.push_back(n);
   }
@@ -54,6 +58,7 @@ void LocatedWriter::Add(const LocatedRecord& row) {
     }
   }
   w_.Add(row.t_s, kTimeDecimals);
+  if (layout_.id) w_.Add(row.id);
   w_.Add(Deg(row.az_rad), kAngleDecimals).Add(Deg(row.el_rad), kAngleDecimals);
   w_.Add(row.range_m, kLengthDecimals);
   for (int i = 0; i < 3; ++i) w_.Add(Part(row.enu_m, i), kLengthDecimals);
@@ -87,7 +92,14 @@ LocatedFile ReadLocated(const io::CsvTable& table) {
             c_sr = table.Column("sigma_range_m"), c_corr = table.Column("corr_az_el");
   out.has_range = c_r >= 0;
   out.has_sigma = c_saz >= 0 && c_sel >= 0;
-  table.RequireIncreasing(c_t);
+  const int c_id = table.Column("id");
+  out.has_id = c_id >= 0;
+  std::map<std::string, std::pair<double, std::size_t>, std::less<>> last;  // id → its last t_s, line
+  if (out.has_id) {
+    table.RequireNonDecreasing(c_t);
+  } else {
+    table.RequireIncreasing(c_t);
+  }
   auto positive = [&](std::size_t i, int c, const char* name) -> std::optional<double> {
     if (c < 0) return std::nullopt;
     const std::optional<double> v = table.OptionalDouble(i, c);
@@ -99,6 +111,16 @@ LocatedFile ReadLocated(const io::CsvTable& table) {
     LocatedRecord r;
     r.line = table.Line(i);
     r.t_s = table.Double(i, c_t);
+    if (out.has_id) {
+      r.id = std::string(table.Cell(i, c_id));
+      if (r.id.empty()) throw table.CellError(i, c_id, "empty id");
+      const auto [it, first] = last.try_emplace(r.id, r.t_s, r.line);
+      if (!first && !(r.t_s > it->second.first)) {
+        throw table.CellError(i, c_t, "time of '" + r.id + "' does not increase (line " +
+                                          std::to_string(it->second.second) + " has the same)");
+      }
+      it->second = {r.t_s, r.line};
+    }
     if (c_st >= 0 && !table.IsEmpty(i, c_st) && !ParseRowStatus(table.Cell(i, c_st), &r.status)) {
       throw table.CellError(i, c_st, "unknown status");
     }
@@ -121,12 +143,22 @@ LocatedFile ReadLocated(const io::CsvTable& table) {
   return out;
 }
 
+std::vector<std::string> LocatedFile::Ids() const {
+  std::vector<std::string> ids;
+  for (const LocatedRecord& r : rows) {
+    if (std::find(ids.begin(), ids.end(), r.id) == ids.end()) ids.push_back(r.id);
+  }
+  if (ids.empty()) ids.push_back("");
+  return ids;
+}
+
 io::CsvRowRule LocatedRowRule() {
   io::CsvRowRule rule;
   rule.numbers = {"t_s"};
   rule.optional_numbers = {"az_deg", "el_deg", "range_m", "sigma_az_deg", "sigma_el_deg", "sigma_range_m", "corr_az_el"};
+  // Non-decreasing only: a points track's ids share their frames' times (ReadLocated checks each id; a time
+  // repeated in a file without ids stops the run rather than dropping a row).
   rule.non_decreasing = "t_s";
-  rule.increasing = true;
   return rule;
 }
 

@@ -19,6 +19,7 @@ namespace rk::formats {
 struct LocatedRecord {
   std::optional<std::int64_t> frame;  // written (LocatedLayout::frame); not read
   double t_s = 0.0;
+  std::string id;                     // the point's id (LocatedLayout::id, a points track's); "" without
   std::optional<double> az_rad, el_rad, range_m;
   std::optional<Eigen::Vector3d> enu_m;
   RowStatus status = RowStatus::kOk;
@@ -38,11 +39,12 @@ struct LocatedRecord {
   }
 };
 
-// Which columns a writer gives, in SPEC order: [frame,]t_s,az_deg,el_deg,range_m,e_m,n_m,u_m,status
+// Which columns a writer gives, in SPEC order: [frame,]t_s[,id],az_deg,el_deg,range_m,e_m,n_m,u_m,status
 // [,range_status,boresight_az_deg,boresight_el_deg],sigma_az_deg,sigma_el_deg,sigma_range_m
 // [,sigma_e_m,sigma_n_m,sigma_u_m][,corr_az_el][,lat_deg,lon_deg,h_m].
 struct LocatedLayout {
   bool frame = false;
+  bool id = false;  // written after t_s
   bool locate_extras = false;
   bool sigma_enu = false;
   bool corr = false;
@@ -67,13 +69,18 @@ struct LocatedFile {
   std::string source;
   bool has_range = false;  // a range_m column
   bool has_sigma = false;  // sigma_az_deg and sigma_el_deg columns
+  bool has_id = false;     // an id column: one located series per id (rk-locate of a points track)
   std::vector<LocatedRecord> rows;
+  // The distinct ids in order of first appearance ({""} without an id column).
+  std::vector<std::string> Ids() const;
 };
 
-// Reads every row: t_s strictly increasing (one row per frame), status in the SPEC vocabulary, σ > 0 and
+// Reads every row: t_s strictly increasing (one row per frame; with an id column, per id, and non-decreasing
+// over the file: the rows of a frame together), an id not empty where the column is, status in the SPEC vocabulary, σ > 0 and
 // corr_az_el in [−1, 1] where given (DataError at file:line:col).
 LocatedFile ReadLocated(const io::CsvTable& table);
-// The cells ReadLocated needs of every row (for io::CsvReadOptions::rule, --bad-rows skip).
+// The cells ReadLocated needs of every row (for io::CsvReadOptions::rule, --bad-rows skip): t_s a number that
+// does not go back (a time repeated without an id column is ReadLocated's error, never a dropped row).
 io::CsvRowRule LocatedRowRule();
 
 }  // namespace rk::formats

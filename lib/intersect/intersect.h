@@ -69,6 +69,7 @@ struct StationCounts {
 };
 
 struct IntersectResult {
+  std::string id;                  // the point's id (IntersectById); "" for the one trajectory of a beacon
   std::vector<std::string> names;  // stations
   std::vector<bool> has_range;     // station file has a range column
   std::vector<TrajectoryRow> rows;
@@ -104,5 +105,20 @@ std::vector<double> ReadTimes(const io::CsvTable& table);
 
 // Trajectory CSV (SPEC.md §2.1 trajectory columns + docs/rk-intersect.md "Columns").
 io::CsvWriter TrajectoryCsv(const IntersectResult& result);
+
+// Located files with ids (rk-locate of points tracks): one trajectory per id, from the stations whose files
+// have rows of it (an id at fewer than two stations, or whose stations' times never overlap, gets none and a
+// warning in *warnings). Each id's rows enter only its own intersection. Throws DataError (naming
+// stations.json) when no id has a trajectory.
+std::vector<IntersectResult> IntersectById(const formats::StationsFile& stations,
+                                           const std::vector<formats::LocatedFile>& files,
+                                           const IntersectOptions& options, const std::vector<double>& at,
+                                           std::vector<std::string>* warnings);
+// The trajectories of IntersectById as one CSV: an id column after t_s, rows in time order (ids of one time
+// in the located files' order).
+io::CsvWriter TrajectoryCsv(const std::vector<IntersectResult>& by_id);
+// Their run summary: rows of every id by status, the median 3-D 1σ over all, the warnings; details: the first
+// id's report body (its "summary") and "by_id" with each id's.
+io::RunSummary SummaryById(const std::vector<IntersectResult>& by_id, const std::vector<std::string>& warnings);
 
 }  // namespace rk::intersect

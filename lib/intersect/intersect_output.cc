@@ -6,6 +6,7 @@
 
 #include "intersect/intersect_common.h"
 #include "intersect/intersect.h"
+#include "io/error.h"
 
 namespace rk::intersect {
 namespace {
@@ -26,11 +27,14 @@ void AddVector(io::CsvWriter* w, bool have, const Eigen::Vector3d& v, int decima
   }
 }
 
-std::vector<std::string> Columns(const IntersectResult& r) {
-  std::vector<std::string> cols = {"t_s",       "e_m",       "n_m",       "u_m",        "lat_deg",
+std::vector<std::string> Columns(const IntersectResult& r, bool with_id = false) {
+  std::vector<std::string> cols = {"t_s"};
+  if (with_id) cols.push_back("id");
+  const std::vector<std::string> rest = {"e_m",       "n_m",       "u_m",        "lat_deg",
                                    "lon_deg",   "h_m",       "sigma_e_m", "sigma_n_m",  "sigma_u_m",
                                    "n_stations", "status",   "rms_residual_arcsec", "rho_en", "rho_eu",
                                    "rho_nu",    "intersection_angle_deg", "gdop", "n_rejected"};
+  cols.insert(cols.end(), rest.begin(), rest.end());
   if (r.smoothed) {
     for (const char* c : {"ve_mps", "vn_mps", "vu_mps", "sigma_ve_mps", "sigma_vn_mps", "sigma_vu_mps", "ae_mps2",
                           "an_mps2", "au_mps2", "sigma_ae_mps2", "sigma_an_mps2", "sigma_au_mps2"}) {
@@ -67,12 +71,14 @@ void AddSolution(io::CsvWriter* w, const TrajectoryRow& tr) {
 
 }  // namespace
 
-io::CsvWriter TrajectoryCsv(const IntersectResult& r) {
-  io::CsvWriter w(Columns(r));
+namespace {
+
+// Row i of r (after its t_s and id).
+void AddRowBody(io::CsvWriter* out, const IntersectResult& r, std::size_t i) {
+  io::CsvWriter& w = *out;
   const std::size_t S = r.names.size();
-  for (std::size_t i = 0; i < r.rows.size(); ++i) {
+  {
     const TrajectoryRow& tr = r.rows[i];
-    w.Add(tr.t_s, 9);
     AddSolution(&w, tr);
     if (r.smoothed) {
       AddVector(&w, tr.has_kinematics, tr.v, kLengthDecimals);
@@ -89,10 +95,40 @@ io::CsvWriter TrajectoryCsv(const IntersectResult& r) {
       if (r.has_range[s]) w.Add(have ? res(2) : NAN, kLengthDecimals);
       w.Add(u == LineUse::kUsed ? "used" : (u == LineUse::kRejected ? "rejected" : ""));
     }
+  }
+}
+
+}  // namespace
+
+io::CsvWriter TrajectoryCsv(const IntersectResult& r) {
+  io::CsvWriter w(Columns(r));
+  for (std::size_t i = 0; i < r.rows.size(); ++i) {
+    w.Add(r.rows[i].t_s, 9);
+    AddRowBody(&w, r, i);
     w.EndRow();
   }
   return w;
 }
+
+io::CsvWriter TrajectoryCsv(const std::vector<IntersectResult>& by_id) {
+  RK_CHECK(!by_id.empty(), "no trajectory");
+  io::CsvWriter w(Columns(by_id.front(), true));
+  struct Ref {
+    double t;
+    std::size_t id, row;
+  };
+  std::vector<Ref> refs;
+  for (std::size_t k = 0; k < by_id.size(); ++k)
+    for (std::size_t i = 0; i < by_id[k].rows.size(); ++i) refs.push_back({by_id[k].rows[i].t_s, k, i});
+  std::stable_sort(refs.begin(), refs.end(), [](const Ref& a, const Ref& b) { return a.t < b.t; });
+  for (const Ref& ref : refs) {
+    w.Add(ref.t, 9).Add(by_id[ref.id].id);
+    AddRowBody(&w, by_id[ref.id], ref.row);
+    w.EndRow();
+  }
+  return w;
+}
+
 
 io::Json IntersectResult::SummaryJson() const {
   std::vector<double> sigma, gdop, angle, rms;

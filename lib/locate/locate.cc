@@ -301,6 +301,7 @@ formats::LocatedRecord Record(const LocatedRow& row) {
   formats::LocatedRecord r;
   r.frame = row.frame;
   r.t_s = row.t_s;
+  r.id = row.id;
   r.az_rad = row.az_rad;
   r.el_rad = row.el_rad;
   r.range_m = row.range_m;
@@ -326,11 +327,40 @@ formats::LocatedRecord Record(const LocatedRow& row) {
 
 }  // namespace
 
+LocateResult MergeById(std::vector<std::pair<std::string, LocateResult>> by_id) {
+  LocateResult out;
+  if (by_id.empty()) return out;
+  out = by_id.front().second;  // flags and time offset (the same camera for every id)
+  out.rows.clear();
+  out.has_id = true;
+  out.rows_by_status = {};
+  out.rows_by_range_status = {};
+  out.rows_with_los = out.rows_with_range = out.rows_turret_not_covered = out.measured_rows_turret_not_covered = 0;
+  for (auto& [id, r] : by_id) {
+    for (LocatedRow& row : r.rows) {
+      row.id = id;
+      out.rows.push_back(std::move(row));
+    }
+    for (std::size_t k = 0; k < out.rows_by_status.size(); ++k) out.rows_by_status[k] += r.rows_by_status[k];
+    for (std::size_t k = 0; k < out.rows_by_range_status.size(); ++k) {
+      out.rows_by_range_status[k] += r.rows_by_range_status[k];
+    }
+    out.rows_with_los += r.rows_with_los;
+    out.rows_with_range += r.rows_with_range;
+    out.rows_turret_not_covered += r.rows_turret_not_covered;
+    out.measured_rows_turret_not_covered += r.measured_rows_turret_not_covered;
+  }
+  std::stable_sort(out.rows.begin(), out.rows.end(),
+                   [](const LocatedRow& a, const LocatedRow& b) { return a.t_s < b.t_s; });
+  return out;
+}
+
 io::CsvWriter LocatedCsv(const LocateResult& result) {
   formats::LocatedLayout layout;
   layout.frame = result.has_frame;
   layout.locate_extras = layout.sigma_enu = layout.corr = true;
   layout.geodetic = result.has_station;
+  layout.id = result.has_id;
   formats::LocatedWriter w(layout);
   for (const LocatedRow& row : result.rows) w.Add(Record(row));
   return w.Take();

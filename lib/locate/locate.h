@@ -85,6 +85,7 @@ std::string RangeStatusName(RangeStatus status);  // ok gap device_error outside
 struct LocatedRow {
   std::optional<std::int64_t> frame;
   double t_s = 0.0;
+  std::string id;  // the point's id when located from a points track (MergeById)
   RowStatus status = RowStatus::kLost;
   std::optional<double> az_rad, el_rad;                      // line of sight
   std::optional<double> boresight_az_rad, boresight_el_rad;  // interpolated turret
@@ -101,6 +102,7 @@ struct LocateResult {
   std::vector<LocatedRow> rows;
   bool has_frame = false;
   bool has_station = false;  // lat_deg, lon_deg, h_m columns
+  bool has_id = false;       // an id column: one series per point of a points track (MergeById)
   double time_offset_s = 0.0;  // the camera's, added to every row's t_s
   // Counters (reports, warnings).
   std::array<std::size_t, 5> rows_by_status{};        // indexed by RowStatus
@@ -136,8 +138,12 @@ io::RunSummary LocateSummary(const LocateResult& result, const LocateOptions& op
 LocateResult Locate(const formats::Track& track, const camera::CameraModel& camera, formats::TurretLog turret,
                     const formats::RangeLog* range, const LocateOptions& options);
 
+// The results of each id of a points track (Locate per id) as one: rows in time order, the ids of one time in
+// the order given, each row with its id; counters summed.
+LocateResult MergeById(std::vector<std::pair<std::string, LocateResult>> by_id);
+
 // Located-target CSV (SPEC.md §2.1) with extra columns:
-//   frame (if the track had it),t_s,az_deg,el_deg,range_m,e_m,n_m,u_m,status,
+//   frame (if the track had it),t_s,[id (from a points track),]az_deg,el_deg,range_m,e_m,n_m,u_m,status,
 //   range_status,boresight_az_deg,boresight_el_deg,
 //   sigma_az_deg,sigma_el_deg,sigma_range_m,sigma_e_m,sigma_n_m,sigma_u_m,corr_az_el[,lat_deg,lon_deg,h_m]
 // (lat/lon/h with a station position). boresight_* are the logged (interpolated) turret angles.

@@ -37,6 +37,9 @@ struct ImagePoints {
   std::vector<PointFrame> frames;
   std::size_t rows = 0;
   std::size_t unusable_rows = 0;         // rows without a usable measurement
+  // Rows of a points track (rk-extract points: a `score` column) whose id the model does not have: skipped.
+  std::size_t ignored_rows = 0;
+  std::vector<std::string> ignored_ids;
 };
 
 ImagePoints ReadImagePoints(const io::CsvTable& table, const target::FeatureModel& model);

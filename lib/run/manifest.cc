@@ -28,6 +28,8 @@ const std::vector<StepKindInfo>& StepKinds() {
       {"extract-silhouette", "silhouette", "rk-extract", "silhouette", kVideo},
       {"attitude-cylinder", "silhouette", "rk-attitude", "cylinder",
        {"points", "theodolite", "camera", "target", "video", "pointing"}},
+      {"extract-points", "points", "rk-extract", "points", {"video", "frames", "fps", "t0", "seeds"}},
+      {"locate-points", "points", "rk-locate", "", {"track", "camera", "turret", "range", "pointing", "station"}},
       {"register", "radar", "rk-register", "bernoulli", {"plots", "nav"}},
       {"register-batch", "radar", "rk-register", "batch", {"plots", "nav"}},
       {"intersect", "trajectory", "rk-intersect", "", {"stations"}},

@@ -60,6 +60,7 @@ class PlanBuilder {
           case CameraRole::kBeacon: Beacon(cam); break;
           case CameraRole::kFeatures: Features(cam); break;
           case CameraRole::kSilhouette: Silhouette(cam); break;
+          case CameraRole::kPoints: Points(cam); break;
         }
       }
     }
@@ -297,6 +298,35 @@ class PlanBuilder {
     Plot(at, "pose", dir + "pose.csv", "yaw_deg,pitch_deg,roll_deg", "attitude (oi)");
   }
 
+  // User-seeded points (rk-extract points) and their lines of sight per id (rk-locate of the points track),
+  // which the intersection of a multi-station trial takes like a beacon's (one trajectory per id).
+  void Points(const CameraEntry& cam) {
+    const std::string unit = st_->Unit(cam), dir = unit + "/";
+    Step ex = Make(unit, "extract-points");
+    Video(&ex, cam);
+    In(&ex, "seeds", cam.seeds);
+    Out(&ex, "-o", dir + "points.csv");
+    ex.table = dir + "points.csv";
+    Finish(&ex);
+
+    const std::string angles = !st_->turret.empty() ? st_->turret : st_->theodolite;
+    Step lo = Make(unit, "locate-points");
+    Upstream(&lo, "--track", ex, dir + "points.csv");
+    In(&lo, "camera", cam.model);
+    if (angles.empty()) {
+      NotApplicable(&lo, "the manifest has no turret or theodolite log");
+    } else {
+      In(&lo, "turret", angles);
+    }
+    if (!st_->range.empty()) In(&lo, "range", st_->range);
+    Station(&lo, true);
+    Out(&lo, "-o", dir + "located.csv");
+    lo.table = dir + "located.csv";
+    Finish(&lo);
+    Plot(lo, "located", dir + "located.csv", "az_deg,el_deg", "located points");
+    if (lo.state == PlanState::kActive) located_.push_back({unit, dir + "located.csv", lo.id});
+  }
+
   void Silhouette(const CameraEntry& cam) {
     const std::string unit = st_->Unit(cam), dir = unit + "/";
     Step ex = Make(unit, "extract-silhouette");
@@ -370,7 +400,7 @@ class PlanBuilder {
     }
     const Json j = formats::StationsJson(stations);
     if (located_.size() < 2) {
-      NotApplicable(&s, "needs the located targets of two beacon cameras, the plan has " +
+      NotApplicable(&s, "needs the located targets of two beacon or points cameras, the plan has " +
                             std::to_string(located_.size()));
     }
     s.generated.emplace_back(dir + trial::kStationsFile, j.dump(2) + "\n");

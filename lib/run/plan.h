@@ -5,6 +5,8 @@
 //              frame times)
 //   features   extract-features → attitude-oi (turret log, or the camera's fixed boresight_deg)
 //   silhouette extract-silhouette → attitude-cylinder (theodolite log, else the turret log)
+//   points     extract-points (the camera's seeds) → locate-points (one located series per id; turret or
+//              theodolite log, range log if any)
 //   radar      register (GM Bernoulli), register-batch
 // and a plot step (rk-plot) for each main series. Paths are relative to the trial folder; outputs
 // relative to out/.

@@ -23,6 +23,7 @@ const char* MainKind(CameraRole role) {
     case CameraRole::kBeacon: return "locate";
     case CameraRole::kFeatures: return "attitude-oi";
     case CameraRole::kSilhouette: return "attitude-cylinder";
+    case CameraRole::kPoints: return "locate-points";
   }
   return "";
 }

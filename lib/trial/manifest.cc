@@ -20,12 +20,13 @@ const char* CameraRoleName(CameraRole role) {
     case CameraRole::kBeacon: return "beacon";
     case CameraRole::kFeatures: return "features";
     case CameraRole::kSilhouette: return "silhouette";
+    case CameraRole::kPoints: return "points";
   }
   return "?";
 }
 
 bool ParseCameraRole(const std::string& text, CameraRole* role) {
-  for (CameraRole r : {CameraRole::kBeacon, CameraRole::kFeatures, CameraRole::kSilhouette}) {
+  for (CameraRole r : {CameraRole::kBeacon, CameraRole::kFeatures, CameraRole::kSilhouette, CameraRole::kPoints}) {
     if (text == CameraRoleName(r)) {
       *role = r;
       return true;
@@ -139,14 +140,15 @@ CameraEntry ParseCamera(const Checker& c, const std::string& name, const Json& c
   if (e.frames.empty() && !e.fps) c.Fail(p, "give 'frames' (frame-times CSV) or 'fps'");
   if (!e.frames.empty() && e.fps) c.Fail(p + "/fps", "give either 'frames' or 'fps', not both");
   e.model = c.RequirePath(cam, "model", p);
-  if (!cam.contains("role") || !cam.at("role").is_string()) c.Fail(p, "missing field 'role' (beacon, features or silhouette)");
+  if (!cam.contains("role") || !cam.at("role").is_string()) c.Fail(p, "missing field 'role' (beacon, features, silhouette or points)");
   const std::string role = cam.at("role").get<std::string>();
-  if (!ParseCameraRole(role, &e.role)) c.Fail(p + "/role", "'" + role + "' is not one of beacon, features, silhouette");
+  if (!ParseCameraRole(role, &e.role)) c.Fail(p + "/role", "'" + role + "' is not one of beacon, features, silhouette, points");
   e.target = c.OptionalPath(cam, "target", p);
   if (e.target.empty() && root.contains("target") && !root.at("target").is_null()) e.target = c.OptionalPath(root, "target", "");
-  if (e.role != CameraRole::kBeacon && e.target.empty()) {
+  if ((e.role == CameraRole::kFeatures || e.role == CameraRole::kSilhouette) && e.target.empty()) {
     c.Fail(p, std::string("a ") + role + " camera needs 'target' (target model JSON)");
   }
+  if (e.role == CameraRole::kPoints) e.seeds = c.RequirePath(cam, "seeds", p);
   if (cam.contains("boresight_deg") && !cam.at("boresight_deg").is_null()) {
     const Json& b = cam.at("boresight_deg");
     if (!b.is_array() || b.size() != 2 || !b[0].is_number() || !b[1].is_number()) {
@@ -293,6 +295,7 @@ std::vector<std::string> Manifest::AllPaths() const {
       if (!cam.frames.empty()) out.push_back(cam.frames);
       out.push_back(cam.model);
       if (!cam.target.empty()) out.push_back(cam.target);
+      if (!cam.seeds.empty()) out.push_back(cam.seeds);
     }
     for (const std::string* p : {&st.turret, &st.range, &st.theodolite, &st.pointing}) {
       if (!p->empty()) out.push_back(*p);
@@ -318,6 +321,7 @@ Json CamerasToJson(const std::vector<CameraEntry>& cameras) {
     c["model"] = cam.model.empty() ? Json(nullptr) : Json(cam.model);
     c["role"] = CameraRoleName(cam.role);
     if (!cam.target.empty()) c["target"] = cam.target;
+    if (!cam.seeds.empty()) c["seeds"] = cam.seeds;
     if (cam.boresight_deg) c["boresight_deg"] = {cam.boresight_deg->first, cam.boresight_deg->second};
     cams[cam.name] = c;
   }

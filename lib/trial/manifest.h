@@ -19,9 +19,9 @@
 
 namespace rk::trial {
 
-enum class CameraRole { kBeacon, kFeatures, kSilhouette };
+enum class CameraRole { kBeacon, kFeatures, kSilhouette, kPoints };
 const char* CameraRoleName(CameraRole role);
-// "beacon", "features", "silhouette" → *role; false for any other text.
+// "beacon", "features", "silhouette", "points" → *role; false for any other text.
 bool ParseCameraRole(const std::string& text, CameraRole* role);
 
 struct CameraEntry {
@@ -33,6 +33,7 @@ struct CameraEntry {
   std::string model;               // camera model JSON (written as null when empty)
   CameraRole role = CameraRole::kBeacon;
   std::string target;                                      // target model JSON (features, silhouette)
+  std::string seeds;                                       // seeds CSV of rk-extract points (role points)
   std::optional<std::pair<double, double>> boresight_deg;  // fixed camera (az, el) when no turret log
 };
 

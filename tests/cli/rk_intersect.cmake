@@ -10,3 +10,7 @@ rk_cli_script(rk_intersect/rk_intersect_good REQUIRES intersect_data)
 
 # Bad input: exit codes 2/3/4, one-line errors with file:line:col, no partial output.
 rk_cli_script(rk_intersect/rk_intersect_bad_input REQUIRES intersect_data)
+
+# Located files with ids (rk-locate of points tracks): one trajectory per id, the id after t_s; each id's rows
+# equal the trajectory of the same rows without ids; an id seen by one station only gets none and a warning.
+rk_cli_script(rk_intersect/rk_intersect_ids REQUIRES intersect_data)

@@ -37,3 +37,7 @@ rk_cli_script(rk_locate/rk_locate_pointing_bad_input REQUIRES locate_data)
 # perfect track, the logged (quantised) turret. With truth/pointing.json rk-locate's az/el RMS is within 1.1×
 # (+0.2″) of the perfect station's (same seed); without it the error is degrees.
 rk_cli_script(rk_locate/rk_locate_station_errors)
+
+# A points track (rk-extract points: an id column) is one located series per id: the id after t_s, the ids of a
+# frame together; each id's rows equal those of the same pixels given as a beacon track.
+rk_cli_script(rk_locate/rk_locate_points_ids REQUIRES locate_data)
