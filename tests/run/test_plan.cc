@@ -121,6 +121,25 @@ TEST(Plan, FeaturesSilhouetteRadar) {
   EXPECT_EQ(Argv(Find(plan, "radar/register-batch"))[1], "batch");
 }
 
+// SPEC.md §6 role points: rk-extract points with the camera's seeds, then rk-locate of the points track (one
+// located series per id); a points camera needs "seeds" (at its position in trial.json), not a target.
+TEST(Plan, PointsCameraExtractsAndLocatesEachPoint) {
+  const std::string text = R"({"cameras": {
+      "pt": {"video": ["pt/v.mkv"], "frames": "pt/frames.csv", "model": "pt/camera.json", "role": "points",
+             "seeds": "pt/seeds.csv"}},
+    "turret": "turret.csv"})";
+  const std::vector<Step> plan = BuildPlan(ParseManifest(text, "/t/trial.json"), PlanOptions{false});
+  EXPECT_EQ(Argv(Find(plan, "pt/extract-points")),
+            (std::vector<std::string>{"rk-extract", "points", "--video", "pt/v.mkv", "--frames", "pt/frames.csv",
+                                      "--seeds", "pt/seeds.csv", "-o", "out/pt/points.csv"}));
+  EXPECT_EQ(Argv(Find(plan, "pt/locate-points")),
+            (std::vector<std::string>{"rk-locate", "--track", "out/pt/points.csv", "--camera", "pt/camera.json",
+                                      "--turret", "turret.csv", "-o", "out/pt/located.csv"}));
+  const std::string no_seeds = R"({"cameras": {
+      "pt": {"video": ["pt/v.mkv"], "fps": 10, "model": "pt/camera.json", "role": "points"}}})";
+  EXPECT_NE(ManifestError(no_seeds).find("seeds"), std::string::npos) << ManifestError(no_seeds);
+}
+
 // SPEC.md §3.1: the manifest's station.pointing reaches rk-locate and both rk-attitude steps as --pointing (an
 // input: its digest decides re-runs), the station's position reaches rk-locate as --station; both are reserved.
 TEST(Plan, StationPointingAndPositionArePassedOn) {
