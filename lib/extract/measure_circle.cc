@@ -37,7 +37,8 @@ numeric::LmSummary FitDisk(const DiskModel& model, int max_iterations, CVec8* th
       f(th, h, g);
       return true;
     }
-    bool Converged(const CVec8& step, double, double) const { return step.head<2>().norm() < 1e-6; }
+    // 1e-4 px: far below the centre's σ; a tighter test only adds iterations.
+    bool Converged(const CVec8& step, double, double) const { return step.head<2>().norm() < 1e-4; }
   } lm{model, *th, *th};
   CVec8 g;
   const numeric::LmDamping damping{.initial = 1e-3, .diagonal_floor = 1e-12, .increase = 10.0, .decrease = 0.2,
@@ -132,7 +133,15 @@ class CircleMeasurer final : public PointMeasurer {
     return at;
   }
 
+  // The search template of the current radius, edge and polarity (made again only when they change).
   void MakeTemplate() {
+    if (!templ_.empty() && std::abs(radius_ - templ_radius_) < 0.05 && std::abs(edge_ - templ_edge_) < 0.05 &&
+        sign_ == templ_sign_) {
+      return;
+    }
+    templ_radius_ = radius_;
+    templ_edge_ = edge_;
+    templ_sign_ = sign_;
     const int h = static_cast<int>(std::ceil(radius_ + 3 * edge_ + 2));
     templ_.create(2 * h + 1, 2 * h + 1, CV_32FC1);
     const double k = kDiskInvSqrt2 / edge_;
@@ -147,6 +156,7 @@ class CircleMeasurer final : public PointMeasurer {
   PointMeasureOptions opt_;
   double radius_ = 0.0, edge_ = 1.0, sign_ = 1.0;
   double fit_radius_ = 0.0, fit_edge_ = 1.0;
+  double templ_radius_ = -1.0, templ_edge_ = -1.0, templ_sign_ = 0.0;
   cv::Mat roi_, templ_, map_, excluded_;
 };
 

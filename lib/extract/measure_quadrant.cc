@@ -204,7 +204,8 @@ PointMeasurement QuadrantMeasurer::Fit(const cv::Point& tl, const Eigen::Vector2
       f(th, H, g);
       return true;
     }
-    bool Converged(const Vec7& step, double, double) const { return step.head<2>().norm() < 1e-6; }
+    // 1e-4 px: far below the centre's σ; a tighter test only adds iterations.
+    bool Converged(const Vec7& step, double, double) const { return step.head<2>().norm() < 1e-4; }
   } lm{model, th, th};
   Mat7 H;
   Vec7 g;

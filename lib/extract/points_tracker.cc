@@ -8,6 +8,7 @@
 #include <cmath>
 
 #include "io/error.h"
+#include "numeric/robust_stats.h"
 
 namespace rk::extract {
 
@@ -68,13 +69,31 @@ track::SingerAxisOptions PointAxis(const PointsTrackOptions& o) {
 constexpr double kMinMeasVar = 1e-6;  // px²: a floor on R so that S stays invertible
 constexpr int kSettleUpdates = 2;
 constexpr double kStructureSnr = 3.0;    // surroundings whose variance beyond the noise's is below 3 σ_n² are flat
+constexpr int kNoiseRowStep = 4;
+constexpr double kTypicalWeight = 0.1;        // of the latest row in the point's usual σ and score
+constexpr double kReacquireSigmaRatio = 4.0;  // a candidate with σ beyond this × the usual is not the point
+constexpr double kReacquireScoreRatio = 0.85; // nor one scoring below this × the usual
 constexpr double kClaimedPx = 3.0;       // a candidate this close to another point's measurement is that point     // measurements after a (re)start before the χ² gate applies
 
 // NCC of the ring of a and b (same-size square patches) outside the centre square of half size r_in, divided
 // by the NCC that pixel noise alone leaves between two views of the same surroundings (σ_n from each
 // patch's neighbour differences), so that the threshold does not depend on the noise. Surroundings without
 // structure above the noise (a clear or saturated sky) tell nothing: 1 (no verdict).
-double RingNcc(const cv::Mat& a, const cv::Mat& b, int r_in) {
+// Pixel noise of a patch from the horizontal neighbour differences of every kNoiseRowStep-th row (MAD / √2;
+// the context check runs every frame, and a quarter of the rows estimates the noise well enough).
+double PatchNoise(const cv::Mat& m) {
+  std::vector<double> d;
+  d.reserve(static_cast<std::size_t>(m.rows / kNoiseRowStep + 1) * static_cast<std::size_t>(m.cols));
+  for (int y = 0; y < m.rows; y += kNoiseRowStep) {
+    const float* r = m.ptr<float>(y);
+    for (int x = 0; x + 1 < m.cols; ++x) d.push_back(static_cast<double>(r[x + 1]) - r[x]);
+  }
+  if (d.size() < 8) return 1.0;
+  return std::max(1.4826 * numeric::UpperMedianAndMadInPlace(d).mad / std::sqrt(2.0), 0.3);
+}
+
+// a_noise: PatchNoise(a), computed when a was stored.
+double RingNcc(const cv::Mat& a, double a_noise, const cv::Mat& b, int r_in) {
   const int R = a.cols / 2;
   double sa = 0, sb = 0, saa = 0, sbb = 0, sab = 0, n = 0;
   for (int y = 0; y < a.rows; ++y)
@@ -89,7 +108,7 @@ double RingNcc(const cv::Mat& a, const cv::Mat& b, int r_in) {
       n += 1;
     }
   const double va = (saa - sa * sa / n) / n, vb = (sbb - sb * sb / n) / n;
-  const double na = WindowNoise(a), nb = WindowNoise(b);
+  const double na = a_noise, nb = PatchNoise(b);
   const double signal_a = va - na * na, signal_b = vb - nb * nb;
   if (!(signal_a > kStructureSnr * na * na && signal_b > kStructureSnr * nb * nb)) return 1.0;
   const double ncc = (sab / n - sa * sb / (n * n)) / std::sqrt(va * vb);
@@ -116,6 +135,8 @@ struct PointsTracker::Point {
   double last_z_t = 0.0;
   cv::Mat context;              // surroundings at the last good frame (CV_32F, (2 r + 1)²)
   int context_inner = 0;
+  double context_noise = 1.0;   // its pixel noise (PatchNoise)
+  double typical_sigma = 0.0, typical_score = 0.0;  // of its accepted measurements (exponential mean)
   explicit Point(const PointsTrackOptions& o) : kf({PointAxis(o), PointAxis(o)}) {}
 };
 
@@ -264,6 +285,11 @@ bool PointsTracker::Reacquire(Point& p, const cv::Mat& frame, double search, Poi
   for (const PointCandidate& c : cands) {
     const PointMeasurement m = p.measurer->Measure(frame, c.px, 2.0);
     if (!m.ok) continue;
+    // A candidate measured much worse than the point usually is (clutter the method half fits) is not it.
+    if (p.typical_sigma > 0 && (std::sqrt(0.5 * m.cov.trace()) > kReacquireSigmaRatio * p.typical_sigma ||
+                                m.score < kReacquireScoreRatio * p.typical_score)) {
+      continue;
+    }
     // Another point measured here this frame (an identical marker elsewhere on the target): not this one.
     bool taken = false;
     for (const Eigen::Vector2d& q : claimed_) taken = taken || (q - m.px).norm() < kClaimedPx;
@@ -288,6 +314,11 @@ bool PointsTracker::Reacquire(Point& p, const cv::Mat& frame, double search, Poi
     *invalid = true;
     return false;
   }
+  // Measured again: the measurer keeps what it learns (angles, radius, warp) from its last measurement, which
+  // must be the chosen candidate's, not the last one looked at.
+  const PointMeasurement again = p.measurer->Measure(frame, out->px, 1.0);
+  if (!again.ok) return false;
+  *out = again;
   return true;
 }
 
@@ -296,7 +327,7 @@ double PointsTracker::ContextScore(Point& p, const cv::Mat& frame, const Eigen::
   const int R = p.context.cols / 2;
   const int ix = static_cast<int>(std::lround(px.x())), iy = static_cast<int>(std::lround(px.y()));
   if (!CopyFloatRoi(frame, cv::Rect(ix - R, iy - R, 2 * R + 1, 2 * R + 1), &patch_)) return 1.0;  // at the border
-  return RingNcc(p.context, patch_, p.context_inner);
+  return RingNcc(p.context, p.context_noise, patch_, p.context_inner);
 }
 
 PointRow PointsTracker::AcceptRow(Point& p, const cv::Mat& frame, const PointMeasurement& m, bool reacquired,
@@ -333,6 +364,11 @@ PointRow PointsTracker::AcceptRow(Point& p, const cv::Mat& frame, const PointMea
   p.tracking = true;
   p.last_z = m.px;
   p.last_z_t = p.last_t;
+  // The point's usual measurement quality (exponential mean over its accepted rows).
+  const double sig = std::sqrt(0.5 * m.cov.trace());
+  const double w = p.typical_sigma > 0 ? kTypicalWeight : 1.0;
+  p.typical_sigma = (1 - w) * p.typical_sigma + w * sig;
+  p.typical_score = (1 - w) * p.typical_score + w * m.score;
   claimed_.push_back(m.px);
   p.measurer->Accept(m);
   // The surroundings, for telling this point from a look-alike after it was hidden.
@@ -342,6 +378,7 @@ PointRow PointsTracker::AcceptRow(Point& p, const cv::Mat& frame, const PointMea
   cv::Mat ctx;
   if (CopyFloatRoi(frame, cv::Rect(ix - outer, iy - outer, 2 * outer + 1, 2 * outer + 1), &ctx)) {
     p.context = ctx;
+    p.context_noise = PatchNoise(ctx);
     p.context_inner = inner;
   }
   PointRow r;
