@@ -76,23 +76,10 @@ class CircleMeasurer final : public PointMeasurer {
   PointMeasurement Measure(const cv::Mat& frame, const Eigen::Vector2d& predicted, double search_px) override {
     PointMeasurement m;
     MakeTemplate();
-    const int h = templ_.cols / 2, S = std::max(1, static_cast<int>(std::ceil(search_px)));
-    const int ix = static_cast<int>(std::lround(predicted.x())), iy = static_cast<int>(std::lround(predicted.y()));
-    const int pad = h + S + 3;
-    // The window, cut to the frame (a point near the border is still measured if its support fits).
-    const cv::Rect want = cv::Rect(ix - pad, iy - pad, 2 * pad + 1, 2 * pad + 1) & cv::Rect(0, 0, frame.cols, frame.rows);
-    if (!CopyFloatRoi(frame, want, &roi_) || (!templ_.empty() && (want.width <= templ_.cols || want.height <= templ_.rows))) {
-      m.why = "at the image border";
-      return m;
-    }
-    cv::matchTemplate(roi_, templ_, map_, cv::TM_CCOEFF_NORMED);
-    const NccPeak peak = NearestNearBestPeak(map_, want.tl(), h, h, predicted, 0.05, opt_.ncc_min, 0.0);
-    if (!peak.found) {
-      m.score = std::max(0.0, peak.best);
-      m.why = "low correlation";
-      return m;
-    }
-    return Fit(want.tl(), peak.sub, peak.score);
+    cv::Point tl;
+    NccPeak peak;
+    if (!SearchWindow(frame, templ_, predicted, search_px, 3, opt_.ncc_min, &roi_, &map_, &tl, &peak, &m)) return m;
+    return Fit(tl, peak.sub, peak.score);
   }
 
   std::vector<PointCandidate> Candidates(const cv::Mat& frame, const Eigen::Vector2d& center, double search_px,

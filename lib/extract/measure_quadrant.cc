@@ -102,22 +102,10 @@ class QuadrantMeasurer final : public PointMeasurer {
   PointMeasurement Measure(const cv::Mat& frame, const Eigen::Vector2d& predicted, double search_px) override {
     PointMeasurement m;
     MakeTemplate(th1_, th2_, edge_, sign_);
-    const int h = half_, S = std::max(1, static_cast<int>(std::ceil(search_px)));
-    const int ix = static_cast<int>(std::lround(predicted.x())), iy = static_cast<int>(std::lround(predicted.y()));
-    // The window, cut to the frame (a point near the border is still measured if its support fits).
-    const cv::Rect want = cv::Rect(ix - h - S - 2, iy - h - S - 2, 2 * (h + S + 2) + 1, 2 * (h + S + 2) + 1) & cv::Rect(0, 0, frame.cols, frame.rows);
-    if (!CopyFloatRoi(frame, want, &roi_) || (!templ_.empty() && (want.width <= templ_.cols || want.height <= templ_.rows))) {
-      m.why = "at the image border";
-      return m;
-    }
-    cv::matchTemplate(roi_, templ_, map_, cv::TM_CCOEFF_NORMED);
-    const NccPeak peak = NearestNearBestPeak(map_, want.tl(), h, h, predicted, 0.05, opt_.ncc_min, 0.0);
-    if (!peak.found) {
-      m.score = std::max(0.0, peak.best);
-      m.why = "low correlation";
-      return m;
-    }
-    return Fit(want.tl(), peak.sub, peak.score);
+    cv::Point tl;
+    NccPeak peak;
+    if (!SearchWindow(frame, templ_, predicted, search_px, 2, opt_.ncc_min, &roi_, &map_, &tl, &peak, &m)) return m;
+    return Fit(tl, peak.sub, peak.score);
   }
 
   std::vector<PointCandidate> Candidates(const cv::Mat& frame, const Eigen::Vector2d& center, double search_px,

@@ -122,6 +122,30 @@ bool CubicSample(const cv::Mat& img, double x, double y, double* v, double* gx, 
   return true;
 }
 
+bool SearchWindow(const cv::Mat& frame, const cv::Mat& templ, const Eigen::Vector2d& predicted, double search_px,
+                  int margin, double ncc_min, cv::Mat* roi, cv::Mat* map, cv::Point* tl, NccPeak* peak,
+                  PointMeasurement* m) {
+  const int h = templ.cols / 2, S = std::max(1, static_cast<int>(std::ceil(search_px)));
+  const int pad = h + S + margin;
+  const int ix = static_cast<int>(std::lround(predicted.x())), iy = static_cast<int>(std::lround(predicted.y()));
+  // The window, cut to the frame (a point near the border is still measured if its support fits).
+  const cv::Rect want =
+      cv::Rect(ix - pad, iy - pad, 2 * pad + 1, 2 * pad + 1) & cv::Rect(0, 0, frame.cols, frame.rows);
+  if (!CopyFloatRoi(frame, want, roi) || want.width <= templ.cols || want.height <= templ.rows) {
+    m->why = "at the image border";
+    return false;
+  }
+  *tl = want.tl();
+  cv::matchTemplate(*roi, templ, *map, cv::TM_CCOEFF_NORMED);
+  *peak = NearestNearBestPeak(*map, want.tl(), h, h, predicted, 0.05, ncc_min, 0.0);
+  if (!peak->found) {
+    m->score = std::max(0.0, peak->best);
+    m->why = "low correlation";
+    return false;
+  }
+  return true;
+}
+
 std::vector<PointCandidate> TemplatePeaks(const cv::Mat& frame, const cv::Mat& templ, const Eigen::Vector2d& center,
                                           double search_px, int max_n, double min_score, double min_sep) {
   std::vector<PointCandidate> out;

@@ -208,17 +208,14 @@ class PlanBuilder {
     return NumberText(p.at("lat_deg")) + "," + NumberText(p.at("lon_deg")) + "," + NumberText(p.at("h_m"));
   }
 
-  void Beacon(const CameraEntry& cam) {
-    const std::string unit = st_->Unit(cam), dir = unit + "/";
-    Step ex = Make(unit, "extract-beacon");
-    Video(&ex, cam);
-    Out(&ex, "-o", dir + "track.csv");
-    ex.table = dir + "track.csv";
-    Finish(&ex);
-
+  // rk-locate of a track (a beacon's, or a points track: one series per id) from step `ex`, with the turret
+  // (else theodolite) log, the range log and the station; into <unit>/located.csv, which the intersection takes.
+  Step Locate(const std::string& unit, const char* kind, const CameraEntry& cam, const Step& ex,
+              const std::string& track) {
     const std::string angles = !st_->turret.empty() ? st_->turret : st_->theodolite;
-    Step lo = Make(unit, "locate");
-    Upstream(&lo, "--track", ex, dir + "track.csv");
+    const std::string located = unit + "/located.csv";
+    Step lo = Make(unit, kind);
+    Upstream(&lo, "--track", ex, track);
     In(&lo, "camera", cam.model);
     if (angles.empty()) {
       NotApplicable(&lo, "the manifest has no turret or theodolite log");
@@ -227,12 +224,24 @@ class PlanBuilder {
     }
     if (!st_->range.empty()) In(&lo, "range", st_->range);
     Station(&lo, true);
-    Out(&lo, "-o", dir + "located.csv");
-    lo.table = dir + "located.csv";
+    Out(&lo, "-o", located);
+    lo.table = located;
     Finish(&lo);
+    if (lo.state == PlanState::kActive) located_.push_back({unit, located, lo.id});
+    return lo;
+  }
+
+  void Beacon(const CameraEntry& cam) {
+    const std::string unit = st_->Unit(cam), dir = unit + "/";
+    Step ex = Make(unit, "extract-beacon");
+    Video(&ex, cam);
+    Out(&ex, "-o", dir + "track.csv");
+    ex.table = dir + "track.csv";
+    Finish(&ex);
+
+    const Step lo = Locate(unit, "locate", cam, ex, dir + "track.csv");
     Plot(lo, "located", dir + "located.csv", st_->range.empty() ? "az_deg,el_deg" : "az_deg,el_deg,range_m",
          "located target");
-    if (lo.state == PlanState::kActive) located_.push_back({unit, dir + "located.csv", lo.id});
 
     Step sm = Make(unit, "smooth");
     Upstream(&sm, "-i", lo, dir + "located.csv");
@@ -309,22 +318,8 @@ class PlanBuilder {
     ex.table = dir + "points.csv";
     Finish(&ex);
 
-    const std::string angles = !st_->turret.empty() ? st_->turret : st_->theodolite;
-    Step lo = Make(unit, "locate-points");
-    Upstream(&lo, "--track", ex, dir + "points.csv");
-    In(&lo, "camera", cam.model);
-    if (angles.empty()) {
-      NotApplicable(&lo, "the manifest has no turret or theodolite log");
-    } else {
-      In(&lo, "turret", angles);
-    }
-    if (!st_->range.empty()) In(&lo, "range", st_->range);
-    Station(&lo, true);
-    Out(&lo, "-o", dir + "located.csv");
-    lo.table = dir + "located.csv";
-    Finish(&lo);
+    const Step lo = Locate(unit, "locate-points", cam, ex, dir + "points.csv");
     Plot(lo, "located", dir + "located.csv", "az_deg,el_deg", "located points");
-    if (lo.state == PlanState::kActive) located_.push_back({unit, dir + "located.csv", lo.id});
   }
 
   void Silhouette(const CameraEntry& cam) {
