@@ -79,4 +79,13 @@ void MappedFile::ReadAt(std::uint64_t offset, std::uint64_t n, void* dst, std::s
   }
 }
 
+const std::uint8_t* MappedFile::MappedAt(std::uint64_t offset, std::uint64_t n, std::string_view what) const {
+  view().Need(offset, n, what);
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0 || static_cast<std::uint64_t>(st.st_size) < offset + n) {
+    throw IoError(path_, std::string("cannot read ") + std::string(what) + ": the file shrank");
+  }
+  return data_ + offset;
+}
+
 }  // namespace rk::video

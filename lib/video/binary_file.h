@@ -52,6 +52,10 @@ class MappedFile {
   // Copies the n bytes at `offset` into `dst` (ByteOffsetError naming `what` if they run past the end,
   // IoError if the read fails).
   void ReadAt(std::uint64_t offset, std::uint64_t n, void* dst, std::string_view what) const;
+  // The n bytes at `offset` in the mapping, to be read in place (no copy): ByteOffsetError as ReadAt, and
+  // IoError if the file is now shorter than the mapping needs (it shrank since it was opened; reading
+  // the mapping there would be a SIGBUS).
+  const std::uint8_t* MappedAt(std::uint64_t offset, std::uint64_t n, std::string_view what) const;
 
  private:
   int fd_ = -1;

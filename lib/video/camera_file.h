@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "io/run_summary.h"
 #include "video/binary_file.h"
 #include "video/packed_pixels.h"
 
@@ -37,7 +38,9 @@ struct RecordingTimes {
   double nominal_rate_hz = 0;   // the rate the file states (0: none)
   std::vector<FrameStamp> frames;
   std::string basis;            // one sentence: which of the file's times were used
-  std::vector<std::string> warnings;  // the file disagreeing with itself (time block vs trigger time)
+  // What the file says of its times that the user must know: it disagrees with itself (times_disagree: time
+  // block vs trigger time), or it was recorded on IRIG but keeps no stamps rangekit can read (irig_not_read).
+  std::vector<io::Warning> warnings;
 };
 
 // What a camera file's headers say.
@@ -89,7 +92,6 @@ class CameraFileReader {
   CameraFile file_;
   cv::Mat raw_;  // the mosaic before demosaicing
   std::vector<std::uint8_t> packed_;    // a bottom-up frame as stored (reused)
-  std::vector<std::uint8_t> chunk_[2];  // per band: a chunk of stored bytes before unpacking (reused)
   std::uint64_t clamped_ = 0;
 };
 

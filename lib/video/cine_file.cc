@@ -276,9 +276,9 @@ void BuildTimes(const Header& h, double rate_hz, double shutter_s, const std::ve
       // The image numbered 0 is the trigger frame: its stamp, from the first image's, against the trigger time.
       const double from_block = t.origin_s + t.frames[0].t_s - h.first_image_no / rate_hz;
       if (std::fabs(from_block - trigger) > 1.0 / rate_hz) {
-        t.warnings.push_back("the time block (trigger frame at " + UtcText(from_block) + ") and the header's trigger time (" +
+        t.warnings.push_back({"times_disagree", "the time block (trigger frame at " + UtcText(from_block) + ") and the header's trigger time (" +
                              UtcText(trigger) + ") differ by " + std::to_string(std::fabs(from_block - trigger)) +
-                             " s, more than a frame interval; the time block's stamps are used");
+                             " s, more than a frame interval; the time block's stamps are used"});
       }
     }
   } else if (h.trigger_seconds != 0) {

@@ -24,16 +24,16 @@ namespace rk::video {
 namespace {
 
 enum class Field { kWidth, kHeight, kBits, kColorType, kEffectiveDepth, kEffectiveSide, kTotalFrames, kStartFrame,
-                   kSkipFrame, kRate, kShutterNs, kShutterSpeed, kFileFormat };
+                   kSkipFrame, kRate, kShutterNs, kShutterSpeed, kFileFormat, kIrig };
 
 struct FieldSpec {
   Field field;
   const char* xml_path;  // element path below <cih>
-  const char* cih_key;   // key of the .cih text form
+  const char* cih_key;   // key of the .cih text form ("": not in the .cih)
   bool required;
 };
 
-constexpr std::array<FieldSpec, 13> kFields{{
+constexpr std::array<FieldSpec, 14> kFields{{
     {Field::kWidth, "imageDataInfo/resolution/width", "Image Width", true},
     {Field::kHeight, "imageDataInfo/resolution/height", "Image Height", true},
     {Field::kBits, "imageDataInfo/colorInfo/bit", "Color Bit", true},
@@ -47,6 +47,7 @@ constexpr std::array<FieldSpec, 13> kFields{{
     {Field::kShutterNs, "recordInfo/shutterSpeedNsec", "Shutter Type2(nsec)", false},
     {Field::kShutterSpeed, "recordInfo/shutterSpeed", "Shutter Speed(s)", false},
     {Field::kFileFormat, "imageFileInfo/fileFormat", "File Format", false},
+    {Field::kIrig, "deviceInfo/irig", "", false},  // 1: the camera ran on an IRIG input
 }};
 
 // A header value with the line it is on (1-based; the XML line in the .cihx, the text line in the .cih).
@@ -190,6 +191,14 @@ CameraFile Describe(const HeaderValues& h, bool xml, const std::string& header_p
   t.basis = "no per-frame stamps in a Photron file: frame number (start " + std::to_string(start) + ", step " +
             std::to_string(skip) + ") over the record rate";
   t.frames.resize(static_cast<std::size_t>(total));
+  if (h.Int(Field::kIrig, 0, 1 << 30, 0, xml) != 0) {
+    // Photron publishes no layout for the per-frame IRIG stamps of an MRAW (the sample files have none), so an
+    // IRIG recording is timed like any other here; the user must know that these are not UTC times.
+    t.warnings.push_back({"irig_not_read", header_path + ":" + std::to_string(h.LineOf(Field::kIrig)) +
+                                               ": the camera recorded on IRIG (deviceInfo/irig), but a Photron file's "
+                                               "per-frame IRIG stamps are not read: times are the frame numbers over the "
+                                               "record rate, from the trigger, not UTC (give --frames for UTC)"});
+  }
   for (std::int64_t i = 0; i < total; ++i) {
     FrameStamp& f = t.frames[static_cast<std::size_t>(i)];
     f.camera_ts_s = static_cast<double>(start + i * skip) / rate;
@@ -262,7 +271,7 @@ CameraFile ParseCih(const ByteView& header, const std::string& data_path, std::u
     if (colon == std::string::npos) continue;
     const std::string key = Trim(l.substr(0, colon));
     for (const FieldSpec& s : kFields) {
-      if (key == s.cih_key && !values.count(s.field)) values[s.field] = {Trim(l.substr(colon + 3)), line};
+      if (*s.cih_key != '\0' && key == s.cih_key && !values.count(s.field)) values[s.field] = {Trim(l.substr(colon + 3)), line};
     }
   }
   return Describe(HeaderValues(header.file(), std::move(values)), false, header.file(), data_path, data_size);

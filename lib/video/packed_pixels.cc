@@ -4,7 +4,7 @@
 // last groups): one byte shuffle puts each pixel's two bytes in a 16-bit lane, one multiply shifts each lane
 // so that its bits end at the same place, one shift and the widening finish 8 pixels. An AVX2 version (16 pixels
 // a step) measured no faster: the unpacking is bound by writing the 16-bit frame, not by its instructions
-// (bench/video_read_bench.sh: docs/benchmarks.md "Reading recordings").
+// (bench/video_read_bench.sh: docs/benchmarks.md "Issue 29").
 #include "video/packed_pixels.h"
 
 #if defined(__x86_64__) || defined(__i386__)

@@ -247,7 +247,7 @@ RecordingFrameTimes ReadFrameTimes(const std::vector<std::string>& segments, con
     r.sources.push_back(seg + ": " + all.back().basis);
     const std::vector<FrameStamp>& f = all.back().frames;
     if (!f.empty() && f.front().source == TimeSource::kNominal) r.nominal.push_back(r.sources.back());
-    for (const std::string& w : all.back().warnings) r.warnings.push_back(seg + ": " + w);
+    for (const io::Warning& w : all.back().warnings) r.warnings.push_back({w.code, seg + ": " + w.message});
   }
   r.absolute = all.front().absolute;
   for (std::size_t i = 1; i < all.size(); ++i) {
@@ -269,7 +269,7 @@ RecordingFrameTimes ReadFrameTimes(const std::vector<std::string>& segments, con
     zero_whole = zero_frac = 0.0;
     r.relative_to_epoch = true;
   } else if (r.absolute) {
-    r.warnings.push_back("the recording's times are UTC but no --epoch-utc was given: t_s counts from its first frame");
+    r.warnings.push_back({"no_epoch", "the recording's times are UTC but no --epoch-utc was given: t_s counts from its first frame"});
   }
   std::int64_t k = 0;
   for (const SegmentTimes& s : all) {
@@ -287,9 +287,7 @@ io::RunSummary FrameTimesSummary(const RecordingFrameTimes& times) {
   std::map<std::string, std::int64_t> by_source;
   for (const FrameTime& f : times.frames) ++by_source[TimeSourceName(f.source)];
   for (const std::string& n : times.nominal) s.Warn("nominal_times", "frame times of " + n);
-  for (const std::string& w : times.warnings) {
-    s.Warn(w.find("no --epoch-utc") != std::string::npos ? "no_epoch" : "times_disagree", w);
-  }
+  for (const io::Warning& w : times.warnings) s.Warn(w.code, w.message);
   for (std::size_t i = 0; i < times.problems.size() && i < kSaid; ++i) {
     const bool back = times.problems[i].find("goes back") != std::string::npos ||
                       times.problems[i].find("same time") != std::string::npos;

@@ -42,7 +42,7 @@ struct RecordingFrameTimes {
   double nominal_rate_hz = 0.0;     // of the first segment (0: none)
   std::vector<std::string> sources; // per segment: "path: where its times come from"
   std::vector<std::string> nominal; // the sources of the segments timed by a nominal rate (said on stderr)
-  std::vector<std::string> warnings;  // the file disagreeing with itself; absolute times without an epoch
+  std::vector<io::Warning> warnings;  // the files' own (RecordingTimes::warnings); absolute times without an epoch (no_epoch)
   // Stamps that go backwards (or repeat) and gaps > 1.5 intervals: "frame N: ..." each.
   std::vector<std::string> problems;
   std::int64_t backwards = 0, gaps = 0;

@@ -199,7 +199,8 @@ TEST(CineFile, TimeBlockStampsCarryTheIrigFlagExposureAndTriggerDisagreement) {
     EXPECT_EQ(f.event, i == 3);
   }
   ASSERT_EQ(cf.times.warnings.size(), 1u);
-  EXPECT_NE(cf.times.warnings[0].find("differ by 86399.748"), std::string::npos) << cf.times.warnings[0];
+  EXPECT_EQ(cf.times.warnings[0].code, "times_disagree");
+  EXPECT_NE(cf.times.warnings[0].message.find("differ by 86399.748"), std::string::npos) << cf.times.warnings[0].message;
 }
 
 TEST(CineFile, WithoutATimeBlockTheTriggerTimePlusImageNumberIsNominal) {
@@ -281,6 +282,28 @@ TEST(MrawFile, CihxAndCihGiveTheFramesAtEveryDepth) {
   EXPECT_NEAR(r.file().times.frames[1].exposure_s, 1.25e-6, 1e-15);
 }
 
+// A CIHX that says the camera ran on IRIG: its per-frame stamps are not read, and the user is told (not UTC).
+TEST(MrawFile, AnIrigRecordingIsSaidToBeTimedNominally) {
+  const rk::test::TempDir tmp("mraw_irig");
+  WriteBytes(tmp / "i.mraw", testing::MakeMraw(12, RandomFrames(2, 10, 4, 12, 41)));
+  std::string x = testing::MakeCihx(10, 4, 12, 2, 0, 1, 1000, 1000);
+  x.replace(x.find("</cih>"), 6, "<deviceInfo>\n<irig>1</irig>\n</deviceInfo>\n</cih>");
+  WriteText(tmp / "i.cihx", x);
+  const RecordingFrameTimes t = ReadFrameTimes({(tmp / "i.mraw")}, {});
+  ASSERT_EQ(t.warnings.size(), 1u);
+  EXPECT_EQ(t.warnings[0].code, "irig_not_read");
+  EXPECT_NE(t.warnings[0].message.find("i.cihx:"), std::string::npos) << t.warnings[0].message;
+  EXPECT_NE(t.warnings[0].message.find("not UTC"), std::string::npos) << t.warnings[0].message;
+  EXPECT_FALSE(t.absolute);
+  bool in_summary = false;
+  for (const auto& w : FrameTimesSummary(t).warnings) in_summary |= w.code == "irig_not_read";
+  EXPECT_TRUE(in_summary);
+  // irig 0 (the real sample's value): nothing said.
+  x.replace(x.find("<irig>1"), 7, "<irig>0");
+  WriteText(tmp / "i.cihx", x);
+  EXPECT_TRUE(ReadFrameTimes({(tmp / "i.mraw")}, {}).warnings.empty());
+}
+
 TEST(MrawFile, HeaderFaultsNameTheLine) {
   const rk::test::TempDir tmp("mraw_faults");
   const std::vector<Samples> frames = RandomFrames(3, 10, 4, 12, 40);
@@ -341,7 +364,7 @@ TEST(RecordingTimes, EpochGapsAndBackwardsStampsAreSaidNeverRenumbered) {
   EXPECT_FALSE(rel.relative_to_epoch);
   EXPECT_NEAR(rel.frames[5].t_s, 0.005, kStampTolS);
   ASSERT_FALSE(rel.warnings.empty());
-  EXPECT_NE(rel.warnings.back().find("no --epoch-utc"), std::string::npos);
+  EXPECT_NE(rel.warnings.back().message.find("no --epoch-utc"), std::string::npos);
   // An image sequence has no times of its own: --fps, else a usage error.
   EXPECT_THROW(ReadFrameTimes({(tmp / "seq_%03d.png")}, {}), Error);
 }
@@ -379,7 +402,8 @@ TEST(RealFiles, Chart1CineEqualsFfmpegsDecodePixelForPixel) {
   EXPECT_NEAR(t.origin_s + t.frames[0].t_s, 963484684.0, 1.0);
   EXPECT_NEAR(t.frames[0].exposure_s, 0.02, 1e-5);  // the exposure block: 85907195 / 2^32 s (ShutterNs says 20000078 ns)
   ASSERT_EQ(t.warnings.size(), 1u);
-  EXPECT_NE(t.warnings[0].find("2014-07-14"), std::string::npos) << t.warnings[0];
+  EXPECT_EQ(t.warnings[0].code, "times_disagree");
+  EXPECT_NE(t.warnings[0].message.find("2014-07-14"), std::string::npos) << t.warnings[0].message;
 }
 
 // An unpacking of Photron's 12-bit packing written independently of packed_pixels.cc: bit by bit.
