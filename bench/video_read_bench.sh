@@ -99,3 +99,29 @@ cat "$OUT/rec.y4m" > /dev/null
 full=$(timed "$B/rk-extract" beacon --video "$OUT/rec.y4m" -o "$OUT/track.csv" --quiet)
 dd=$(timed dd if="$OUT/rec.y4m" of=/dev/null bs=$((W * H)))
 say "Full \`rk-extract beacon\` on the y4m (detector on random frames, its own times): $full s, $(awk -v a="$full" -v b="$dd" 'BEGIN {printf "%.2f", a / b}') x dd."
+
+# Extraction itself on a real scene: rk-sim beacon at W x H (FRAMES frames: FRAMES/20 s at 20 fps), its 8-bit
+# frames written as a 12-bit packed MRAW (value x 16), then the whole `rk-extract beacon` (detection, tracking,
+# sub-pixel fit, σ, the CSV) against dd of that file. Random frames (above) are a detector's worst case.
+"$B/rk-sim" beacon -o "$OUT/beacon_sim" --force --width "$W" --height "$H" --fps 20 \
+  --duration "$(awk -v n="$FRAMES" 'BEGIN {print n / 20}')" --quiet
+ffmpeg -v error -nostdin -i "$OUT/beacon_sim/az/video.mkv" -f rawvideo -pix_fmt gray - | /usr/bin/python3 -c '
+import sys, numpy as np
+w, h, out = int(sys.argv[1]), int(sys.argv[2]), open(sys.argv[3], "wb")
+while True:
+    b = sys.stdin.buffer.read(w * h)
+    if len(b) < w * h:
+        break
+    v = np.frombuffer(b, np.uint8).astype(np.uint16) * 16
+    a, c = v[0::2], v[1::2]
+    p = np.empty((a.size, 3), np.uint8)
+    p[:, 0], p[:, 1], p[:, 2] = a >> 4, ((a & 15) << 4) | (c >> 8), c & 255
+    out.write(p.tobytes())
+' "$W" "$H" "$OUT/beacon.mraw"
+/usr/bin/python3 -c 'import os, sys; sys.path.insert(0, os.path.join(sys.argv[1], "tests", "fuzz")); import make_camera_seeds as s
+open(sys.argv[2], "wb").write(s.cihx(int(sys.argv[3]), int(sys.argv[4]), 12, int(sys.argv[5])))' "$ROOT" "$OUT/beacon.cihx" "$W" "$H" "$FRAMES"
+cat "$OUT/beacon.mraw" > /dev/null
+full=$(timed "$B/rk-extract" beacon --video "$OUT/beacon.mraw" -o "$OUT/beacon.csv" --quiet)
+dec=$(timed "$B/rk-extract" beacon --video "$OUT/beacon.mraw" --decode-only --quiet)
+dd=$(timed dd if="$OUT/beacon.mraw" of=/dev/null bs=$((W * H * 3 / 2)))
+say "Full \`rk-extract beacon\` on rk-sim beacon's scene as a 12-bit packed MRAW ($(grep -c ',ok,' "$OUT/beacon.csv") of $FRAMES rows ok): $full s, $(awk -v a="$full" -v b="$dd" 'BEGIN {printf "%.2f", a / b}') x dd ($dd s); decoding alone $dec s."
