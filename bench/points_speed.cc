@@ -6,6 +6,7 @@
 // 10 point ids seeded on that method's markers (repeated), tracked over every frame. Reference: OpenCV's
 // matchTemplate of a 32×32 template over a 96×96 area. Prints a table (docs/benchmarks.md "Issue 31").
 // Usage: points_speed [frames, default 200]   (Release build; one core: taskset -c 0)
+//        RK_BENCH_METHOD=circle points_speed ...   one method only (for perf record)
 #include <opencv2/imgproc.hpp>
 
 #include <chrono>
@@ -65,7 +66,9 @@ void Table(int width, int height, int n) {
   }
   std::printf("\n%d x %d, %d frames, 10 points:\n| method | point-frames/s | measured rows |\n|---|---|---|\n", width,
               height, n);
+  const char* only = std::getenv("RK_BENCH_METHOD");  // one method only (profiling)
   for (const char* m : {"quadrant", "circle", "centroid-bright", "centroid-dark", "correlation"}) {
+    if (only && std::string(only) != m) continue;
     int measured = 0;
     const double rate = PointFramesPerSecond(frames, sim, m, offset, &measured);
     std::printf("| %s | %.0f | %d of %d |\n", m, rate, measured, 10 * (n - 1) + 10);

@@ -1,7 +1,10 @@
 // The correlation peak; see ncc_search.h.
 #include "extract/ncc_search.h"
 
+#include <opencv2/imgproc.hpp>
+
 #include <algorithm>
+#include <cmath>
 
 namespace rk::extract {
 namespace {
@@ -73,6 +76,42 @@ NccPeak NearestNearBestPeak(const cv::Mat& map, const cv::Point& region_tl, int 
     }
   }
   return out;
+}
+
+void NccMapDirect(const cv::Mat& image, const cv::Mat& templ, cv::Mat* map) {
+  CV_Assert(image.type() == CV_32FC1 && templ.type() == CV_32FC1);
+  const int w = templ.cols, h = templ.rows;
+  const int mw = image.cols - w + 1, mh = image.rows - h + 1;
+  if (mw <= 0 || mh <= 0) {
+    map->release();
+    return;
+  }
+  const double n = static_cast<double>(w) * h;
+  const cv::Scalar tmean = cv::mean(templ);
+  cv::Mat tz;
+  templ.convertTo(tz, CV_32F, 1.0, -tmean[0]);
+  const double tnorm = cv::norm(tz);
+  // Σ (T − T̄)(I − Ī) = Σ (T − T̄) I over each window: the correlation with the zero-mean template, anchored at
+  // its top-left so that out(x, y) is the window whose top-left is (x, y).
+  cv::Mat corr;
+  cv::filter2D(image, corr, CV_32F, tz, cv::Point(0, 0), 0.0, cv::BORDER_CONSTANT);
+  cv::Mat sum, sqsum;
+  cv::integral(image, sum, sqsum, CV_64F, CV_64F);
+  map->create(mh, mw, CV_32FC1);
+  for (int y = 0; y < mh; ++y) {
+    const double* s0 = sum.ptr<double>(y);
+    const double* s1 = sum.ptr<double>(y + h);
+    const double* q0 = sqsum.ptr<double>(y);
+    const double* q1 = sqsum.ptr<double>(y + h);
+    const float* c = corr.ptr<float>(y);
+    float* out = map->ptr<float>(y);
+    for (int x = 0; x < mw; ++x) {
+      const double s = s1[x + w] - s1[x] - s0[x + w] + s0[x];
+      const double q = q1[x + w] - q1[x] - q0[x + w] + q0[x];
+      const double var = q - s * s / n;  // n × the window's variance
+      out[x] = var > 1e-9 * std::max(1.0, q) && tnorm > 0 ? static_cast<float>(c[x] / (std::sqrt(var) * tnorm)) : 0.0f;
+    }
+  }
 }
 
 }  // namespace rk::extract

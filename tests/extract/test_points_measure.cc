@@ -11,7 +11,9 @@
 #include <random>
 #include <vector>
 
+#include "extract/ncc_search.h"
 #include "extract/point_measure.h"
+#include "extract/point_measurers.h"
 #include "sim/render.h"
 
 namespace rk::extract {
@@ -270,3 +272,59 @@ TEST(PointMeasure, CubicSampleGradientMatchesDifferences) {
 
 }  // namespace points_measure_test
 }  // namespace rk::extract
+
+namespace ncc_direct_test {  // named: tests/extract is one unity build
+
+constexpr double kNccAgreement = 2e-4;  // float rounding of two different summation orders
+
+// NccMapDirect is OpenCV's TM_CCOEFF_NORMED map, computed another way, including flat windows (0 in both).
+TEST(NccMapDirect, EqualsMatchTemplateIncludingFlatWindows) {
+  cv::Mat image(120, 150, CV_32FC1), templ(7, 9, CV_32FC1);
+  cv::RNG rng(5);
+  rng.fill(image, cv::RNG::UNIFORM, 0, 255);
+  rng.fill(templ, cv::RNG::UNIFORM, 0, 255);
+  image(cv::Rect(10, 10, 30, 30)).setTo(77.0);  // flat: zero variance
+  cv::Mat want, got;
+  cv::matchTemplate(image, templ, want, cv::TM_CCOEFF_NORMED);
+  rk::extract::NccMapDirect(image, templ, &got);
+  ASSERT_EQ(got.size(), want.size());
+  double worst = 0;
+  for (int y = 0; y < got.rows; ++y)
+    for (int x = 0; x < got.cols; ++x) {
+      const bool flat = x >= 10 && y >= 10 && x + templ.cols <= 40 && y + templ.rows <= 40;
+      if (flat) {
+        EXPECT_EQ(got.at<float>(y, x), 0.0f) << x << "," << y;
+      } else {
+        worst = std::max(worst, static_cast<double>(std::abs(got.at<float>(y, x) - want.at<float>(y, x))));
+      }
+    }
+  EXPECT_LT(worst, kNccAgreement);
+}
+
+// A whole-frame search of a 2448×2048 frame goes coarse to fine: the marker is found at full resolution
+// wherever it is, and a similar but different blob does not outrank it.
+TEST(TemplatePeaks, CoarseToFineFindsTheMarkerAnywhereInALargeFrame) {
+  cv::Mat frame(2048, 2448, CV_8UC1, cv::Scalar(40));
+  cv::RNG rng(9);
+  cv::Mat noise(frame.size(), CV_8UC1);
+  rng.fill(noise, cv::RNG::NORMAL, 0, 3);
+  frame += noise;
+  // The template: a blurred quadrant marker 24 px across; the frame holds it at (1731, 377), and a plain
+  // dark disc elsewhere.
+  cv::Mat templ(25, 25, CV_32FC1);
+  for (int y = 0; y < 25; ++y)
+    for (int x = 0; x < 25; ++x) templ.at<float>(y, x) = ((x < 12) == (y < 12)) ? 200.f : 40.f;
+  cv::GaussianBlur(templ, templ, cv::Size(0, 0), 1.0);
+  cv::Mat patch;
+  templ.convertTo(patch, CV_8U);
+  patch.copyTo(frame(cv::Rect(1731 - 12, 377 - 12, 25, 25)));
+  cv::circle(frame, cv::Point(400, 1500), 11, cv::Scalar(200), cv::FILLED);
+  const std::vector<rk::extract::PointCandidate> c =
+      rk::extract::TemplatePeaks(frame, templ, Eigen::Vector2d(1224, 1024), 3000.0, 3, 0.5, 4.0);
+  ASSERT_FALSE(c.empty());
+  EXPECT_NEAR(c[0].px.x(), 1731.0, 1.0);
+  EXPECT_NEAR(c[0].px.y(), 377.0, 1.0);
+  EXPECT_GT(c[0].score, 0.9);
+}
+
+}  // namespace ncc_direct_test
