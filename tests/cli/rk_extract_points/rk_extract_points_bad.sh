@@ -16,7 +16,7 @@ run 3 "$o" 'seeds_bad.csv:3:1: .*seeded twice at frame 0' -- "${cmd[@]}"
 printf 'id,frame,x_px,y_px,method\nq1,0,100,100,quadrant\nc1,0,700,100,circle\n' > "$s"
 run 3 "$o" 'seeds_bad.csv:3:6: .*outside the 640x480 image' -- "${cmd[@]}"
 printf 'id,frame,x_px,y_px,method\nq1,0,100,100,quadrant\nq1,5000,100,100,quadrant\n' > "$s"
-run 3 "$o" 'seeds_bad.csv:3:4: .*past the end of the recording \(160 frames\)' -- "${cmd[@]}"
+run 3 "$o" 'seeds_bad.csv:3:4: .*past the end of the recording \(100 frames\)' -- "${cmd[@]}"
 # Streaming to stdout: a seed past the end is found before any row goes out.
 run 3 - 'seeds_bad.csv:3:4: .*past the end' -- rk-extract points --video "$d/video.mkv" --frames "$d/frames.csv" \
   --seeds "$s" -o -

@@ -5,7 +5,7 @@ set -eu
 # shellcheck disable=SC2034
 data=$1 expect=$2 src=$3
 d=$data/points_small; rm -rf "$d"
-rk-sim points --out "$d" --scenario reversal --frames 160 --seed 11 --quiet
+rk-sim points --out "$d" --scenario reversal --frames 100 --seed 11 --quiet
 rk-extract points --video "$d/video.mkv" --frames "$d/frames.csv" --seeds "$d/seeds.csv" -o "$d/points.csv" \
   --report "$d/points.json" --quiet
 test "$(head -n 1 "$d/points.csv")" = "frame,t_s,id,x_px,y_px,status,sigma_x_px,sigma_y_px,score"
