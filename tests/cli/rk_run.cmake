@@ -96,3 +96,9 @@ rk_cli_script(rk_run/rk_run_other_units_stand_ins)
 # with station errors (rk-sim beacon --az-offset-deg ...) whose manifest names truth/pointing.json, the whole
 # chain (rk-extract, rk-locate) is within 5″ RMS of truth, and located.csv has lat_deg,lon_deg,h_m.
 rk_cli_script(rk_run/rk_run_station_pointing)
+
+# Issue 31: a `points` camera end to end from trial.json (docs/rk-run.md): the small trial's lamp cluster seeded
+# as a centroid-bright point; rk-run plans and runs extract-points and locate-points; one row per frame, nothing
+# measured while hidden and back within 2 frames, located az/el against truth (5" RMS, mean NEES ≤ 3), up to
+# date on a second run and rerun when the seeds change.
+rk_cli_script(rk_run/rk_run_points_chain REQUIRES sim_small)
