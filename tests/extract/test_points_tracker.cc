@@ -33,11 +33,8 @@ double Marker(double x, double y, double cx, double cy) {
   return 100.0 + 50.0 * std::erf(u / (std::sqrt(2.0) * 0.9)) * std::erf(v / (std::sqrt(2.0) * 0.9));
 }
 
-cv::Mat Frame(int k) {
-  const bool hidden = k >= kHideFrom && k <= kHideTo;
-  const double cx = TruthX(k), cy = kTruthY;
-  // The look-alike where a straight-line prediction would put the hidden point.
-  const double lx = 50.0 + kSpeed * k / kFps, ly = kTruthY;
+// The scene with the marker at (cx, cy) (hidden: the look-alike at (lx, ly) instead); noise seeded by `seed`.
+cv::Mat Render(double cx, double cy, bool hidden, double lx, double ly, std::uint64_t seed) {
   cv::Mat s(kH, kW, CV_32FC1);
   constexpr int kSub = 4;
   for (int y = 0; y < kH; ++y)
@@ -61,8 +58,14 @@ cv::Mat Frame(int k) {
       s.at<float>(y, x) = static_cast<float>(acc / (kSub * kSub));
     }
   sim::SensorOptions o{5.0, 2.0, 40.0, 8};
-  std::mt19937_64 rng(500 + static_cast<std::uint64_t>(k));
+  std::mt19937_64 rng(seed);
   return sim::Digitise(s, o, rng);
+}
+
+cv::Mat Frame(int k) {
+  // The look-alike where a straight-line prediction would put the hidden point.
+  return Render(TruthX(k), kTruthY, k >= kHideFrom && k <= kHideTo, 50.0 + kSpeed * k / kFps, kTruthY,
+                500 + static_cast<std::uint64_t>(k));
 }
 
 formats::Seeds OneSeed(const char* method, double x, double y) {
@@ -130,6 +133,38 @@ TEST(PointsTracker, ReseedRowRestartsThePoint) {
     }
   }
   EXPECT_EQ(tracker.summary()[0].seeds, 2);
+}
+
+// Frame stamps as real recordings have them: jitter of ±30 % of the interval, skipped frames (a gap of two and
+// of three intervals) and a duplicated stamp (the same time twice). The motion is fast (150 px/s, 1.5 px a nominal
+// frame), so that a tracker that took the frame index for time would miss: every row must be measured, within
+// the error bound, and the filter must not be restarted by the irregular steps.
+TEST(PointsTracker, JitteringSkippedAndDuplicatedStampsAreFollowed) {
+  constexpr double kFastSpeed = 150.0;  // px/s: the marker stays in the 160 px frame over the 50 frames
+  std::vector<double> stamps;
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> jitter(-0.3, 0.3);
+  double t = 0.0;
+  for (int k = 0; k < 50; ++k) {
+    stamps.push_back(t);
+    double step = (1.0 + jitter(rng)) / kFps;
+    if (k == 15) step = 2.0 / kFps;   // one frame skipped
+    if (k == 28) step = 3.0 / kFps;   // two skipped
+    if (k == 38) step = 0.0;          // a duplicated stamp
+    t += step;
+  }
+  const auto x_at = [&](double ts) { return 40.0 + kFastSpeed * ts; };
+  PointsTracker tracker(OneSeed("quadrant", x_at(0) + 0.5, kTruthY - 0.4), PointsTrackOptions{});
+  double worst = 0;
+  for (int k = 0; k < static_cast<int>(stamps.size()); ++k) {
+    const double ts = stamps[static_cast<std::size_t>(k)];
+    const cv::Mat f = Render(x_at(ts), kTruthY, false, 0, 0, 900 + static_cast<std::uint64_t>(k));
+    const PointRow p = tracker.Process(f, k, ts).points[0];
+    ASSERT_TRUE(p.status == RowStatus::kOk) << "frame " << k << " at t " << ts << ": status " << static_cast<int>(p.status);
+    worst = std::max(worst, std::hypot(p.px.x() - x_at(ts), p.px.y() - kTruthY));
+  }
+  EXPECT_LT(worst, kOkErrorMax);
+  EXPECT_EQ(tracker.summary()[0].restarts, 0);
 }
 
 }  // namespace points_tracker_test
