@@ -13,6 +13,7 @@ namespace {
 
 constexpr double kCentroidBackgroundSigmas = 3.5;  // background pixels further off the plane are left out
 constexpr double kMinNoiseDn = 0.3;                // as WindowNoise's floor (quantisation)
+constexpr double kMinVarShare = 0.25;              // a dark pixel's variance stays above this share of the background's
 
 class CentroidMeasurer final : public PointMeasurer {
  public:
@@ -81,6 +82,7 @@ class CentroidMeasurer final : public PointMeasurer {
     size_ = std::max(2.0, 0.8 * size_ + 0.2 * m.size_px);
   }
   int SupportHalfPx() const override { return static_cast<int>(std::ceil(size_)) + 3; }
+  void SetShotNoise(double dn2_per_dn) override { shot_slope_ = dn2_per_dn; }
 
  private:
   PointMeasurement Centroid(const cv::Mat& labels, const cv::Mat& stats, int pick, const cv::Point& tl,
@@ -90,6 +92,7 @@ class CentroidMeasurer final : public PointMeasurer {
   bool dark_;
   double size_;
   double area0_ = 0, flux0_ = 0, last_area_ = 0, last_flux_ = 0;
+  double shot_slope_ = 0.0;  // DN² per DN (ShotNoiseSlope of the recording)
   cv::Mat roi_, mask_, blob_;
 };
 
@@ -168,19 +171,24 @@ PointMeasurement CentroidMeasurer::Centroid(const cv::Mat& labels, const cv::Mat
     return m;
   }
   const Eigen::Vector2d c(sx / W, sy / W);
-  // Propagated noise: each pixel's σ_n, and the background's error shared by all pixels.
+  // Propagated noise: each pixel's variance — the background's, plus the recording's shot noise for its
+  // difference from the background (more for a bright spot, less for a dark one) — and the background's error
+  // shared by all pixels.
   Eigen::Matrix2d C = Eigen::Matrix2d::Zero();
   Eigen::Vector2d s1 = Eigen::Vector2d::Zero();
   double peak = 0;
+  const double bg_var = pixel_noise * pixel_noise;
   for (int y = 0; y < roi_.rows; ++y)
     for (int x = 0; x < roi_.cols; ++x) {
       if (!blob_.at<std::uint8_t>(y, x)) continue;
       const Eigen::Vector2d d(x - c.x(), y - c.y());
-      C += d * d.transpose();
+      const double excess = roi_.at<float>(y, x) - b_at(x, y);  // in the frame's own sense: −(I − b) when dark
+      const double var = std::max(bg_var + shot_slope_ * (dark_ ? -excess : excess), kMinVarShare * bg_var);
+      C += var * d * d.transpose();
       s1 += d;
-      peak = std::max(peak, roi_.at<float>(y, x) - b_at(x, y));
+      peak = std::max(peak, excess);
     }
-  m.cov = (pixel_noise * pixel_noise * C + sigma_b * sigma_b * s1 * s1.transpose()) / (W * W);
+  m.cov = (C + sigma_b * sigma_b * s1 * s1.transpose()) / (W * W);
   m.cov.diagonal().array() += opt_.sigma_floor_px * opt_.sigma_floor_px;
   m.px = c + Eigen::Vector2d(tl.x, tl.y);
   m.size_px = 2.0 * std::sqrt(static_cast<double>(stats.at<int>(pick, cv::CC_STAT_AREA)) / M_PI);

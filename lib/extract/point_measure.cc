@@ -45,6 +45,64 @@ double WindowNoise(const cv::Mat& roi) {
   return std::max(1.4826 * numeric::UpperMedianAndMadInPlace(d).mad / std::sqrt(2.0), 0.3);
 }
 
+double ShotNoiseSlope(const cv::Mat& frame) {
+  constexpr int kBins = 32;
+  constexpr double kMaxPairs = 300000;  // rows sampled so that a 5-megapixel frame costs what 640×480 does
+  constexpr std::size_t kMinPairs = 500;
+  constexpr double kClipMargin = 0.02;
+  if (frame.empty() || frame.channels() != 1 || frame.cols < 2) return -1.0;
+  const int row_step = std::max(4, static_cast<int>(std::ceil(static_cast<double>(frame.rows) * frame.cols / kMaxPairs)));
+  double lo = 0, hi = 0;
+  cv::minMaxLoc(frame, &lo, &hi);
+  if (!(hi > lo)) return -1.0;
+  std::vector<std::vector<double>> diffs(kBins);
+  cv::Mat row;
+  for (int y = 0; y < frame.rows; y += row_step) {
+    frame.row(y).convertTo(row, CV_32F);
+    const float* r = row.ptr<float>(0);
+    for (int x = 0; x + 1 < frame.cols; ++x) {
+      const double level = 0.5 * (static_cast<double>(r[x]) + r[x + 1]);
+      const double u = (level - lo) / (hi - lo);
+      if (u < kClipMargin || u > 1.0 - kClipMargin) continue;
+      diffs[static_cast<std::size_t>(std::min(kBins - 1, static_cast<int>(u * kBins)))].push_back(static_cast<double>(r[x + 1]) - r[x]);
+    }
+  }
+  // Weighted least squares of var = a + slope · level over the bins.
+  double sw = 0, sl = 0, sv = 0, sll = 0, slv = 0;
+  int bins = 0;
+  double lmin = 1e300, lmax = -1e300;
+  for (int b = 0; b < kBins; ++b) {
+    std::vector<double>& d = diffs[static_cast<std::size_t>(b)];
+    if (d.size() < kMinPairs) continue;
+    // The variance of the differences about their median, within 4 robust σ of it (edges left out). Not the MAD
+    // itself: on integer samples it moves in steps of half a DN, which biased the slope by half again.
+    const numeric::MedianMad mm = numeric::UpperMedianAndMadInPlace(d);  // d now holds |d − median|
+    const double cut = 4.0 * std::max(1.4826 * mm.mad, 0.5);
+    double s2 = 0, n = 0;
+    for (double dev : d) {
+      if (dev > cut) continue;
+      s2 += dev * dev;
+      n += 1;
+    }
+    if (n < static_cast<double>(kMinPairs)) continue;
+    const double var = 0.5 * s2 / n;  // of one pixel: half the difference's
+    const double level = lo + (b + 0.5) / kBins * (hi - lo);
+    const double w = n;
+    sw += w;
+    sl += w * level;
+    sv += w * var;
+    sll += w * level * level;
+    slv += w * level * var;
+    lmin = std::min(lmin, level);
+    lmax = std::max(lmax, level);
+    ++bins;
+  }
+  if (bins < 3 || !(lmax - lmin > 0.2 * (hi - lo))) return -1.0;
+  const double den = sw * sll - sl * sl;
+  if (!(den > 0)) return -1.0;
+  return std::max(0.0, (sw * slv - sl * sv) / den);
+}
+
 double OtsuThreshold(const cv::Mat& roi, double* separability) {
   double lo = 0, hi = 0;
   cv::minMaxLoc(roi, &lo, &hi);

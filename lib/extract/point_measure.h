@@ -26,7 +26,8 @@
 //                    the annulus ρ ± (3s + 2) px around the disc's edge: the rim decides the centre, and a
 //                    highlight or a reflection inside the disc has no weight.
 // σ: the fit's covariance σ_res² (JᵀJ)⁻¹ (σ_res² from the residuals, which includes what the model does not
-// describe), for the centroid the propagated pixel noise (per-pixel noise from the window's MAD, plus the
+// describe), for the centroid the propagated pixel noise (the background's scatter about its plane, plus the
+// recording's shot noise for each blob pixel's difference from the background (ShotNoiseSlope), plus the
 // background's error); each plus `sigma_floor_px` in quadrature (interpolation and pixel-locking biases).
 // Pixel convention SPEC.md §3: (0, 0) is the centre of the top-left pixel.
 #pragma once
@@ -79,6 +80,9 @@ class PointMeasurer {
   virtual void Accept(const PointMeasurement& m) = 0;
   // Half size of the image support the method looks at around the point (px).
   virtual int SupportHalfPx() const = 0;
+  // The recording's shot noise (ShotNoiseSlope): a method whose σ propagates pixel noise (the centroid) adds
+  // it for pixels brighter or darker than their background; the fitted methods' σ comes from their residuals.
+  virtual void SetShotNoise(double /*dn2_per_dn*/) {}
 };
 
 // The measurer of a seeded point; size_px is the seeds file's (marker diameter or side, template side).
@@ -90,6 +94,12 @@ std::unique_ptr<PointMeasurer> MakePointMeasurer(formats::PointMethod method, st
 bool CopyFloatRoi(const cv::Mat& frame, const cv::Rect& rect, cv::Mat* roi);
 // Noise σ of a float window: MAD of horizontal neighbour differences / √2 (robust to edges), ≥ 0.3 DN.
 double WindowNoise(const cv::Mat& roi);
+// The photon-transfer slope of a frame (DN² of pixel variance per DN of level, 1/gain for a shot-noise
+// limited sensor): the variance of horizontal neighbour differences (within 4 robust σ), halved, in 32 bins of level,
+// every 4th row (fewer in a large frame: about 300 000 pairs), fitted by a line over the bins with enough
+// pairs (levels within 2 % of the frame's extremes, where it clips, left out); at least 0. −1 when the frame
+// has too few levels to tell.
+double ShotNoiseSlope(const cv::Mat& frame);
 // Otsu's threshold of a float window (256 bins over its range) and its separability η ∈ [0, 1].
 double OtsuThreshold(const cv::Mat& roi, double* separability);
 // Cubic-convolution (Keys, a = −0.5) value and gradient of a float image at (x, y); false when the 4×4

@@ -73,6 +73,7 @@ constexpr int kNoiseRowStep = 4;
 constexpr double kTypicalWeight = 0.1;        // of the latest row in the point's usual σ and score
 constexpr double kReacquireSigmaRatio = 4.0;  // a candidate with σ beyond this × the usual is not the point
 constexpr double kReacquireScoreRatio = 0.85; // nor one scoring below this × the usual
+constexpr int kShotNoiseFrames = 10;     // frames tried for the recording's shot noise (ShotNoiseSlope)
 constexpr double kClaimedPx = 3.0;       // a candidate this close to another point's measurement is that point     // measurements after a (re)start before the χ² gate applies
 
 // NCC of the ring of a and b (same-size square patches) outside the centre square of half size r_in, divided
@@ -178,6 +179,13 @@ PointsFrameResult PointsTracker::Process(const cv::Mat& frame, std::int64_t fram
     for (const auto& p : points_) {
       if (p->id == r->id) here[p->index] = r;
     }
+  }
+  // The recording's shot noise, for the methods that propagate pixel noise: from the first frames until one
+  // has enough levels to tell (a dark first frame says nothing).
+  if (shot_tries_ < kShotNoiseFrames && shot_slope_ < 0) {
+    ++shot_tries_;
+    shot_slope_ = ShotNoiseSlope(frame);
+    for (const auto& p : points_) p->measurer->SetShotNoise(std::max(0.0, shot_slope_));
   }
   out.points.reserve(points_.size());
   claimed_.clear();

@@ -123,6 +123,8 @@ class PointsTracker {
   std::vector<PointSummary> summary_;
   std::vector<SeedFailure> seed_failures_;
   std::vector<Eigen::Vector2d> claimed_;  // the points measured so far in this frame
+  double shot_slope_ = -1.0;              // the recording's shot noise (DN² per DN), −1 until known
+  int shot_tries_ = 0;
   cv::Mat patch_;
 };
 

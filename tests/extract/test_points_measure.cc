@@ -328,3 +328,32 @@ TEST(TemplatePeaks, CoarseToFineFindsTheMarkerAnywhereInALargeFrame) {
 }
 
 }  // namespace ncc_direct_test
+
+namespace shot_noise_test {  // named: tests/extract is one unity build
+
+constexpr double kSlopeTolerance = 0.2;  // relative: the fit over binned robust variances of one frame
+
+// A frame with a sky gradient (levels 20–220 DN) and a few sharp edges, digitised with read noise 2 DN and
+// shot noise of 40 e/DN: the photon-transfer slope is 1/40 DN² per DN, in an 8-bit frame and in a 16-bit one
+// (sim::Digitise keeps the DN scale).
+TEST(ShotNoiseSlope, RecoversTheSensorsGainAtBothDepths) {
+  cv::Mat signal(480, 640, CV_32FC1);
+  for (int y = 0; y < signal.rows; ++y)
+    for (int x = 0; x < signal.cols; ++x) signal.at<float>(y, x) = static_cast<float>(10.0 + 200.0 * x / signal.cols);
+  cv::rectangle(signal, cv::Rect(100, 100, 80, 60), cv::Scalar(5.0), cv::FILLED);  // edges: outliers to the MAD
+  for (int bits : {8, 16}) {
+    rk::sim::SensorOptions o{10.0, 2.0, 40.0, bits};
+    std::mt19937_64 rng(31);
+    const cv::Mat frame = rk::sim::Digitise(signal, o, rng);
+    const double want = 1.0 / 40.0;
+    EXPECT_NEAR(rk::extract::ShotNoiseSlope(frame), want, kSlopeTolerance * want) << bits << "-bit";
+  }
+  // Read noise only: no slope.
+  rk::sim::SensorOptions flat{10.0, 2.0, 0.0, 8};
+  std::mt19937_64 rng(32);
+  EXPECT_LT(rk::extract::ShotNoiseSlope(rk::sim::Digitise(signal, flat, rng)), 0.004);
+  // One level: nothing to tell.
+  EXPECT_EQ(rk::extract::ShotNoiseSlope(cv::Mat(100, 100, CV_8UC1, cv::Scalar(50))), -1.0);
+}
+
+}  // namespace shot_noise_test
