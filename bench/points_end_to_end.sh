@@ -18,14 +18,7 @@ mkdir -p "$OUT"
 S=$OUT/summary.md
 : > "$S"
 say() { echo "$*" | tee -a "$S"; }
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
-timed() {
-  for _ in $(seq "$REPEATS"); do
-    /usr/bin/python3 -c 'import subprocess, sys, time
-t = time.perf_counter(); subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, check=True)
-print("%.3f" % (time.perf_counter() - t))' "$@"
-  done | median
-}
+. "$ROOT/bench/lib.sh"  # median, timed
 say "## rk-extract points end to end (issue 31) — $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) cores"
 say ""
 say "rk-sim points moving, 2448x2048, $FRAMES frames, 7 points; median of $REPEATS runs; \`bench/points_end_to_end.sh\` (Release build)."

@@ -62,15 +62,7 @@ with open(os.path.join(out, "rec.y4m"), "wb") as f:
         f.write(b"FRAME\n" + rnd(w * h))
 PY
 
-median() { sort -g | awk '{a[NR]=$1} END {print (NR%2 ? a[(NR+1)/2] : (a[NR/2]+a[NR/2+1])/2)}'; }
-# Wall seconds of a command, median of REPEATS.
-timed() {
-  for _ in $(seq "$REPEATS"); do
-    /usr/bin/python3 -c 'import subprocess, sys, time
-t = time.perf_counter(); subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
-print("%.4f" % (time.perf_counter() - t))' "$@"
-  done | median
-}
+. "$ROOT/bench/lib.sh"  # median, timed
 
 say "## Reading recordings (issue 29) — $(date -u +%Y-%m-%dT%H:%MZ), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | xargs)"
 say ""
