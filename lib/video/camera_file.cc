@@ -24,8 +24,6 @@ const char* TimeSourceName(TimeSource source) {
 }
 
 namespace {
-// Bytes unpacked per step of a band.
-constexpr std::uint64_t kChunkBytes = 256 * 1024;
 
 std::string LowerExtension(const std::string& path) {
   std::string e = fs::path(path).extension().string();
@@ -101,22 +99,19 @@ void CameraFileReader::ReadMosaic(std::int64_t index, cv::Mat* out) {
   }
   if (!f.bottom_up) {
     // Packed or widened: unpacked in place from the file's mapping (no copy out of the page cache: that copy
-    // was 40 % of the time), in two bands, one per core (cv::parallel_for_, OpenCV's pool: no thread per frame),
-    // each a chunk at a time so that the frame's rows are written while their bytes are near.
+    // was 40 % of the time), in two bands, one per core (cv::parallel_for_, OpenCV's pool: no thread per frame).
     // bench/video_read_bench.sh: 1.6 x dd by pread into an L2-sized buffer, 1.0 x from the mapping.
     const std::uint8_t* const src = data_->MappedAt(offset, f.frame_bytes, what);
-    const std::uint64_t group = static_cast<std::uint64_t>(InfoOf(f.packing).pixels_per_group) * 8;
-    const std::uint64_t chunk_pixels = std::max<std::uint64_t>(group, kChunkBytes / PackedBytes(f.packing, group) * group);
-    const std::uint64_t half = (pixels / 2 + chunk_pixels - 1) / chunk_pixels * chunk_pixels;  // whole chunks
+    const std::uint64_t group = static_cast<std::uint64_t>(InfoOf(f.packing).pixels_per_group);
+    const std::uint64_t half = std::min(pixels, (pixels / 2 + group - 1) / group * group);  // whole groups
     std::uint64_t clamped[2] = {0, 0};
     std::exception_ptr error[2];  // rethrown here: OpenCV would turn them into cv::Exception
     cv::parallel_for_(cv::Range(0, 2), [&](const cv::Range& bands) {
       for (int b = bands.start; b < bands.end; ++b) try {
-        const std::uint64_t begin = b == 0 ? 0 : std::min(half, pixels), end = b == 0 ? std::min(half, pixels) : pixels;
-        for (std::uint64_t done = begin; done < end; done += chunk_pixels) {
-          const std::uint64_t n = std::min(chunk_pixels, end - done);
-          clamped[b] += Unpack16(f.packing, f.significant_bits, src + PackedBytes(f.packing, done), n,
-                                 out->ptr<std::uint16_t>() + done);
+        const std::uint64_t begin = b == 0 ? 0 : half, end = b == 0 ? half : pixels;
+        if (end > begin) {
+          clamped[b] = Unpack16(f.packing, f.significant_bits, src + PackedBytes(f.packing, begin), end - begin,
+                                out->ptr<std::uint16_t>() + begin);
         }
       } catch (...) {
         error[b] = std::current_exception();
