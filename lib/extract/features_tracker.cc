@@ -6,6 +6,10 @@
 
 namespace rk::extract {
 
+namespace {
+constexpr double kMinMeasVarPx2 = 1e-6;  // a floor on a marker's measurement variance for the motion model
+}  // namespace
+
 const io::OptionTable<FeatureTrackOptions>& FeatureTrackOptions::Table() {
   using B = io::Bounds;
   using O = FeatureTrackOptions;
@@ -102,10 +106,13 @@ void FeatureTracker::TrackMarkers(double t_s, FeatureFrameResult* out) {
   const std::size_t n = model_.size();
   // 1. Predicted search for every marker with a recent position.
   for (std::size_t i = 0; i < n; ++i) {
-    const MarkerTrack& tr = tracks_[i];
+    MarkerTrack& tr = tracks_[i];
     if (!tr.has_pos || t_s - tr.last_t > opt_.coast_s) continue;
-    const Eigen::Vector2d motion = tr.has_vel ? Eigen::Vector2d(tr.vel * (t_s - tr.last_t)) : Eigen::Vector2d::Zero();
-    const Eigen::Vector2d pred = tr.pos + motion;
+    // The shared image motion model (track/image_motion.h); until two consecutive measurements give it a
+    // velocity it predicts the last position.
+    tr.motion.PredictTo(t_s);
+    const Eigen::Vector2d pred = tr.fresh ? tr.pos : tr.motion.Predicted();
+    const Eigen::Vector2d motion = pred - tr.pos;
     const double search = opt_.search_px + opt_.search_speed_factor * motion.norm();
     const MarkerMeasurement m = detector_.Measure(pred, search, tr.radius, tr.edge);
     if (m.ok) Accept(i, m, t_s, out);
@@ -195,12 +202,14 @@ FeatureFrameResult FeatureTracker::Process(const cv::Mat& frame, std::int64_t in
     MarkerTrack& tr = tracks_[i];
     if (p.has_xy) {
       ++measured;
-      if (tr.has_pos && !tr.lost && t_s > tr.last_t) {
-        tr.vel = (p.px - tr.pos) / (t_s - tr.last_t);
-        tr.has_vel = true;
+      const double var = std::max(p.sigma_px * p.sigma_px, kMinMeasVarPx2);
+      const Eigen::Matrix2d R = var * Eigen::Matrix2d::Identity();
+      if (tr.has_pos && !tr.lost && !tr.fresh && t_s > tr.last_t) {
+        tr.motion.Update(p.px, R, t_s);
       } else {
-        tr.has_vel = false;
+        tr.motion.Start(p.px, R, t_s);
       }
+      tr.fresh = false;
       tr.pos = p.px;
       tr.has_pos = true;
       tr.last_t = t_s;
@@ -217,7 +226,7 @@ FeatureFrameResult FeatureTracker::Process(const cv::Mat& frame, std::int64_t in
     ++summary_.rows_by_status[static_cast<std::size_t>(p.status)];
   }
   if (!locked_) {
-    for (auto& tr : tracks_) tr.has_vel = false;
+    for (auto& tr : tracks_) tr.fresh = true;  // identities found again: each motion starts afresh
   }
   if (measured >= 4) ++summary_.frames_with_4;
   ++summary_.frames;

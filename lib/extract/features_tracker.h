@@ -5,8 +5,9 @@
 // detected and measured (features_detect.h) and identified against the model
 // (features_identify.h). Refused identifications (ambiguous, too few markers) leave the frame
 // without points; the next frame tries again.
-// Tracking: each identified marker is predicted from its last two measurements (constant image
-// velocity), searched by correlation within search_px + search_speed_factor · |predicted
+// Tracking: each identified marker is predicted by the image motion model rk-extract points uses
+// (track/image_motion.h: a Singer filter per axis whose velocity starts from two consecutive
+// measurements; before that, the last position), searched by correlation within search_px + search_speed_factor · |predicted
 // motion| of the prediction, and measured by least-squares correlation. Then the constellation
 // is checked: an affine camera is fitted to the measured markers (≥ 5, or ≥ 4 for a planar
 // model) and a marker farther than gate_frac × (the smallest separation of the predicted
@@ -31,6 +32,7 @@
 #include "extract/features_identify.h"
 #include "io/row_status.h"
 #include "target/feature_model.h"
+#include "track/image_motion.h"
 
 namespace rk::extract {
 
@@ -90,8 +92,9 @@ class FeatureTracker {
  private:
   struct MarkerTrack {
     bool has_pos = false;
-    Eigen::Vector2d pos{0, 0}, vel{0, 0};  // px, px/s
-    bool has_vel = false;
+    Eigen::Vector2d pos{0, 0};             // the last measurement (px)
+    track::ImagePointMotion motion;        // its image motion (velocity from two consecutive measurements)
+    bool fresh = true;                     // the next measurement starts the motion again
     double last_t = 0.0;
     double radius = 0.0, edge = 1.0;
     bool ever = false;                     // measured at least once

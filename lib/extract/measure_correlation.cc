@@ -120,6 +120,7 @@ class CorrelationMeasurer final : public PointMeasurer {
     offset_ = Eigen::Vector2d(ix - px.x(), iy - px.y());
     A_.setIdentity();
     fit_A_.setIdentity();
+    accepted_A_.setIdentity();
     gain_ = 1.0;
     offs_ = 0.0;
     // The seed defines the point: its own position, σ from the anchor's gradients (the CR bound).
@@ -187,12 +188,13 @@ class CorrelationMeasurer final : public PointMeasurer {
   }
 
   void Accept(const PointMeasurement&) override {
-    A_ = fit_A_;
+    A_ = accepted_A_ = fit_A_;
     gain_ = fit_gain_;
     offs_ = fit_offs_;
   }
+  void PredictChange(const Eigen::Matrix2d& L) override { A_ = L * accepted_A_; }
   int SupportHalfPx() const override {
-    return static_cast<int>(std::ceil(half_ * std::max(1.0, A_.norm() / std::sqrt(2.0)))) + 2;
+    return static_cast<int>(std::ceil(half_ * std::max(1.0, accepted_A_.norm() / std::sqrt(2.0)))) + 2;
   }
 
  private:
@@ -215,7 +217,9 @@ class CorrelationMeasurer final : public PointMeasurer {
   double anchor_noise_ = 1.0;  // pixel noise σ (DN) of the seed frame
   JacobianCols jac_;
   Eigen::Vector2d offset_{0, 0};  // anchor centre pixel − seed position
-  Eigen::Matrix2d A_ = Eigen::Matrix2d::Identity(), fit_A_ = Eigen::Matrix2d::Identity();
+  // A_: the warp searched with (the last accepted, or that times the group's change while hidden).
+  Eigen::Matrix2d A_ = Eigen::Matrix2d::Identity(), fit_A_ = Eigen::Matrix2d::Identity(),
+                  accepted_A_ = Eigen::Matrix2d::Identity();
   double gain_ = 1.0, offs_ = 0.0, fit_gain_ = 1.0, fit_offs_ = 0.0;
 };
 

@@ -78,6 +78,9 @@ class PointMeasurer {
                                                  double search_px, int max_n) = 0;
   // The tracker accepted m: follow the marker's slow changes (radius, angles, warp).
   virtual void Accept(const PointMeasurement& m) = 0;
+  // While the point is hidden, the other points say the target's image has changed by the linear map L
+  // (rotation and scale) since the measurement last accepted: the next search starts from that appearance.
+  virtual void PredictChange(const Eigen::Matrix2d& /*L*/) {}
   // Half size of the image support the method looks at around the point (px).
   virtual int SupportHalfPx() const = 0;
   // The recording's shot noise (ShotNoiseSlope): a method whose σ propagates pixel noise (the centroid) adds

@@ -23,11 +23,11 @@ const io::OptionTable<PointsTrackOptions>& PointsTrackOptions::Table() {
                 B::AtLeast(0), "Smallest marker contrast accepted, in noise sigmas of its window")
           .Real("--sigma-floor", [](O& o) -> double& { return o.measure.sigma_floor_px; }, "px", B::AtLeast(0),
                 "Added in quadrature to every row's sigma (px)")
-          .Real("--maneuver-time", &O::maneuver_time_s, "s", B::Positive().Finite(),
+          .Real("--maneuver-time", [](O& o) -> double& { return o.motion.maneuver_time_s; }, "s", B::Positive().Finite(),
                 "Singer maneuver time constant 1/a (s)")
-          .Real("--accel-sigma", &O::accel_sigma_px_s2, "px/s^2", B::Positive().Finite(),
+          .Real("--accel-sigma", [](O& o) -> double& { return o.motion.accel_sigma_px_s2; }, "px/s^2", B::Positive().Finite(),
                 "Singer RMS image acceleration (px/s^2)")
-          .Real("--init-vel-sigma", &O::init_vel_sigma_px_s, "px/s", B::Positive().Finite(),
+          .Real("--init-vel-sigma", [](O& o) -> double& { return o.motion.init_vel_sigma_px_s; }, "px/s", B::Positive().Finite(),
                 "Image velocity uncertainty at a seed or a restart (px/s)")
           .Real("--gate-sigma", &O::gate_sigma, "", B::Positive(), "Search half-width in predicted sigmas")
           .Real("--gate-chi2", &O::gate_chi2, "", B::Positive(),
@@ -59,22 +59,21 @@ bool PointsTrackOptions::Check(std::string* why) const {
 
 namespace {
 
-track::SingerAxisOptions PointAxis(const PointsTrackOptions& o) {
-  track::SingerAxisOptions a;
-  a.maneuver_time_s = o.maneuver_time_s;
-  a.accel_sigma = o.accel_sigma_px_s2;
-  return a;
-}
-
 constexpr double kMinMeasVar = 1e-6;  // px²: a floor on R so that S stays invertible
-constexpr int kSettleUpdates = 2;
 constexpr double kStructureSnr = 3.0;    // surroundings whose variance beyond the noise's is below 3 σ_n² are flat
 constexpr int kNoiseRowStep = 4;
 constexpr double kTypicalWeight = 0.1;        // of the latest row in the point's usual σ and score
 constexpr double kReacquireSigmaRatio = 4.0;  // a candidate with σ beyond this × the usual is not the point
 constexpr double kReacquireScoreRatio = 0.85; // nor one scoring below this × the usual
 constexpr int kShotNoiseFrames = 10;     // frames tried for the recording's shot noise (ShotNoiseSlope)
-constexpr double kClaimedPx = 3.0;       // a candidate this close to another point's measurement is that point     // measurements after a (re)start before the χ² gate applies
+constexpr double kCleanScoreRatio = 0.97;  // a clean measurement scores at least this × the point's usual
+constexpr double kCleanSigmaRatio = 1.5;   // and its σ is at most this × the usual
+constexpr int kGroupMin = 3;             // other points, there and here, for a group prediction
+constexpr double kGroupMaxRmsPx = 1.0;   // they moved as one body: the similarity fits them to this RMS (px)
+constexpr double kGroupTolPx = 1.0;      // a candidate within this (+ kGroupTolSigmas × that RMS) of the
+constexpr double kGroupTolSigmas = 4.0;  //   group's prediction is the point
+constexpr double kGroupScore = 2.0;      // ranks a candidate at the group's prediction above any ring NCC (≤ 1)
+constexpr double kClaimedPx = 3.0;       // a candidate this close to another point's measurement is that point
 
 // NCC of the ring of a and b (same-size square patches) outside the centre square of half size r_in, divided
 // by the NCC that pixel noise alone leaves between two views of the same surroundings (σ_n from each
@@ -124,21 +123,18 @@ struct PointsTracker::Point {
   std::string id;
   formats::PointMethod method{};
   std::unique_ptr<PointMeasurer> measurer;
-  track::SingerFilter<2> kf;
+  track::ImagePointMotion motion;
   bool started = false;
   bool tracking = false;        // the last frame was accepted
   double last_t = 0.0, miss_since = 0.0;
   Eigen::Matrix2d R = Eigen::Matrix2d::Identity();
-  int settle = 0;               // measurements since the filter (re)started (velocity known from the 2nd)
-  Eigen::Vector2d first_z{0, 0};  // the (re)start's measurement and time, for the two-point velocity
-  double first_t = 0.0;
-  Eigen::Vector2d last_z{0, 0};   // the last accepted measurement and its time
-  double last_z_t = 0.0;
   cv::Mat context;              // surroundings at the last good frame (CV_32F, (2 r + 1)²)
   int context_inner = 0;
   double context_noise = 1.0;   // its pixel noise (PatchNoise)
   double typical_sigma = 0.0, typical_score = 0.0;  // of its accepted measurements (exponential mean)
-  explicit Point(const PointsTrackOptions& o) : kf({PointAxis(o), PointAxis(o)}) {}
+  Eigen::Vector2d clean_z{0, 0};  // the last clean measurement (AcceptRow) ...
+  std::vector<Claim> anchors;     // ... and the other points' clean ones in that frame (GroupPrediction)
+  explicit Point(const PointsTrackOptions& o) : motion(o.motion) {}
 };
 
 PointsTracker::~PointsTracker() = default;
@@ -187,17 +183,32 @@ PointsFrameResult PointsTracker::Process(const cv::Mat& frame, std::int64_t fram
     shot_slope_ = ShotNoiseSlope(frame);
     for (const auto& p : points_) p->measurer->SetShotNoise(std::max(0.0, shot_slope_));
   }
-  out.points.reserve(points_.size());
+  // Points still tracking (and seeds) first, then the hidden ones: a re-acquisition knows where every other
+  // point is in this frame (the group's prediction, and candidates that are another point).
+  out.points.assign(points_.size(), PointRow{});
   claimed_.clear();
-  for (const auto& p : points_) {
-    PointSummary& sum = summary_[p->index];
-    PointRow row = Step(*p, frame, t_s, here[p->index], sum);
-    ++sum.rows_by_status[static_cast<int>(row.status)];
-    if (row.has_score) {
-      sum.score_sum += row.score;
-      ++sum.scored;
+  for (int pass = 0; pass < 2; ++pass) {
+    for (const auto& p : points_) {
+      const bool hidden = p->started && !p->tracking && !here[p->index];
+      if (hidden != (pass == 1)) continue;
+      PointSummary& sum = summary_[p->index];
+      PointRow row = Step(*p, frame, t_s, here[p->index], sum);
+      ++sum.rows_by_status[static_cast<int>(row.status)];
+      if (row.has_score) {
+        sum.score_sum += row.score;
+        ++sum.scored;
+      }
+      out.points[p->index] = row;
     }
-    out.points.push_back(row);
+  }
+  // Each accepted point remembers where the others were in this frame (GroupPrediction).
+  for (const Claim& mine : claimed_) {
+    if (!mine.clean) continue;
+    std::vector<Claim>& anchors = points_[mine.index]->anchors;
+    anchors.clear();
+    for (const Claim& c : claimed_) {
+      if (c.index != mine.index && c.clean) anchors.push_back(c);
+    }
   }
   return out;
 }
@@ -211,9 +222,8 @@ PointRow PointsTracker::Step(Point& p, const cv::Mat& frame, double t_s, const f
     return r;
   }
   if (!p.started) return PointRow{};  // before its first seed: lost, no position
-  const double dt = std::max(0.0, t_s - p.last_t);
   p.last_t = t_s;
-  return Track(p, frame, dt, sum);
+  return Track(p, frame, sum);
 }
 
 PointRow PointsTracker::Reseed(Point& p, const cv::Mat& frame, const formats::SeedRow& seed, PointSummary& sum) {
@@ -224,9 +234,9 @@ PointRow PointsTracker::Reseed(Point& p, const cv::Mat& frame, const formats::Se
   if (!m.ok) {
     ++sum.seed_failures;
     seed_failures_.push_back({seed.line, p.id, m.why});
-    p.kf.Initialise(at, Eigen::Matrix2d::Identity(), opt_.init_vel_sigma_px_s, opt_.accel_sigma_px_s2);
+    // The user's position starts the motion (1 px²); the method's first measurement gives the velocity.
+    p.motion.Start(at, Eigen::Matrix2d::Identity(), p.last_t);
     p.R = Eigen::Matrix2d::Identity();
-    p.settle = 0;
     p.tracking = false;
     p.context.release();
     PointRow r;
@@ -239,13 +249,13 @@ PointRow PointsTracker::Reseed(Point& p, const cv::Mat& frame, const formats::Se
   return AcceptRow(p, frame, m, false, true);
 }
 
-PointRow PointsTracker::Track(Point& p, const cv::Mat& frame, double dt, PointSummary& sum) {
-  p.kf.Predict(dt);
-  const Eigen::Vector2d pred = p.kf.PredictedMeasurement();
-  const Eigen::Matrix2d S = p.kf.InnovationCovariance(p.R);
+PointRow PointsTracker::Track(Point& p, const cv::Mat& frame, PointSummary& sum) {
+  p.motion.PredictTo(p.last_t);
+  const Eigen::Vector2d pred = p.motion.Predicted();
+  const Eigen::Matrix2d S = p.motion.InnovationCovariance(p.R);
   const double spread = opt_.gate_sigma * std::sqrt(std::max(S(0, 0), S(1, 1)));
   // Until the filter has two measurements its velocity is a guess: the largest window, no χ² gate.
-  const bool settling = p.settle < kSettleUpdates;
+  const bool settling = !p.motion.settled();
   const double window = settling ? opt_.window_max_px : std::clamp(spread, opt_.window_min_px, opt_.window_max_px);
   if (p.tracking) {
     const PointMeasurement m = p.measurer->Measure(frame, pred, window);
@@ -254,13 +264,11 @@ PointRow PointsTracker::Track(Point& p, const cv::Mat& frame, double dt, PointSu
       R.diagonal().array() += kMinMeasVar;
       // Its surroundings too: a marker that vanished and an identical one in its place are not one point.
       if (ContextScore(p, frame, m.px) >= opt_.context_min) {
-        if (!settling && p.kf.Mahalanobis2(m.px, R) > opt_.gate_chi2) {
+        if (!settling && p.motion.Mahalanobis2(m.px, R) > opt_.gate_chi2) {
           // The same marker where the model did not expect it (a manoeuvre beyond --accel-sigma): the
           // motion restarts from its last two measurements.
           ++sum.restarts;
-          p.settle = 1;
-          p.first_z = p.last_z;
-          p.first_t = p.last_z_t;
+          p.motion.RestartFromLast();
         }
         return AcceptRow(p, frame, m, false, false);
       }
@@ -277,7 +285,7 @@ PointRow PointsTracker::Track(Point& p, const cv::Mat& frame, double dt, PointSu
   if (Reacquire(p, frame, reach, &m, sum, &invalid)) {
     Eigen::Matrix2d R = m.cov;
     R.diagonal().array() += kMinMeasVar;
-    const bool restart = p.kf.Mahalanobis2(m.px, R) > opt_.gate_chi2;
+    const bool restart = p.motion.Mahalanobis2(m.px, R) > opt_.gate_chi2;
     if (restart) ++sum.restarts;
     return AcceptRow(p, frame, m, true, restart);
   }
@@ -286,9 +294,16 @@ PointRow PointsTracker::Track(Point& p, const cv::Mat& frame, double dt, PointSu
 
 bool PointsTracker::Reacquire(Point& p, const cv::Mat& frame, double search, PointMeasurement* out,
                               PointSummary& sum, bool* invalid) {
-  const Eigen::Vector2d pred = p.kf.PredictedMeasurement();
+  const Eigen::Vector2d pred = p.motion.Predicted();
   const std::vector<PointCandidate> cands = p.measurer->Candidates(frame, pred, search, 8);
   const bool has_context = !p.context.empty();
+  // Where the other points say it is: a candidate there is the point, whatever its surroundings look like
+  // (a cloud still over part of them); elsewhere its surroundings must match.
+  Eigen::Vector2d group_px;
+  double group_tol = 0.0;
+  Eigen::Matrix2d group_change;
+  const bool grouped = GroupPrediction(p, &group_px, &group_tol, &group_change);
+  if (grouped) p.measurer->PredictChange(group_change);
   double best = -2, second = -2;
   for (const PointCandidate& c : cands) {
     const PointMeasurement m = p.measurer->Measure(frame, c.px, 2.0);
@@ -300,9 +315,10 @@ bool PointsTracker::Reacquire(Point& p, const cv::Mat& frame, double search, Poi
     }
     // Another point measured here this frame (an identical marker elsewhere on the target): not this one.
     bool taken = false;
-    for (const Eigen::Vector2d& q : claimed_) taken = taken || (q - m.px).norm() < kClaimedPx;
+    for (const Claim& q : claimed_) taken = taken || (q.px - m.px).norm() < kClaimedPx;
     if (taken) continue;
-    const double ctx = ContextScore(p, frame, m.px);
+    const bool at_group = grouped && (m.px - group_px).norm() <= group_tol;
+    const double ctx = at_group ? kGroupScore : ContextScore(p, frame, m.px);
     if (ctx < opt_.context_min) {
       ++sum.lookalikes_refused;
       continue;
@@ -330,6 +346,43 @@ bool PointsTracker::Reacquire(Point& p, const cv::Mat& frame, double search, Poi
   return true;
 }
 
+bool PointsTracker::GroupPrediction(const Point& p, Eigen::Vector2d* px, double* tolerance_px,
+                                    Eigen::Matrix2d* change) const {
+  Eigen::Matrix2Xd then(2, p.anchors.size()), now(2, p.anchors.size());
+  Eigen::Index n = 0;
+  for (const Claim& a : p.anchors) {
+    for (const Claim& c : claimed_) {
+      if (c.index != a.index || !c.clean) continue;
+      then.col(n) = a.px;
+      now.col(n) = c.px;
+      ++n;
+    }
+  }
+  if (n < kGroupMin) return false;
+  then.conservativeResize(2, n);
+  now.conservativeResize(2, n);
+  // The least-squares similarity (Umeyama 1991; in 2-D a complex factor, closed form). Eigen::umeyama does
+  // the same, but GCC 12 warns (-Wstringop-overread, a false positive) inside it.
+  const Eigen::Vector2d mt = then.rowwise().mean(), mn = now.rowwise().mean();
+  double sxx = 0, c = 0, d = 0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const Eigen::Vector2d u = then.col(i) - mt, v = now.col(i) - mn;
+    sxx += u.squaredNorm();
+    c += u.dot(v);
+    d += u.x() * v.y() - u.y() * v.x();
+  }
+  if (!(sxx > 0)) return false;
+  Eigen::Matrix2d A;
+  A << c / sxx, -d / sxx, d / sxx, c / sxx;
+  const Eigen::Vector2d b = mn - A * mt;
+  const double rms = std::sqrt(((A * then).colwise() + b - now).squaredNorm() / static_cast<double>(n));
+  if (!(rms <= kGroupMaxRmsPx)) return false;
+  *px = A * p.clean_z + b;
+  *change = A;
+  *tolerance_px = kGroupTolPx + kGroupTolSigmas * rms;
+  return true;
+}
+
 double PointsTracker::ContextScore(Point& p, const cv::Mat& frame, const Eigen::Vector2d& px) {
   if (p.context.empty()) return 1.0;
   const int R = p.context.cols / 2;
@@ -343,42 +396,26 @@ PointRow PointsTracker::AcceptRow(Point& p, const cv::Mat& frame, const PointMea
   Eigen::Matrix2d R = m.cov;
   R.diagonal().array() += kMinMeasVar;
   if (restart) {
-    p.kf.Initialise(m.px, R, opt_.init_vel_sigma_px_s, opt_.accel_sigma_px_s2);
-    p.settle = 1;
-    p.first_z = m.px;
-    p.first_t = p.last_t;
-  } else if (p.settle == 1 && p.last_t > p.first_t) {
-    // Two-point start: the velocity from the first two measurements (a high-speed camera's image velocity
-    // can be 10⁵ px/s, far beyond any prior), its variance from theirs.
-    const double dt = p.last_t - p.first_t;
-    track::SingerFilter<2>::State x = track::SingerFilter<2>::State::Zero();
-    track::SingerFilter<2>::Cov P = track::SingerFilter<2>::Cov::Zero();
-    const Eigen::Vector2d v = (m.px - p.first_z) / dt;
-    for (int i = 0; i < 2; ++i) {
-      x(3 * i) = m.px(i);
-      x(3 * i + 1) = v(i);
-      P(3 * i, 3 * i) = R(i, i);
-      P(3 * i, 3 * i + 1) = P(3 * i + 1, 3 * i) = R(i, i) / dt;
-      P(3 * i + 1, 3 * i + 1) = (R(i, i) + p.R(i, i)) / (dt * dt);
-      P(3 * i + 2, 3 * i + 2) = opt_.accel_sigma_px_s2 * opt_.accel_sigma_px_s2;
-    }
-    p.kf.set_state(x, P);
-    p.settle = 2;
+    p.motion.Start(m.px, R, p.last_t);
   } else {
-    p.kf.Update(m.px, R);
-    ++p.settle;
+    p.motion.Update(m.px, R, p.last_t);
   }
   p.R = R;
   p.tracking = true;
-  p.last_z = m.px;
-  p.last_z_t = p.last_t;
-  // The point's usual measurement quality (exponential mean over its accepted rows).
+  // A measurement as good as the point's usual (not one half under a cloud's edge, whose position drifts)
+  // is what the method learns the appearance from and what the group's prediction starts from.
   const double sig = std::sqrt(0.5 * m.cov.trace());
+  const bool clean = !(p.typical_sigma > 0) || (m.score >= kCleanScoreRatio * p.typical_score &&
+                                                sig <= kCleanSigmaRatio * p.typical_sigma);
+  // The point's usual measurement quality (exponential mean over its accepted rows).
   const double w = p.typical_sigma > 0 ? kTypicalWeight : 1.0;
   p.typical_sigma = (1 - w) * p.typical_sigma + w * sig;
   p.typical_score = (1 - w) * p.typical_score + w * m.score;
-  claimed_.push_back(m.px);
-  p.measurer->Accept(m);
+  claimed_.push_back({p.index, m.px, clean});
+  if (clean) {
+    p.measurer->Accept(m);
+    p.clean_z = m.px;
+  }
   // The surroundings, for telling this point from a look-alike after it was hidden.
   const int inner = p.measurer->SupportHalfPx();
   const int outer = std::clamp(2 * inner, inner + 6, inner + 40);
@@ -401,14 +438,14 @@ PointRow PointsTracker::AcceptRow(Point& p, const cv::Mat& frame, const PointMea
 
 PointRow PointsTracker::MissRow(Point& p, bool invalid) {
   PointRow r;
-  const Eigen::Matrix2d S = p.kf.InnovationCovariance(Eigen::Matrix2d::Zero());
+  const Eigen::Matrix2d S = p.motion.InnovationCovariance(Eigen::Matrix2d::Zero());
   const double sigma = std::sqrt(std::max(S(0, 0), S(1, 1)));
   if (invalid) {
     r.status = RowStatus::kInvalid;
   } else if (sigma <= opt_.predict_max_sigma_px && p.last_t - p.miss_since <= opt_.predict_max_gap_s) {
     r.status = RowStatus::kPredicted;
     r.has_xy = true;
-    r.px = p.kf.PredictedMeasurement();
+    r.px = p.motion.Predicted();
     r.sigma_px = S.diagonal().cwiseSqrt();
   } else {
     r.status = RowStatus::kLost;

@@ -5,7 +5,8 @@
 //   1. A seeds-file row at this frame (re)starts the point: its measurer learns the appearance there and
 //      measures it within ±search_px (seeds `search_px`, else --seed-search); the row is `ok` (or `invalid`
 //      with the user's position kept as the filter's start, when the method finds nothing there).
-//   2. Otherwise the Singer filter (track/singer.h, 2-D in px, the one owner of the motion model) predicts
+//   2. Otherwise the image motion model (track/image_motion.h: a Singer filter per axis, shared with
+//      rk-extract features) predicts
 //      the point; the search half-width is gate_sigma · √S (S the innovation covariance with the last
 //      measurement's own covariance), within [--window-min, --window-max] px.
 //   3. While tracking, the nearest good match in the window is accepted (`ok`) and updates the filter with
@@ -19,11 +20,19 @@
 //      identical marker that appears where the hidden one was predicted is not taken for it.
 //      Re-acquisition looks at every candidate of the method in the whole frame (or ±--reacquire-px of the
 //      prediction), not only the nearest, so a point that moved anywhere while hidden (a reversal) is found
-//      the frame it returns; a candidate another point measured in this frame is that point, not this one; a candidate is taken only if its surroundings (the ring between the method's
-//      support and twice it, where a look-alike marker differs from the real one) correlate with those
-//      stored at the point's last good frame (NCC ≥ --context-min), the best such; two nearly equal
-//      (within 0.05) are ambiguous and give `invalid`; a candidate whose surroundings do not match (a
-//      look-alike) is refused and counted, and the point stays predicted or lost.
+//      the frame it returns; a candidate another point measured in this frame is that point, not this one.
+//      Hidden points are looked for after the others, so each knows where the rest of the target is: when
+//      at least 3 other points were measured both in the point's last good frame and in this one and one
+//      similarity (shift, rotation, scale) carries them from there to here within 1 px RMS (they move as one
+//      body), that similarity applied to the point's last position is where the target carried it, and its
+//      rotation and scale are given to the method (a correlation template turned and grown while hidden); a
+//      candidate within 1 px + 4 × that RMS of it is the point. Any other candidate is taken only if its
+//      surroundings (the ring between the method's support and twice it, where a look-alike marker differs
+//      from the real one) correlate with those stored at the point's last good frame (NCC ≥
+//      --context-min), the best such; two nearly equal (within 0.05) are ambiguous and give `invalid`; a
+//      candidate whose surroundings do not match (a look-alike) is refused and counted, and the point stays
+//      predicted or lost. (The surroundings alone fail while a cloud still covers part of them: the group
+//      re-acquires such a marker the frame it comes out.)
 //      The first accepted row after a miss is `reacquired`; one outside the gate restarts the filter.
 // σ per row: the method's own (point_measure.h), written as sigma_x_px, sigma_y_px; score the method's.
 #pragma once
@@ -40,15 +49,13 @@
 #include "io/json_util.h"
 #include "io/options.h"
 #include "io/row_status.h"
-#include "track/singer.h"
+#include "track/image_motion.h"
 
 namespace rk::extract {
 
 struct PointsTrackOptions {
   PointMeasureOptions measure;
-  double maneuver_time_s = 0.1;         // Singer τ_m (s)
-  double accel_sigma_px_s2 = 20000.0;   // Singer σ_m, RMS image acceleration (px/s²)
-  double init_vel_sigma_px_s = 200.0;   // velocity uncertainty at a seed or a restart (px/s)
+  track::ImageMotionOptions motion;     // --maneuver-time, --accel-sigma, --init-vel-sigma
   double gate_sigma = 4.0;              // search half-width in innovation sigmas
   double gate_chi2 = 18.4;              // Mahalanobis gate d² (2 dof, 99.99 %)
   double window_min_px = 3.0;           // search half-width bounds while tracking (px)
@@ -108,7 +115,7 @@ class PointsTracker {
   struct Point;
   PointRow Step(Point& p, const cv::Mat& frame, double t_s, const formats::SeedRow* seed, PointSummary& sum);
   PointRow Reseed(Point& p, const cv::Mat& frame, const formats::SeedRow& seed, PointSummary& sum);
-  PointRow Track(Point& p, const cv::Mat& frame, double dt, PointSummary& sum);
+  PointRow Track(Point& p, const cv::Mat& frame, PointSummary& sum);
   bool Reacquire(Point& p, const cv::Mat& frame, double search, PointMeasurement* m, PointSummary& sum, bool* invalid);
   PointRow AcceptRow(Point& p, const cv::Mat& frame, const PointMeasurement& m, bool reacquired, bool restart);
   PointRow MissRow(Point& p, bool invalid);
@@ -122,7 +129,17 @@ class PointsTracker {
   std::size_t next_seed_ = 0;
   std::vector<PointSummary> summary_;
   std::vector<SeedFailure> seed_failures_;
-  std::vector<Eigen::Vector2d> claimed_;  // the points measured so far in this frame
+  struct Claim {
+    std::size_t index = 0;
+    Eigen::Vector2d px{0, 0};
+    bool clean = true;  // as good as the point's usual measurement (AcceptRow)
+  };
+  // Where the point's group puts it now: the similarity (shift, rotation, scale) that carries the other points
+  // from the point's last good frame to this one, applied to its last position; false without at least
+  // kGroupMin of them there and here, or when they did not move as one body. *change: the similarity's
+  // linear part (rotation and scale since then).
+  bool GroupPrediction(const Point& p, Eigen::Vector2d* px, double* tolerance_px, Eigen::Matrix2d* change) const;
+  std::vector<Claim> claimed_;  // the points measured so far in this frame
   double shot_slope_ = -1.0;              // the recording's shot noise (DN² per DN), −1 until known
   int shot_tries_ = 0;
   cv::Mat patch_;
