@@ -72,6 +72,7 @@ constexpr int kGroupMin = 3;             // other points, there and here, for a 
 constexpr double kGroupMaxRmsPx = 1.0;   // they moved as one body: the similarity fits them to this RMS (px)
 constexpr double kGroupTolPx = 1.0;      // a candidate within this (+ kGroupTolSigmas × that RMS) of the
 constexpr double kGroupTolSigmas = 4.0;  //   group's prediction is the point
+constexpr double kGroupSearchMarginPx = 4.0;  // searched about the group's prediction beyond its tolerance
 constexpr double kGroupScore = 2.0;      // ranks a candidate at the group's prediction above any ring NCC (≤ 1)
 constexpr double kClaimedPx = 3.0;       // a candidate this close to another point's measurement is that point
 
@@ -294,16 +295,18 @@ PointRow PointsTracker::Track(Point& p, const cv::Mat& frame, PointSummary& sum)
 
 bool PointsTracker::Reacquire(Point& p, const cv::Mat& frame, double search, PointMeasurement* out,
                               PointSummary& sum, bool* invalid) {
-  const Eigen::Vector2d pred = p.motion.Predicted();
-  const std::vector<PointCandidate> cands = p.measurer->Candidates(frame, pred, search, 8);
   const bool has_context = !p.context.empty();
   // Where the other points say it is: a candidate there is the point, whatever its surroundings look like
-  // (a cloud still over part of them); elsewhere its surroundings must match.
+  // (a cloud still over part of them); elsewhere its surroundings must match. With that place known, only
+  // about it is searched (a point that is not there is still hidden, and the search is small).
   Eigen::Vector2d group_px;
   double group_tol = 0.0;
   Eigen::Matrix2d group_change;
   const bool grouped = GroupPrediction(p, &group_px, &group_tol, &group_change);
   if (grouped) p.measurer->PredictChange(group_change);
+  const std::vector<PointCandidate> cands =
+      grouped ? p.measurer->Candidates(frame, group_px, std::min(search, group_tol + kGroupSearchMarginPx), 8)
+              : p.measurer->Candidates(frame, p.motion.Predicted(), search, 8);
   double best = -2, second = -2;
   for (const PointCandidate& c : cands) {
     const PointMeasurement m = p.measurer->Measure(frame, c.px, 2.0);

@@ -26,7 +26,9 @@
 //      similarity (shift, rotation, scale) carries them from there to here within 1 px RMS (they move as one
 //      body), that similarity applied to the point's last position is where the target carried it, and its
 //      rotation and scale are given to the method (a correlation template turned and grown while hidden); a
-//      candidate within 1 px + 4 × that RMS of it is the point. Any other candidate is taken only if its
+//      candidate within 1 px + 4 × that RMS of it is the point, and only ±(that + 4 px) about it is searched.
+//      The place is carried from the point's last clean measurement (score and σ as good as its usual: not one
+//      degrading under a cloud's edge), which alone teaches the method the appearance. Any other candidate is taken only if its
 //      surroundings (the ring between the method's support and twice it, where a look-alike marker differs
 //      from the real one) correlate with those stored at the point's last good frame (NCC ≥
 //      --context-min), the best such; two nearly equal (within 0.05) are ambiguous and give `invalid`; a
