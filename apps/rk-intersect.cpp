@@ -1,6 +1,8 @@
 // rk-intersect: two or more stations' located-target files → one trajectory with covariance (SPEC.md §7).
 // Thin CLI: the method lives in lib/intersect (intersect/intersect.h).
 #include <CLI/CLI.hpp>
+#include <cstdio>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -8,6 +10,7 @@
 #include "formats/stations.h"
 #include "intersect/intersect.h"
 #include "intersect/station_track.h"
+#include "intersect/time_offsets.h"
 #include "io/cli.h"
 #include "io/csv.h"
 #include "io/error.h"
@@ -16,6 +19,25 @@
 namespace {
 
 const char* const kTool = "rk-intersect";
+
+// The estimated clock offsets into the run's summary: the report's time_offsets and time_offset_fit, a figure per
+// station and the warnings for poorly determined ones.
+void AddTimeOffsets(const std::optional<rk::intersect::TimeOffsetFit>& fit, rk::io::RunSummary* summary) {
+  if (!fit) return;
+  summary->details["time_offsets"] = fit->OffsetsJson();
+  summary->details["time_offset_fit"] = fit->FitJson();
+  for (std::size_t s = 0; s < fit->names.size(); ++s) {
+    if (s == fit->reference) continue;
+    char note[160];
+    std::snprintf(note, sizeof note, "± %.4f ms (1σ) against '%s'", 1e3 * fit->sigma_s[s],
+                  fit->names[fit->reference].c_str());
+    summary->AddFigure("clock offset " + fit->names[s], 1e3 * fit->offset_s[s], "ms", note);
+  }
+  char note[160];
+  std::snprintf(note, sizeof note, "%.3f arcsec with the offsets as given", fit->rms_arcsec_as_given);
+  summary->AddFigure("residual RMS with the estimated offsets", fit->rms_arcsec_estimated, "arcsec", note);
+  for (const std::string& w : fit->warnings) summary->Warn("time_offset_poorly_determined", w);
+}
 
 }  // namespace
 
@@ -58,21 +80,48 @@ int main(int argc, char** argv) {
     }
     std::vector<double> at;
     if (!at_path.empty()) at = rk::intersect::ReadTimes(rk::io::CsvTable::Read(at_path, {bad_rows, {}}));
+    // Clocks (SPEC §7): each station's t_s + time_offset_s is the common clock; --estimate-time-offsets
+    // estimates the offsets (the given ones are the start) and the trajectory is made with them.
+    std::optional<rk::intersect::TimeOffsetFit> fit;
+    rk::formats::StationsFile clocked = stations;
+    if (opt.estimate_time_offsets) {
+      const rk::intersect::TimeOffsetOptions to;
+      if (by_id) {
+        fit = rk::intersect::EstimateTimeOffsetsById(stations, files, opt, to);
+      } else {
+        std::vector<rk::intersect::StationTrack> start;
+        rk::intersect::OffsetTarget target;
+        for (std::size_t s = 0; s < files.size(); ++s) {
+          start.emplace_back(files[s], opt.Defaults(), stations.stations[s].time_offset_s);
+        }
+        for (std::size_t s = 0; s < start.size(); ++s) {
+          target.station.push_back(static_cast<int>(s));
+          target.track.push_back(&start[s]);
+        }
+        fit = rk::intersect::EstimateTimeOffsets(stations, {target}, to);
+      }
+      for (std::size_t s = 0; s < clocked.stations.size(); ++s) clocked.stations[s].time_offset_s = fit->offset_s[s];
+    }
     rk::io::RunSummary summary;
     if (by_id) {
       // Located from points tracks: one trajectory per id.
       std::vector<std::string> warnings;
       const std::vector<rk::intersect::IntersectResult> results =
-          rk::intersect::IntersectById(stations, files, opt, at, &warnings);
+          rk::intersect::IntersectById(clocked, files, opt, at, &warnings, fit ? &fit->sigma_s : nullptr);
       summary = rk::intersect::SummaryById(results, warnings);
+      AddTimeOffsets(fit, &summary);
       rk::cli::WarnAll(kTool, common, summary);
       rk::intersect::TrajectoryCsv(results).Write(out_path);
     } else {
       std::vector<rk::intersect::StationTrack> tracks;
-      for (const auto& f : files) tracks.emplace_back(f, opt.Defaults());
+      for (std::size_t s = 0; s < files.size(); ++s) {
+        tracks.emplace_back(files[s], opt.Defaults(), clocked.stations[s].time_offset_s);
+        if (fit) tracks.back().SetTimeSigma(fit->sigma_s[s]);
+      }
       const std::vector<double> times = rk::intersect::OutputTimes(tracks, opt, at);
-      const rk::intersect::IntersectResult result = rk::intersect::Intersect(stations, tracks, times, opt);
+      const rk::intersect::IntersectResult result = rk::intersect::Intersect(clocked, tracks, times, opt);
       summary = result.Summary();
+      AddTimeOffsets(fit, &summary);
       rk::cli::WarnAll(kTool, common, summary);
       rk::intersect::TrajectoryCsv(result).Write(out_path);
     }

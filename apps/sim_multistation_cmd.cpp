@@ -30,7 +30,9 @@ int RunMultistation(const MultistationCli& p, const Context& ctx) {
     r["out"] = p.out;
     r["options"] = p.o.ToJson();
     io::Json st = io::Json::object();
-    for (const auto& s : sim.stations()) st[s.name] = {{"rows", s.t_s.size()}, {"has_range", s.has_range}};
+    for (const auto& s : sim.stations()) {
+      st[s.name] = {{"rows", s.t_s.size()}, {"has_range", s.has_range}, {"time_offset_s", s.time_offset_s}};
+    }
     r["summary"] = {{"stations", st}};
     cli::WriteReport(ctx.common.report_path, r);
   }
@@ -43,12 +45,16 @@ Command AddMultistationCommand(CLI::App& app) {
   auto p = std::make_shared<MultistationCli>();
   CLI::App* s = app.add_subcommand(
       "multistation",
-      "Two to four stations kilometres apart observing a ballistic arc or a crossing aircraft: each station's "
-      "located.csv (own frame times, noisy angles with 1 sigma, optional range), stations.json, truth.csv; with "
+      "Two to four stations kilometres apart observing a ballistic arc, a crossing aircraft or a climbing turn: "
+      "each station's located.csv (own frame times and clock, noisy angles with 1 sigma, optional range), "
+      "stations.json, truth.csv; with "
       "--video also the rendered trial rk-run runs (trial.json, frames, turret logs)");
   s->add_option("--out,-o", p->out, "Folder to create (refused if it exists and is not empty)")->required();
   s->add_flag("--force", p->force, "Replace an existing output folder");
   rk::cli::AddOptions(s, &p->o, rk::sim::MultistationOptions::Table());
+  s->add_option("--time-offsets", p->o.time_offsets,
+                "Station clock offsets (s), e.g. s2:0.0043,s3:-0.0117: that station's t_s reads the true time minus "
+                "the offset (SPEC.md section 7: t_s + offset is the common clock); others 0");
   return {s, [p](const Context& ctx) { return RunMultistation(*p, ctx); }};
 }
 

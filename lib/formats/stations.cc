@@ -13,6 +13,8 @@
 namespace rk::formats {
 namespace {
 
+constexpr double kMaxTimeOffsetS = 86400.0;  // a clock a day off is a wrong file, not an offset
+
 struct Context {
   const std::string& path;
   const io::JsonPositions& pos;
@@ -69,6 +71,26 @@ StationSpec Station(const Context& ctx, const io::Json& st, std::size_t i, const
     throw ctx.At({where[0], where[1], "name"}, "station name '" + s.name + "' may hold only letters, digits, _ . -");
   }
   s.position = Position(ctx, st, where);
+  if (st.contains("time_offset_s")) {
+    const io::Json& v = st["time_offset_s"];
+    std::vector<std::string> w = where;
+    w.push_back("time_offset_s");
+    const std::string name = "stations[" + std::to_string(i) + "].time_offset_s";
+    if (!v.is_number()) throw ctx.At(w, name + " must be a number (seconds added to the station's t_s)");
+    s.time_offset_s = v.get<double>();
+    if (!std::isfinite(s.time_offset_s) || std::abs(s.time_offset_s) > kMaxTimeOffsetS) {
+      throw ctx.At(w, name + " must be within ±" + io::Json(kMaxTimeOffsetS).dump() + " s");
+    }
+    s.time_offset_given = true;
+  }
+  if (st.contains("time_reference")) {
+    std::vector<std::string> w = where;
+    w.push_back("time_reference");
+    if (!st["time_reference"].is_boolean()) {
+      throw ctx.At(w, "stations[" + std::to_string(i) + "].time_reference must be true or false");
+    }
+    s.time_reference = st["time_reference"].get<bool>();
+  }
   const std::filesystem::path located = st["located"].get<std::string>();
   s.located = located.is_absolute() || dir.empty() ? located.string() : (dir / located).string();
   const io::TextPosition p = ctx.pos.At(Context::Pointer(where));
@@ -104,6 +126,11 @@ StationsFile ParseStations(const std::string& text, const std::string& path) {
   for (std::size_t i = 0; i < list.size(); ++i) {
     f.stations.push_back(Station(ctx, list[i], i, dir));
     for (std::size_t k = 0; k < i; ++k) {
+      if (f.stations[k].time_reference && f.stations[i].time_reference) {
+        throw ctx.At({"stations", "#" + std::to_string(i), "time_reference"},
+                     "two stations are the time reference ('" + f.stations[k].name + "' and '" + f.stations[i].name +
+                         "'): mark one");
+      }
       if (f.stations[k].name == f.stations[i].name) {
         throw ctx.At({"stations", "#" + std::to_string(i), "name"}, "station name '" + f.stations[i].name + "' repeats");
       }
@@ -115,6 +142,13 @@ StationsFile ParseStations(const std::string& text, const std::string& path) {
     f.origin_given = true;
   }
   return f;
+}
+
+std::size_t StationsFile::TimeReference() const {
+  for (std::size_t i = 0; i < stations.size(); ++i) {
+    if (stations[i].time_reference) return i;
+  }
+  return 0;
 }
 
 StationsFile LoadStations(const std::string& path) { return ParseStations(io::ReadFile(path), path); }
@@ -130,6 +164,8 @@ io::Json StationsJson(const StationsFile& f) {
     io::Json st = position(s.position);
     st["name"] = s.name;
     st["located"] = s.located;
+    if (s.time_offset_given) st["time_offset_s"] = s.time_offset_s;
+    if (s.time_reference) st["time_reference"] = true;
     j["stations"].push_back(st);
   }
   return j;

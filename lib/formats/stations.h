@@ -23,6 +23,12 @@ struct StationSpec {
   geo::Geodetic position;
   std::string located;  // path of its located.csv, resolved against the folder of stations.json
   std::size_t line = 0, column = 0;  // of the station's object in stations.json, for messages
+  // SPEC.md §7: the station's t_s + time_offset_s is the common clock (default 0); with
+  // --estimate-time-offsets the starting value. time_reference: the station whose clock the others are
+  // estimated against (at most one; default the first).
+  double time_offset_s = 0.0;
+  bool time_offset_given = false;
+  bool time_reference = false;
 };
 
 struct StationsFile {
@@ -30,6 +36,8 @@ struct StationsFile {
   geo::Geodetic origin;           // "origin", default the first station
   bool origin_given = false;
   std::vector<StationSpec> stations;  // at least 2
+  // The station marked "time_reference": true, else the first.
+  std::size_t TimeReference() const;
 };
 
 StationsFile LoadStations(const std::string& path);

@@ -31,6 +31,10 @@ const io::OptionTable<IntersectOptions>& IntersectOptions::Table() {
                 io::Bounds::Closed(1.0, 10.0),
                 "A station contributes at t only if its rows around t are at most this many of its median "
                 "frame intervals apart")
+          .Flag("--estimate-time-offsets", &IntersectOptions::estimate_time_offsets,
+                "Estimate every station's clock offset against the reference station's (stations.json "
+                "time_reference, else the first) jointly with the trajectory, with its 1 sigma; report "
+                "time_offsets; the trajectory is intersected with them and its sigma includes theirs")
           .Flag("--smooth", &IntersectOptions::smooth,
                 "Add velocity and acceleration columns (Singer RTS smoother of rk-smooth singer)")
           .Real("--smooth-gate", &IntersectOptions::smooth_gate, "x median sigma", io::Bounds::Positive().Finite(),

@@ -17,6 +17,7 @@
 #include "filter/singer_series.h"
 #include "intersect/solver.h"
 #include "intersect/station_track.h"
+#include "intersect/time_offsets.h"
 #include "formats/stations.h"
 #include "io/csv.h"
 #include "io/options.h"
@@ -38,6 +39,7 @@ struct IntersectOptions {
   double max_gap_frames = kDefaultMaxGapFrames;          // × a station's median frame interval
   double rate_hz = 0.0;                                  // > 0: output times k / rate_hz
   bool smooth = false;
+  bool estimate_time_offsets = false;  // SPEC §7 --estimate-time-offsets (time_offsets.h)
   double smooth_gate = kDefaultSmoothGate;
   filter::SingerSeriesOptions singer;  // --maneuver-time
 
@@ -110,10 +112,17 @@ io::CsvWriter TrajectoryCsv(const IntersectResult& result);
 // have rows of it (an id at fewer than two stations, or whose stations' times never overlap, gets none and a
 // warning in *warnings). Each id's rows enter only its own intersection. Throws DataError (naming
 // stations.json) when no id has a trajectory.
+// Every station's times are put on the common clock by its time_offset_s; sigma_s (per station, optional):
+// the offsets' 1σ (StationTrack::SetTimeSigma).
 std::vector<IntersectResult> IntersectById(const formats::StationsFile& stations,
                                            const std::vector<formats::LocatedFile>& files,
                                            const IntersectOptions& options, const std::vector<double>& at,
-                                           std::vector<std::string>* warnings);
+                                           std::vector<std::string>* warnings,
+                                           const std::vector<double>* sigma_s = nullptr);
+// --estimate-time-offsets with ids: every id is a target of its own path, the offsets shared.
+TimeOffsetFit EstimateTimeOffsetsById(const formats::StationsFile& stations,
+                                      const std::vector<formats::LocatedFile>& files,
+                                      const IntersectOptions& options, const TimeOffsetOptions& offsets);
 // The trajectories of IntersectById as one CSV: an id column after t_s, rows in time order (ids of one time
 // in the located files' order).
 io::CsvWriter TrajectoryCsv(const std::vector<IntersectResult>& by_id);

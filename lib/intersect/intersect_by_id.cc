@@ -9,31 +9,64 @@
 
 namespace rk::intersect {
 
-std::vector<IntersectResult> IntersectById(const formats::StationsFile& stations,
-                                           const std::vector<formats::LocatedFile>& files,
-                                           const IntersectOptions& options, const std::vector<double>& at,
-                                           std::vector<std::string>* warnings) {
+namespace {
+
+std::vector<std::string> AllIds(const std::vector<formats::LocatedFile>& files) {
   std::vector<std::string> ids;
   for (const formats::LocatedFile& f : files) {
     for (const std::string& id : f.Ids()) {
       if (std::find(ids.begin(), ids.end(), id) == ids.end()) ids.push_back(id);
     }
   }
+  return ids;
+}
+
+// The stations that saw `id`, each with its rows only, on the common clock (time_offset_s; its 1σ from
+// sigma_s when given).
+void IdTracks(const formats::StationsFile& stations, const std::vector<formats::LocatedFile>& files,
+              const IntersectOptions& options, const std::string& id, const std::vector<double>* sigma_s,
+              formats::StationsFile* sub, std::vector<int>* index, std::vector<StationTrack>* tracks) {
+  *sub = stations;
+  sub->stations.clear();
+  for (std::size_t s = 0; s < files.size(); ++s) {
+    formats::LocatedFile f = files[s];
+    f.rows.erase(std::remove_if(f.rows.begin(), f.rows.end(),
+                                [&](const formats::LocatedRecord& r) { return r.id != id; }),
+                 f.rows.end());
+    if (f.rows.empty()) continue;
+    sub->stations.push_back(stations.stations[s]);
+    index->push_back(static_cast<int>(s));
+    tracks->emplace_back(f, options.Defaults(), stations.stations[s].time_offset_s);
+    if (sigma_s) tracks->back().SetTimeSigma((*sigma_s)[s]);
+  }
+}
+
+}  // namespace
+
+TimeOffsetFit EstimateTimeOffsetsById(const formats::StationsFile& stations,
+                                      const std::vector<formats::LocatedFile>& files,
+                                      const IntersectOptions& options, const TimeOffsetOptions& offsets) {
+  const std::vector<std::string> ids = AllIds(files);
+  std::vector<std::vector<StationTrack>> keep(ids.size());
+  std::vector<OffsetTarget> targets(ids.size());
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    formats::StationsFile sub;
+    IdTracks(stations, files, options, ids[i], nullptr, &sub, &targets[i].station, &keep[i]);
+    for (const StationTrack& t : keep[i]) targets[i].track.push_back(&t);
+  }
+  return EstimateTimeOffsets(stations, targets, offsets);
+}
+
+std::vector<IntersectResult> IntersectById(const formats::StationsFile& stations,
+                                           const std::vector<formats::LocatedFile>& files,
+                                           const IntersectOptions& options, const std::vector<double>& at,
+                                           std::vector<std::string>* warnings, const std::vector<double>* sigma_s) {
   std::vector<IntersectResult> out;
-  for (const std::string& id : ids) {
-    // The stations that saw this id, each with its rows only.
-    formats::StationsFile sub = stations;
-    sub.stations.clear();
+  for (const std::string& id : AllIds(files)) {
+    formats::StationsFile sub;
+    std::vector<int> index;
     std::vector<StationTrack> tracks;
-    for (std::size_t s = 0; s < files.size(); ++s) {
-      formats::LocatedFile f = files[s];
-      f.rows.erase(std::remove_if(f.rows.begin(), f.rows.end(),
-                                  [&](const formats::LocatedRecord& r) { return r.id != id; }),
-                   f.rows.end());
-      if (f.rows.empty()) continue;
-      sub.stations.push_back(stations.stations[s]);
-      tracks.emplace_back(f, options.Defaults());
-    }
+    IdTracks(stations, files, options, id, sigma_s, &sub, &index, &tracks);
     if (tracks.size() < 2) {
       warnings->push_back("point '" + id + "' is seen by " + std::to_string(tracks.size()) +
                           " station(s): no trajectory (two are needed)");

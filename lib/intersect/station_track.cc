@@ -49,13 +49,13 @@ struct StationTrack::Impl {
 StationTrack::~StationTrack() = default;
 StationTrack::StationTrack(StationTrack&&) noexcept = default;
 
-StationTrack::StationTrack(const formats::LocatedFile& file, const TrackDefaults& defaults)
+StationTrack::StationTrack(const formats::LocatedFile& file, const TrackDefaults& defaults, double time_offset_s)
     : impl_(std::make_unique<Impl>()), source_(file.source) {
   has_range_ = file.has_range;
   has_sigma_ = file.has_sigma;
   std::vector<std::optional<double>> az, el, range;
   for (const formats::LocatedRecord& row : file.rows) {
-    const double t = row.t_s;
+    const double t = row.t_s + time_offset_s;
     row_t_.push_back(t);
     const bool status_measured = row.status == RowStatus::kOk || row.status == RowStatus::kReacquired;
     std::optional<double> a, e;
@@ -71,9 +71,15 @@ StationTrack::StationTrack(const formats::LocatedFile& file, const TrackDefaults
       // rk-locate's correlation of the azimuth and elevation errors (issue 28 item 6); 0 when absent.
       const double corr = row.corr_az_el.value_or(0.0);
       t_.push_back(t), sig_az_.push_back(saz), sig_el_.push_back(sel), cov_az_el_.push_back(corr * saz * sel);
+      az_.push_back(*a);
+      az_unwrapped_.push_back(az_unwrapped_.empty() ? *a
+                                                    : az_unwrapped_.back() + geo::WrapPi(*a - az_unwrapped_.back()));
+      el_.push_back(*e);
+      row_range_.push_back(r ? *r : std::numeric_limits<double>::quiet_NaN());
+      row_sig_r_.push_back(r ? row.sigma_range_m.value_or(defaults.sigma_range_m) : 0.0);
     }
     if (r) {
-      tr_.push_back(t), sig_r_.push_back(row.sigma_range_m.value_or(defaults.sigma_range_m));
+      tr_.push_back(t), sig_r_.push_back(row.sigma_range_m.value_or(defaults.sigma_range_m)), r_.push_back(*r);
     }
     az.push_back(a);
     el.push_back(e);
@@ -105,7 +111,17 @@ bool StationTrack::At(double t_s, LineObservation* o) const {
   o->el_rad = e.value;
   o->sigma_az_rad = InterpSigma(sig_az_, k, f);
   o->sigma_el_rad = InterpSigma(sig_el_, k, f);
-  o->corr_az_el = InterpCovariance(cov_az_el_, k, f) / (o->sigma_az_rad * o->sigma_el_rad);
+  double cov = InterpCovariance(cov_az_el_, k, f);
+  if (time_sigma_s_ > 0.0 && k + 1 < t_.size()) {
+    // The clock's uncertainty moves the line of sight along its own motion.
+    const double dt = t_[k + 1] - t_[k];
+    const double ra = (az_unwrapped_[k + 1] - az_unwrapped_[k]) / dt * time_sigma_s_;
+    const double re = (el_[k + 1] - el_[k]) / dt * time_sigma_s_;
+    o->sigma_az_rad = std::hypot(o->sigma_az_rad, ra);
+    o->sigma_el_rad = std::hypot(o->sigma_el_rad, re);
+    cov += ra * re;
+  }
+  o->corr_az_el = cov / (o->sigma_az_rad * o->sigma_el_rad);
   o->has_range = false;
   if (impl_->range) {
     const track::InterpValue r = impl_->range->At(t_s);
@@ -113,9 +129,27 @@ bool StationTrack::At(double t_s, LineObservation* o) const {
       o->has_range = true;
       o->range_m = r.value;
       o->sigma_range_m = InterpSigma(sig_r_, k, f);
+      if (time_sigma_s_ > 0.0 && k + 1 < tr_.size()) {
+        o->sigma_range_m = std::hypot(o->sigma_range_m, (r_[k + 1] - r_[k]) / (tr_[k + 1] - tr_[k]) * time_sigma_s_);
+      }
     }
   }
   return true;
+}
+
+LineObservation StationTrack::UsableRow(std::size_t k) const {
+  LineObservation o;
+  o.az_rad = geo::WrapTwoPi(az_[k]);
+  o.el_rad = el_[k];
+  o.sigma_az_rad = sig_az_[k];
+  o.sigma_el_rad = sig_el_[k];
+  o.corr_az_el = cov_az_el_[k] / (sig_az_[k] * sig_el_[k]);
+  o.has_range = std::isfinite(row_range_[k]);
+  if (o.has_range) {
+    o.range_m = row_range_[k];
+    o.sigma_range_m = row_sig_r_[k];
+  }
+  return o;
 }
 
 }  // namespace rk::intersect

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <random>
 
 #include "formats/located.h"
@@ -22,6 +23,11 @@ namespace {
 constexpr double kGravityMps2 = 9.80665;
 // Station layout in units of the baseline (origin ENU, x east, y north) and heights above the origin (m).
 constexpr double kLayout[4][3] = {{0.0, 0.0, 0.0}, {1.0, 0.0, 350.0}, {0.45, 0.75, 900.0}, {-0.3, 0.6, 150.0}};
+// `line`: along east, a few hundred metres off it at a 20 km baseline.
+constexpr double kLineLayout[4][3] = {{0.0, 0.0, 0.0}, {1.0, 0.01, 350.0}, {0.5, -0.012, 900.0}, {1.5, 0.006, 150.0}};
+// `turn`: a climbing turn about (0.5, 0.35) baselines, radius 0.3 baselines, climbing this fast.
+constexpr double kTurnCentre[2] = {0.5, 0.35}, kTurnRadius = 0.3, kTurnClimbMps = 20.0;
+constexpr double kMaxTimeOffsetS = 10.0;
 constexpr double kRateFactor[4] = {1.0, 1.25, 0.8, 1.5};
 constexpr std::uint64_t kStreamNoise = 1, kStreamPhase = 2;
 // Rendered stations (--video): lamp peak (8-bit DN; five lamps merged in one spot stay below 255), the seed of
@@ -32,7 +38,17 @@ constexpr const char* kRenderedEpochUtc = "2026-01-01T00:00:00Z";
 
 }  // namespace
 
-std::string MultistationPathName(MultistationPath p) { return p == MultistationPath::kBallistic ? "ballistic" : "crossing"; }
+std::string MultistationPathName(MultistationPath p) {
+  switch (p) {
+    case MultistationPath::kBallistic:
+      return "ballistic";
+    case MultistationPath::kCrossing:
+      return "crossing";
+    case MultistationPath::kTurn:
+      return "turn";
+  }
+  return "?";
+}
 
 const io::OptionTable<MultistationOptions>& MultistationOptions::Table() {
   using O = MultistationOptions;
@@ -50,8 +66,12 @@ const io::OptionTable<MultistationOptions>& MultistationOptions::Table() {
           .Integer("--range-stations", &O::range_stations, "", io::Bounds::Closed(0, 4),
                    "The first N stations also measure range")
           .Real("--sigma-range", &O::sigma_range_m, "m", io::Bounds::Positive().Finite(), "1 sigma of a range (m)")
-          .Choice("--path", &O::path, {MultistationPath::kBallistic, MultistationPath::kCrossing},
-                  MultistationPathName, "Target path: ballistic (arc to --apex) or crossing (aircraft)")
+          .Choice("--path", &O::path, {MultistationPath::kBallistic, MultistationPath::kCrossing, MultistationPath::kTurn},
+                  MultistationPathName,
+                  "Target path: ballistic (arc to --apex), crossing (straight level pass eastward at --speed, "
+                  "--height) or turn (climbing turn at --speed from --height)")
+          .Choice("--layout", &O::layout, {{MultistationLayout::kTriangle, "triangle"}, {MultistationLayout::kLine, "line"}},
+                  "Stations spread around the area (triangle) or nearly on a line eastward (line)")
           .Choice("--video", &O::video, {{"none", "none"}, {"mkv", "mkv"}, {"png", "png"}},
                   "Also write a trial folder for rk-run: each station rendered (mkv or png frames), with its frame "
                   "times, camera model, turret log and trial.json; none: only the located files")
@@ -73,6 +93,42 @@ bool MultistationOptions::Check(std::string* why) const {
     if (why) *why = "--range-stations must be <= --stations";
     return false;
   }
+  std::vector<double> offsets;
+  std::string w;
+  if (!ParseTimeOffsets(&offsets, &w)) {
+    if (why) *why = w;
+    return false;
+  }
+  return true;
+}
+
+bool MultistationOptions::ParseTimeOffsets(std::vector<double>* offsets, std::string* why) const {
+  offsets->assign(static_cast<std::size_t>(stations), 0.0);
+  std::size_t pos = 0;
+  while (pos < time_offsets.size()) {
+    std::size_t end = time_offsets.find(',', pos);
+    if (end == std::string::npos) end = time_offsets.size();
+    const std::string item = time_offsets.substr(pos, end - pos);
+    pos = end + 1;
+    const std::size_t colon = item.find(':');
+    const std::string name = item.substr(0, colon == std::string::npos ? item.size() : colon);
+    int index = -1;
+    for (int s = 0; s < stations; ++s) {
+      if (name == "s" + std::to_string(s + 1)) index = s;
+    }
+    if (colon == std::string::npos || index < 0) {
+      *why = "--time-offsets: '" + item + "' is not STATION:SECONDS with STATION one of s1..s" + std::to_string(stations);
+      return false;
+    }
+    const std::string value = item.substr(colon + 1);
+    char* stop = nullptr;
+    const double x = std::strtod(value.c_str(), &stop);
+    if (value.empty() || *stop != '\0' || !std::isfinite(x) || std::abs(x) > kMaxTimeOffsetS) {
+      *why = "--time-offsets: '" + value + "' (for " + name + ") is not a number of seconds within ±10";
+      return false;
+    }
+    (*offsets)[static_cast<std::size_t>(index)] = x;
+  }
   return true;
 }
 
@@ -90,10 +146,14 @@ MultistationScenario::MultistationScenario(const MultistationOptions& options)
   if (!o_.Check(&why)) throw UsageError(why);
   impl_ = std::make_unique<Impl>(geo::Geodetic{o_.origin_lat_deg, o_.origin_lon_deg, o_.origin_h_m});
   const double b = 1000.0 * o_.baseline_km;
+  std::vector<double> offsets;
+  o_.ParseTimeOffsets(&offsets, &why);
+  const auto& layout = o_.layout == MultistationLayout::kLine ? kLineLayout : kLayout;
   for (int s = 0; s < o_.stations; ++s) {
     SimStation st;
     st.name = "s" + std::to_string(s + 1);
-    st.p_enu = {kLayout[s][0] * b, kLayout[s][1] * b, kLayout[s][2]};
+    st.time_offset_s = offsets[static_cast<std::size_t>(s)];
+    st.p_enu = {layout[s][0] * b, layout[s][1] * b, layout[s][2]};
     const geo::Geodetic g = impl_->origin.ToGeodetic(st.p_enu);
     st.lat_deg = g.lat_deg;
     st.lon_deg = g.lon_deg;
@@ -112,6 +172,11 @@ Eigen::Vector3d MultistationScenario::Position(double t) const {
     const Eigen::Vector3d p0(0.5 * b, 0.35 * b, 0.0), v0(120.0, 160.0, vu);
     return p0 + v0 * t + Eigen::Vector3d(0.0, 0.0, -0.5 * kGravityMps2 * t * t);
   }
+  if (o_.path == MultistationPath::kTurn) {
+    const double r = kTurnRadius * b, w = o_.speed_mps / r;
+    return {kTurnCentre[0] * b + r * std::cos(w * t), kTurnCentre[1] * b + r * std::sin(w * t),
+            o_.height_m + kTurnClimbMps * t};
+  }
   const Eigen::Vector3d p0(0.5 * b - 0.5 * o_.speed_mps * o_.duration_s, 0.45 * b, o_.height_m);
   return p0 + Eigen::Vector3d(o_.speed_mps, 0.0, 0.0) * t;
 }
@@ -120,6 +185,10 @@ Eigen::Vector3d MultistationScenario::Velocity(double t) const {
   if (o_.path == MultistationPath::kBallistic) {
     const double vu = std::sqrt(2.0 * kGravityMps2 * o_.apex_m);
     return {120.0, 160.0, vu - kGravityMps2 * t};
+  }
+  if (o_.path == MultistationPath::kTurn) {
+    const double r = kTurnRadius * 1000.0 * o_.baseline_km, w = o_.speed_mps / r;
+    return {-o_.speed_mps * std::sin(w * t), o_.speed_mps * std::cos(w * t), kTurnClimbMps};
   }
   return {o_.speed_mps, 0.0, 0.0};
 }
@@ -147,7 +216,8 @@ void MultistationScenario::Measure(std::size_t s, std::uint64_t index) {
     if (t > o_.duration_s) break;
     const Eigen::Vector3d aer = AzElRange(s, Position(t));
     const double saz = sigma / std::max(std::cos(aer(1)), 1e-6);
-    st.t_s.push_back(t);
+    st.true_t_s.push_back(t);
+    st.t_s.push_back(t - st.time_offset_s);
     st.true_az_deg.push_back(geo::RadToDeg(aer(0)));
     st.true_el_deg.push_back(geo::RadToDeg(aer(1)));
     st.true_range_m.push_back(aer(2));
@@ -200,7 +270,7 @@ io::Json MultistationScenario::StationsJson() const {
 
 io::CsvWriter MultistationScenario::TruthCsv() const {
   std::vector<double> t;
-  for (const SimStation& st : stations_) t.insert(t.end(), st.t_s.begin(), st.t_s.end());
+  for (const SimStation& st : stations_) t.insert(t.end(), st.true_t_s.begin(), st.true_t_s.end());
   std::sort(t.begin(), t.end());
   t.erase(std::unique(t.begin(), t.end()), t.end());
   io::CsvWriter w({"t_s", "e_m", "n_m", "u_m", "lat_deg", "lon_deg", "h_m", "ve_mps", "vn_mps", "vu_mps"});
@@ -235,7 +305,9 @@ BeaconSimOptions RenderedStation(const MultistationScenario& sim, std::size_t s)
   b.peak_dn = kRenderedPeakDn;
   b.range_noise_mm = 1000.0 * o.sigma_range_m;
   b.seed = o.seed * kStationSeedStride + s + 1;
-  b.target_enu = [&sim, s](double t) { return sim.StationEnu(s, sim.Position(t)); };
+  // The station's camera clock reads t; the target is where it is at the true time t + offset.
+  const double offset = st.time_offset_s;
+  b.target_enu = [&sim, s, offset](double t) { return sim.StationEnu(s, sim.Position(t + offset)); };
   return b;
 }
 

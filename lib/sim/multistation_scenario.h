@@ -1,7 +1,11 @@
 // rk-sim multistation: two to four stations kilometres apart at different heights observe one target
 // (issue 18): each station with its own frame times (own rate and phase), azimuth and elevation with white
 // noise (σ across the line of sight: σ_el = σ, σ_az = σ / cos el) and optionally a laser range; the target
-// flies a ballistic arc (to 15 km by default) or a straight crossing at constant height.
+// flies a ballistic arc (to 15 km by default), a straight crossing at constant height, or a climbing turn.
+// Layouts: `triangle` (stations spread around the area) or `line` (nearly on a line along east, the
+// geometry where a clock offset and a shift of a crossing along the line look alike).
+// Clocks: --time-offsets s2:X,... gives a station's clock offset X (s): its located rows' t_s read the true
+// time minus X (SPEC.md §7: t_s + X is the common clock); truth.csv is on the true clock.
 //
 // Truth chain (independent of any estimator, geo/wgs84.h only): the trajectory is defined in the origin's
 // ENU frame → WGS-84 (geo::LocalEnu at the origin) → each station's own ENU frame (geo::LocalEnu at the
@@ -23,8 +27,9 @@
 
 namespace rk::sim {
 
-enum class MultistationPath { kBallistic, kCrossing };
-std::string MultistationPathName(MultistationPath p);  // "ballistic", "crossing"
+enum class MultistationPath { kBallistic, kCrossing, kTurn };
+std::string MultistationPathName(MultistationPath p);  // "ballistic", "crossing", "turn"
+enum class MultistationLayout { kTriangle, kLine };
 
 struct MultistationOptions {
   int stations = 3;                 // [2, 4]
@@ -38,6 +43,9 @@ struct MultistationOptions {
   double speed_mps = 250.0;         // crossing speed (m/s), > 0
   double height_m = 3000.0;         // crossing height above the origin (m), > 0
   MultistationPath path = MultistationPath::kBallistic;
+  MultistationLayout layout = MultistationLayout::kTriangle;
+  std::string time_offsets;         // "s2:0.0043,s3:-0.0117": per station clock offsets (s), others 0 (the
+                                    // app's --time-offsets: a text option, outside Table; ToJson adds it)
   // "none", or the video format of a trial folder rk-run runs (docs/rk-sim.md "Rendered stations"): each
   // station rendered as by rk-sim beacon (small camera on a turret, one beacon camera "az") into "mkv" or "png".
   std::string video = "none";
@@ -46,7 +54,13 @@ struct MultistationOptions {
 
   static const io::OptionTable<MultistationOptions>& Table();
   bool Check(std::string* why) const;
-  io::Json ToJson() const { return Table().ToJson(*this); }
+  io::Json ToJson() const {
+    io::Json j = Table().ToJson(*this);
+    j["time_offsets"] = time_offsets;
+    return j;
+  }
+  // The clock offset of every station (s), from time_offsets; false (and why) for a malformed list.
+  bool ParseTimeOffsets(std::vector<double>* offsets, std::string* why) const;
 };
 
 struct SimStation {
@@ -54,7 +68,9 @@ struct SimStation {
   double lat_deg = 0.0, lon_deg = 0.0, h_m = 0.0;
   Eigen::Vector3d p_enu = Eigen::Vector3d::Zero();  // in the origin ENU frame (m)
   bool has_range = false;
-  std::vector<double> t_s, az_deg, el_deg, range_m, sigma_az_deg, sigma_el_deg;  // measured (noisy)
+  double time_offset_s = 0.0;       // its clock: t_s = true time − this
+  std::vector<double> t_s, az_deg, el_deg, range_m, sigma_az_deg, sigma_el_deg;  // measured (noisy), its clock
+  std::vector<double> true_t_s;     // the rows' true times
   std::vector<double> true_az_deg, true_el_deg, true_range_m;
 };
 
