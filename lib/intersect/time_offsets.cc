@@ -7,6 +7,7 @@
 #include <Eigen/SparseCore>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "geo/angles.h"
@@ -269,6 +270,51 @@ int SolveReassigning(const std::vector<Observation>& obs, std::vector<Spline>& s
 }
 
 }  // namespace
+
+namespace internal {
+
+double RowJacobianMismatch(const StationFrame& frame, const LineObservation& o, double t_s,
+                           const Eigen::Vector3d c[4], double delta, double t0, double h) {
+  Observation ob;
+  ob.t = t_s;
+  ob.o = o;
+  Spline s;
+  s.t0 = t0;
+  s.h = h;
+  const RowCost cost(frame, ob, s, 0);
+  double x[13];
+  for (int m = 0; m < 4; ++m)
+    for (int k = 0; k < 3; ++k) x[3 * m + k] = c[m](k);
+  x[12] = delta;
+  auto eval = [&](const double* xv, double* r, double** jac) {
+    const double* blocks[5] = {xv, xv + 3, xv + 6, xv + 9, xv + 12};
+    return cost.Evaluate(blocks, r, jac);
+  };
+  double r[3], J[5][9];
+  double* jac[5] = {J[0], J[1], J[2], J[3], J[4]};
+  if (!eval(x, r, jac)) return std::numeric_limits<double>::infinity();
+  double worst = 0.0;
+  for (int row = 0; row < 3; ++row) {
+    double scale = 0.0, err = 0.0;
+    for (int p = 0; p < 13; ++p) {
+      const double step = p == 12 ? 1e-6 : 1e-3;  // s, m
+      double xp[13], xm[13], rp[3], rm[3];
+      std::copy(x, x + 13, xp);
+      std::copy(x, x + 13, xm);
+      xp[p] += step;
+      xm[p] -= step;
+      if (!eval(xp, rp, nullptr) || !eval(xm, rm, nullptr)) return std::numeric_limits<double>::infinity();
+      const double numeric = (rp[row] - rm[row]) / (2.0 * step);
+      const double analytic = p == 12 ? J[4][row] : J[p / 3][3 * row + p % 3];
+      scale = std::max(scale, std::abs(numeric));
+      err = std::max(err, std::abs(analytic - numeric));
+    }
+    if (scale > 0.0) worst = std::max(worst, err / scale);
+  }
+  return worst;
+}
+
+}  // namespace internal
 
 TimeOffsetFit EstimateTimeOffsets(const formats::StationsFile& stations, const std::vector<OffsetTarget>& targets,
                                   const TimeOffsetOptions& options) {

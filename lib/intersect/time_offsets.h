@@ -80,4 +80,12 @@ struct TimeOffsetFit {
 TimeOffsetFit EstimateTimeOffsets(const formats::StationsFile& stations, const std::vector<OffsetTarget>& targets,
                                   const TimeOffsetOptions& options);
 
+namespace internal {
+// Tests: the worst difference between one row's analytic Jacobian (residuals z(az, el, range) with respect to its
+// four control points and its station's correction) and central differences, over the largest entry of that
+// residual's row. `c`: the four control points, `delta` the correction, the row's knot span starting at t0.
+double RowJacobianMismatch(const StationFrame& frame, const LineObservation& o, double t_s,
+                           const Eigen::Vector3d c[4], double delta, double t0, double h);
+}  // namespace internal
+
 }  // namespace rk::intersect

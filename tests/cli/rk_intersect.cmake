@@ -14,3 +14,10 @@ rk_cli_script(rk_intersect/rk_intersect_bad_input REQUIRES intersect_data)
 # Located files with ids (rk-locate of points tracks): one trajectory per id, the id after t_s; each id's rows
 # equal the trajectory of the same rows without ids; an id seen by one station only gets none and a warning.
 rk_cli_script(rk_intersect/rk_intersect_ids REQUIRES intersect_data)
+
+# Station clock offsets (SPEC §7, issue 33): rk-sim multistation --time-offsets, rk-intersect
+# --estimate-time-offsets (report time_offsets within 3 σ of the truth, no warning on a climbing turn, the
+# trajectory much closer than without), a known time_offset_s applied, another time reference, and bad
+# stations files (a non-numeric offset, two references, a reference not true/false, one station): exit 3 at
+# their line:column, no output.
+rk_cli_script(rk_intersect/rk_intersect_offsets)
