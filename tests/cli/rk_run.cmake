@@ -35,7 +35,9 @@ rk_cli_script(rk_run/rk_run_plan_by_unit REQUIRES sim_small)
 # three-station trial (rendered frames, turret logs, trial.json with "stations"); rk-run runs each station's
 # chain and rk-intersect (--smooth, as the manifest asks) into one out/; the trajectory is within a named
 # tolerance of truth; a second run skips everything; malformed multi-station manifests fail with exit 3 at
-# trial.json:LINE:COL (4 for a missing file), and a single-station manifest may not ask for the intersection.
+# trial.json:LINE:COL (4 for a missing file), and a single-station manifest may not ask for the intersection;
+# a trial whose stations' clocks are off, with "steps": {"intersect": {"estimate-time-offsets": true}}: the
+# offsets in the intersection's report within 3 σ of the truth and on the report page (issue 33).
 rk_cli_script(rk_run/rk_run_multistation REQUIRES sim_small)
 
 # rk-nightly: parallel run over a root of trials, a failing trial reported with its reason, summary JSON

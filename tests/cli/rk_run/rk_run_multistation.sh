@@ -60,6 +60,28 @@ stations = page[page.index('id="station"'):]
 assert "<th>lat_deg</th>" in stations and "<th>e_m</th>" not in stations.split("</table>")[0]
 PY
 
+# Station clocks (issue 33): the same trial with s2's clock 20 ms and s3's -15 ms off, and the manifest's
+# "steps": {"intersect": {"estimate-time-offsets": true}}: rk-run passes the flag, the intersection's report has
+# time_offsets within 3 sigma of the truth, and the page shows them.
+c=$d/clocks
+rk-sim multistation --out "$c" --stations 3 --duration 3 --rate 10 --path crossing --baseline 5 \
+  --range-stations 1 --video mkv --seed 5 --time-offsets s2:0.02,s3:-0.015 --quiet
+python3 -c "import json,sys; p=sys.argv[1]; m=json.load(open(p)); m['steps']['intersect']['estimate-time-offsets']=True; json.dump(m,open(p,'w'),indent=1)" "$c/trial.json"
+rk-run "$c" --no-plots > "$d/clocks.out"
+grep -Eq "^trajectory/intersect +ok" "$d/clocks.out"
+python3 - "$c/out/report.json" <<'PY'
+import json, sys
+st = [s for s in json.load(open(sys.argv[1]))["steps"] if s["id"] == "trajectory/intersect"][0]
+t = st["tool_report"]["time_offsets"]
+assert t["s1.az"]["reference"], t
+for name, truth in (("s2.az", 0.02), ("s3.az", -0.015)):
+    assert abs(t[name]["offset_s"] - truth) < 3 * t[name]["sigma_s"], (name, t[name])
+print({k: (round(v["offset_s"], 5), round(v["sigma_s"], 5)) for k, v in t.items()})
+PY
+rk-report "$c/out" -o "$d/clocks.html" -q
+grep -q 'station clock offsets (rk-intersect --estimate-time-offsets)' "$d/clocks.html"
+grep -q '<td>s2.az</td><td class="num">' "$d/clocks.html"
+
 # Malformed multi-station manifests: exit 3 at trial.json:LINE:COL, nothing written.
 bad() {  # bad NAME PYTHON-EDIT: a copy of the trial with its manifest edited (m = the manifest)
   rm -rf "$d/$1"; cp -r "$t" "$d/$1"; rm -rf "$d/$1/out" "$d/$1"/last-run.json "$d/$1"/rk-run.log
