@@ -2,8 +2,9 @@
 // offsets. Per scenario: the offsets' error, σ and NEES (S−1 dof, band for the runs), the warning rate, and the
 // trajectory's 3-D RMS error with the estimated offsets, with the true ones and with none (as given), and the
 // trajectory's own NEES. Then the time of one 10-minute three-station 20 Hz trial.
-// Usage: time_offsets_mc [runs]   (Release build). Prints the docs/benchmarks.md "Issue 33" tables.
+// Usage: time_offsets_mc [runs [knot_interval_s [first-only]]]   (Release build). Prints the docs/benchmarks.md "Issue 33" tables.
 #include <Eigen/Dense>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -63,17 +64,25 @@ void Trajectory(const rk::sim::MultistationScenario& sim, const Trial& t, const 
   }
 }
 
+double g_knot_s = 0.0;  // argv[2]: the knot interval (0: EstimateTimeOffsets' own choice)
+
 void Run(const Scenario& sc, int runs) {
   const std::size_t S = static_cast<std::size_t>(sc.o.stations);
   double nees = 0, warn = 0, e2 = 0, s2 = 0, emax = 0;
   std::vector<double> bias(S, 0.0);
   double se_est = 0, se_true = 0, se_zero = 0, ne_est = 0, ne_true = 0, n_est = 0, n_true = 0, n_zero = 0, dummy = 0;
-  double sigma_sum = 0;
+  double sigma_sum = 0, range_lo = 1e30, range_hi = 0;
   for (int run = 0; run < runs; ++run) {
     rk::sim::MultistationOptions o = sc.o;
     o.seed = 1000 + static_cast<std::uint64_t>(run);
     const rk::sim::MultistationScenario sim(o);
     const Trial t = MakeTrial(sim);
+    for (const auto& st : sim.stations()) {
+      for (double r : st.true_range_m) {
+        range_lo = std::min(range_lo, r);
+        range_hi = std::max(range_hi, r);
+      }
+    }
     std::vector<StationTrack> start;
     rk::intersect::OffsetTarget target;
     for (std::size_t s = 0; s < S; ++s) start.emplace_back(t.files[s], rk::intersect::IntersectOptions{}.Defaults());
@@ -81,7 +90,10 @@ void Run(const Scenario& sc, int runs) {
       target.station.push_back(static_cast<int>(s));
       target.track.push_back(&start[s]);
     }
-    const rk::intersect::TimeOffsetFit fit = rk::intersect::EstimateTimeOffsets(t.stations, {target}, {});
+    rk::intersect::TimeOffsetOptions to;
+    to.knot_interval_s = g_knot_s;
+    if (std::getenv("RK_ACCEL_SIGMA")) to.accel_sigma_mps2 = std::atof(std::getenv("RK_ACCEL_SIGMA"));
+    const rk::intersect::TimeOffsetFit fit = rk::intersect::EstimateTimeOffsets(t.stations, {target}, to);
     // Offsets of stations 2..S (station 1 the reference).
     const Eigen::Index m = static_cast<Eigen::Index>(S - 1);
     Eigen::VectorXd e(m);
@@ -112,7 +124,7 @@ void Run(const Scenario& sc, int runs) {
     return nu * std::pow(1.0 - a + z * std::sqrt(a), 3.0);
   };
   const double lo = chi2q(k * dof, -1.96) / k, hi = chi2q(k * dof, 1.96) / k;
-  std::printf("| %s | %d | ", sc.name, runs);
+  std::printf("| %s (%.0f–%.0f km) | %d | ", sc.name, range_lo / 1e3, range_hi / 1e3, runs);
   for (std::size_t s = 1; s < S; ++s) std::printf("%s%.4f", s > 1 ? ", " : "", 1e3 * bias[s] / k);
   std::printf(" | %.4f | %.4f | %.2f | %.2f | %.2f [%.2f, %.2f] | %.0f %% | %.3f | %.3f | %.3f | %.2f |\n",
               1e3 * std::sqrt(e2 / (k * dof)), 1e3 * sigma_sum / (k * dof), std::sqrt(e2 / s2), emax, nees / k, lo, hi,
@@ -125,6 +137,8 @@ void Run(const Scenario& sc, int runs) {
 
 int main(int argc, char** argv) {
   const int runs = argc > 1 ? std::atoi(argv[1]) : 100;
+  g_knot_s = argc > 2 ? std::atof(argv[2]) : 0.0;
+  const bool only_first = argc > 3;  // argv[3]: the first scenario only (a quick comparison)
   rk::sim::MultistationOptions base;
   base.baseline_km = 10.0;
   base.sigma_angle_arcsec = 2.0;
@@ -136,6 +150,12 @@ int main(int argc, char** argv) {
     Scenario s{"climbing turn, 3 stations (triangle)", base};
     s.o.path = rk::sim::MultistationPath::kTurn;
     scenarios.push_back(s);
+    {
+      Scenario far{"climbing turn, 15 km baseline, from 6 km up", s.o};
+      far.o.baseline_km = 15.0;
+      far.o.height_m = 6000.0;
+      scenarios.push_back(far);
+    }
     s.name = "climbing turn, 4 stations";
     s.o.stations = 4;
     s.o.time_offsets = "s2:0.0043,s3:-0.0117,s4:0.0021";
@@ -157,7 +177,10 @@ int main(int argc, char** argv) {
   std::printf("| scenario | runs | mean error (ms) | RMS error (ms) | mean 1σ (ms) | RMS err / RMS σ | max |err|/σ | mean NEES "
               "[95 %% band] | warned | trajectory 3-D RMS (m) | ÷ with true offsets | ÷ without estimation | "
               "trajectory NEES / 3 |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n");
-  for (const Scenario& s : scenarios) Run(s, runs);
+  for (const Scenario& s : scenarios) {
+    Run(s, runs);
+    if (only_first) return 0;
+  }
 
   // Speed: one 10-minute three-station trial at 20 Hz (turn at 100 m/s), estimation alone, one core.
   rk::sim::MultistationOptions lo = base;
