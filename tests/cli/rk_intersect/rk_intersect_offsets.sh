@@ -29,6 +29,10 @@ f = r["time_offset_fit"]
 assert f["reference"] == "s1" and f["warnings"] == [], f
 assert f["rms_residual_arcsec"]["offsets_as_given"] > 5 * f["rms_residual_arcsec"]["offsets_estimated"], f
 assert not [w for w in r["warnings"] if w["code"] == "time_offset_poorly_determined"]
+# How far the offsets move the trajectory (the figure that says why they matter): metres here, against a 3-D σ
+# of centimetres.
+assert f["trajectory_shift_m"]["rms"] > 0.2 and f["trajectory_shift_m"]["max"] >= f["trajectory_shift_m"]["rms"], f
+assert "trajectory moved by the offsets" in r["headline"], r["headline"].keys()
 tr = {row["t_s"]: row for row in csv.DictReader(open(d + "/turn/truth.csv"))}
 def err(path):
     s2, n = 0.0, 0
