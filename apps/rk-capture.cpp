@@ -11,6 +11,7 @@
 #include <mutex>
 #include <string>
 
+#include "capture/aravis_source.h"
 #include "capture/recorder.h"
 #include "capture/recover.h"
 #include "capture/station_config.h"
@@ -153,8 +154,20 @@ int main(int argc, char** argv) {
   bool check_only = false;
   recover->add_option("dir", dir, "Trial directory written by rk-capture")->required();
   recover->add_flag("--check", check_only, "Only report what would be repaired; change nothing");
+  bool list_cameras = false;
+  app.add_flag("--list-cameras", list_cameras,
+               "List the GigE Vision / USB3 Vision cameras Aravis discovers (id for an aravis: source, model, serial, "
+               "address) and exit");
   app.require_subcommand(0, 1);
   return rk::cli::Run(app, kTool, argc, argv, [&]() -> int {
+    if (list_cameras) {
+      // id,model,serial,address: one camera a line (CSV, for scripts), nothing when none answers.
+      std::cout << "id,model,serial,address\n";
+      for (const rk::capture::AravisCameraInfo& c : rk::capture::ListAravisCameras()) {
+        std::cout << c.id << "," << c.model << "," << c.serial << "," << c.address << "\n";
+      }
+      return 0;
+    }
     if (recover->parsed()) {
       if (!config.empty() || !record.out_dir.empty() || app.count("--duration") > 0) {
         throw rk::UsageError("recover takes a trial directory only (no --config, --out or --duration)");

@@ -9,6 +9,8 @@
 #   scripts/setup.sh --browser  also Debian's chromium, for the headless-browser test of the report pages
 #   scripts/setup.sh --tshark   also Debian's tshark (Wireshark's ASTERIX dissector), the independent decoder the
 #                               radar-feed test checks rk-import asterix against
+#   scripts/setup.sh --gige     also Aravis' software GigE Vision camera and arv-tool (aravis-tools, -cli), which the
+#                               aravis: capture test runs in a private network namespace
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 ASAN=0
@@ -17,6 +19,7 @@ SLURM=0
 FUZZ=0
 BROWSER=0
 TSHARK=0
+GIGE=0
 for arg in "$@"; do
   case "$arg" in
     --asan) ASAN=1 ;;
@@ -25,6 +28,7 @@ for arg in "$@"; do
     --fuzz) FUZZ=1 ;;
     --browser) BROWSER=1 ;;
     --tshark) TSHARK=1 ;;
+    --gige) GIGE=1 ;;
     *) echo "setup.sh: error: unknown option $arg" >&2; exit 2 ;;
   esac
 done
@@ -38,6 +42,8 @@ PACKAGES=(
   libopencv-contrib-dev opencv-doc
   libtinyxml2-dev  # Photron .cihx headers are XML (lib/video/mraw_file.cc)
   libpcap-dev      # radar feeds captured as pcap/pcapng (lib/asterix/capture.cc)
+  libaravis-dev    # GigE Vision / USB3 Vision cameras, "aravis:" sources (lib/capture/aravis_source.cc)
+  libusb-1.0-0-dev # aravis-0.8.pc requires libusb-1.0.pc, which libaravis-dev does not pull in
 )
 # Slurm daemons only on request: nobody needs them to use rangekit on one machine (rk-nightly); the
 # test that starts a one-node cluster installs them through --slurm.
@@ -49,6 +55,8 @@ if [ "$FUZZ" = 1 ]; then PACKAGES+=(clang libclang-rt-14-dev); fi
 if [ "$BROWSER" = 1 ]; then PACKAGES+=(chromium); fi
 # tshark only for the test that compares rk-import asterix with Wireshark's decoder (import_cli_asterix_real).
 if [ "$TSHARK" = 1 ]; then PACKAGES+=(tshark); fi
+# Aravis' software GigE Vision camera (arv-fake-gv-camera-0.8) and arv-tool-0.8 for the aravis: capture tests.
+if [ "$GIGE" = 1 ]; then PACKAGES+=(aravis-tools aravis-tools-cli iproute2 util-linux); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

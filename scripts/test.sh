@@ -11,7 +11,8 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # CI also installs clang and builds the libFuzzer harnesses (build-fuzz/, tests/fuzz) for a smoke run of
 # a few seconds each after the suite; RK_FUZZ_TEST=1 does the same here.
 # tshark (Wireshark's ASTERIX dissector) is the independent decoder of the radar-feed test: always installed.
-SETUP=(--asan-only --tshark)
+# The aravis: capture test runs Aravis' software GigE camera in a private network namespace: always installed.
+SETUP=(--asan-only --tshark --gige)
 if [ "${CI:-}" = true ] || [ "${RK_SLURM_TEST:-}" = 1 ]; then SETUP+=(--slurm); fi
 FUZZ=0
 if [ "${CI:-}" = true ] || [ "${RK_FUZZ_TEST:-}" = 1 ]; then FUZZ=1; SETUP+=(--fuzz); fi

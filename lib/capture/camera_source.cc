@@ -6,6 +6,7 @@
 #include <opencv2/videoio.hpp>
 #include <random>
 
+#include "capture/aravis_source.h"
 #include "capture/device.h"
 #include "io/error.h"
 #include "video/frame_source.h"
@@ -263,6 +264,10 @@ std::unique_ptr<CameraSource> MakeCameraSource(const CameraSourceOptions& o) {
   if (o.source.empty()) throw UsageError("camera source is empty");
   if (o.source.rfind("file:", 0) == 0) return std::make_unique<FileSource>(o);
   if (o.source.rfind("synthetic:", 0) == 0) return std::make_unique<SyntheticSource>(o);
+  if (o.source.rfind("aravis:", 0) == 0) {
+    if (o.source.size() == std::string("aravis:").size()) throw UsageError("camera source 'aravis:' names no camera");
+    return std::make_unique<AravisSource>(o);
+  }
   return std::make_unique<OpenCvSource>(o);
 }
 

@@ -4,6 +4,9 @@
 //   "gst:<pipeline>"     GStreamer pipeline ending in appsink (OpenCV VideoCapture, CAP_GSTREAMER);
 //                        GigE / USB3 Vision cameras through aravissrc, e.g.
 //                        "gst:aravissrc camera-name=X ! video/x-raw,format=GRAY8 ! appsink"
+//   "aravis:<id>"        a GigE Vision / USB3 Vision camera through Aravis' own API (aravis_source.h): the
+//                        station config's features set in order and read back, the camera's own time stamp
+//                        of every frame (camera_ns), stream counters
 //   "file:<path>"        a recorded video or image sequence, replayed at its frame rate (tests);
 //                        decoded by the suite's own reader (lib/video FrameSource, the one
 //                        rk-extract uses), so frames arrive bit-exact, 16-bit kept
@@ -21,8 +24,11 @@
 #include <memory>
 #include <opencv2/core.hpp>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "capture/clock.h"
+#include "io/json_util.h"
 
 namespace rk::capture {
 
@@ -32,6 +38,8 @@ struct CameraSourceOptions {
   int width = 0, height = 0;  // requested V4L2 size (0 = the device's)
   std::string fourcc;         // requested V4L2 pixel format, e.g. "GREY", "Y16 " (empty = the device's)
   bool loop = false;          // file: start again at the end
+  // aravis: GenICam features (name, value as text) in the order the station config gives them.
+  std::vector<std::pair<std::string, std::string>> features;
 };
 
 enum class GrabResult { kFrame, kEnd, kError, kStopped };
@@ -46,7 +54,12 @@ class CameraSource {
   virtual GrabResult Grab(cv::Mat* out, Stamp* at, std::string* why, const std::atomic<bool>& stop) = 0;
   // Frame rate of the stream (known after Open).
   virtual double fps() const = 0;
-  virtual std::string kind() const = 0;  // "v4l2", "gstreamer", "file", "synthetic"
+  virtual std::string kind() const = 0;  // "v4l2", "gstreamer", "file", "synthetic", "aravis"
+  // A camera with its own clock: the time stamp of the last frame Grab returned, ns on that clock (−1 none).
+  virtual bool has_camera_clock() const { return false; }
+  virtual std::int64_t camera_ns() const { return -1; }
+  // The stream's counters and the features asked and read back, for the report (null when the source has none).
+  virtual io::Json StreamReport() const { return nullptr; }
 };
 
 // Throws UsageError for a source string it cannot interpret.

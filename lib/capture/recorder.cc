@@ -26,7 +26,7 @@ io::Json CameraSummary::ToJson() const {
           {"width", width},               {"height", height},           {"bit_depth", bit_depth},
           {"frames_grabbed", grabbed},    {"frames_written", written},  {"dropped_queue_full", dropped_queue},
           {"dropped_disk_low", dropped_disk}, {"write_failed", write_failed}, {"source_errors", source_errors},
-          {"segments", segments},         {"source_ended", ended}};
+          {"segments", segments},         {"source_ended", ended},      {"stream", stream}};
 }
 
 io::Json CaptureSummary::ToJson() const {

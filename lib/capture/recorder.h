@@ -48,6 +48,7 @@ struct CameraSummary {
   std::int64_t grabbed = 0, written = 0, dropped_queue = 0, dropped_disk = 0, write_failed = 0, source_errors = 0;
   int segments = 0;
   bool ended = false;  // the source ended before the recording did (a file without loop)
+  io::Json stream;     // an Aravis camera's stream counters and features (AravisSource::StreamReport), else null
   io::Json ToJson() const;
 };
 

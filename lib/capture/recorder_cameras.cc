@@ -3,15 +3,55 @@
 // frames.csv row, so frames.csv never names a frame that is not on disk).
 #include "capture/recorder_internal.h"
 
+#include <algorithm>
 #include <exception>
 
 #include "camera/camera_model.h"
 
 namespace rk::capture::internal {
 
+namespace {
+constexpr double kSilencePeriods = 5.0;  // a camera stamp step beyond this many frame periods ...
+constexpr double kSilenceMinS = 0.2;     // ... and this long is a gap
+}  // namespace
+
+void CameraStream::ClockFit::Add(double camera_s, double host_s) {
+  if (n == 0) {
+    x0 = camera_s;
+    y0 = host_s;
+  }
+  const double x = camera_s - x0, y = host_s - y0;
+  ++n;
+  sx += x;
+  sy += y;
+  sxx += x * x;
+  sxy += x * y;
+  syy += y * y;
+}
+
+io::Json CameraStream::ClockFit::ToJson() const {
+  if (n < 2) return nullptr;
+  const double m = static_cast<double>(n);
+  const double vxx = sxx - sx * sx / m, vxy = sxy - sx * sy / m, vyy = syy - sy * sy / m;
+  if (!(vxx > 0)) return nullptr;
+  const double slope = vxy / vxx;
+  const double intercept = (sy - slope * sx) / m;  // host − y0 at camera = x0
+  const double rss = std::max(0.0, vyy - slope * vxy);
+  // The host's arrival time lags the exposure by the transfer: the offset includes it (a constant), the
+  // residual is the host's jitter about the line.
+  return {{"frames", n},
+          {"offset_s", y0 + intercept - x0},
+          {"drift_ppm", (slope - 1.0) * 1e6},
+          {"residual_rms_s", n > 2 ? std::sqrt(rss / (m - 2.0)) : 0.0},
+          {"model", "host_mono_s = offset_s + camera_ts_s + drift_ppm·1e-6·(camera_ts_s − first camera_ts_s)"},
+          {"first_camera_ts_s", x0}};
+}
+
 void Recorder::GrabLoop(CameraStream* cam) {
   std::int64_t seq = 0;
   cv::Mat discard;
+  std::int64_t last_camera_ns = -1;  // the camera's own stamps: a silence, a clock that went back
+  Stamp last_at;
   while (!stop_.load()) {
     int b = -1;
     {
@@ -33,13 +73,33 @@ void Recorder::GrabLoop(CameraStream* cam) {
     }
     if (r == GrabResult::kFrame) {
       ++cam->grabbed;
+      const std::int64_t cns = cam->src->camera_ns();
+      if (cns >= 0 && last_camera_ns >= 0) {
+        const double step_s = static_cast<double>(cns - last_camera_ns) * 1e-9;
+        const double period_s = cam->fps > 0 ? 1.0 / cam->fps : 0.0;
+        if (step_s <= 0.0) {
+          // A camera that reset its clock (power cycle): its stamps start again; so does the clock mapping.
+          Event(EventLevel::kWarning, "camera:" + cam->cfg.name,
+                "camera clock went back by " + FormatFixed(-step_s, 6) + " s: a new camera clock mapping starts");
+          std::lock_guard<std::mutex> lock(cam->mutex);
+          cam->clock_fit = {};
+        } else if (step_s > std::max(kSilenceMinS, kSilencePeriods * period_s)) {
+          // The camera itself sent nothing for a while (paused, reconfigured): a gap from the last frame to this
+          // one, closed when this frame is written.
+          cam->Fault(last_at, "camera sent no frame for " + FormatFixed(step_s, 3) + " s (its own clock)");
+        }
+      }
+      if (cns >= 0) {
+        last_camera_ns = cns;
+        last_at = at;
+      }
       if (b < 0) {
         ++cam->dropped_queue;
         cam->Fault(at, "frames dropped: " + std::to_string(cam->pool.size()) +
                            " frames already wait for the disk (seq " + std::to_string(seq) + ")");
       } else {
         std::lock_guard<std::mutex> lock(cam->mutex);
-        cam->queue.push_back({b, at, seq});
+        cam->queue.push_back({b, at, seq, cam->src->camera_ns()});
         cam->cv.notify_one();
       }
       ++seq;
@@ -56,13 +116,15 @@ void Recorder::GrabLoop(CameraStream* cam) {
       break;
     }
     ++cam->source_errors;
-    cam->Fault(Now(), why);
+    // A camera with its own clock went silent after its last frame: the gap starts there.
+    cam->Fault(last_camera_ns >= 0 ? last_at : Now(), why);
     // Reopen after a pause (a camera unplugged and plugged back in).
     cam->src->Close();
     if (!SleepUntil(MonoNowNs() + kNsPerS, stop_)) break;
     std::string owhy;
     if (cam->src->Open(&owhy)) {
       Event(EventLevel::kInfo, "camera:" + cam->cfg.name, "reopened");
+      ReportFeatures(cam);
     }
   }
   std::lock_guard<std::mutex> lock(cam->mutex);
@@ -121,7 +183,11 @@ void Recorder::WriteFrame(CameraStream* cam, const CameraStream::Item& item) {
   const std::string row = std::to_string(cam->frame_index) + "," + FormatFixed(T(item.at), 9) + "," +
                           FormatFixed(static_cast<double>(item.at.mono_ns) * 1e-9, 9) + "," +
                           FormatFixed(static_cast<double>(item.at.real_ns) * 1e-9, 6) + "," +
-                          std::to_string(item.seq) + "," + std::to_string(cam->segment);
+                          std::to_string(item.seq) + "," + std::to_string(cam->segment) +
+                          (cam->src->has_camera_clock()
+                               ? "," + (item.camera_ns >= 0 ? FormatFixed(static_cast<double>(item.camera_ns) * 1e-9, 9)
+                                                            : std::string())
+                               : std::string());
   if (!cam->frames_log->Append(row, &why)) {
     // The frame stays only if its time is on disk too.
     std::string uwhy;
@@ -129,6 +195,10 @@ void Recorder::WriteFrame(CameraStream* cam, const CameraStream::Item& item) {
     ++cam->write_failed;
     cam->Fault(item.at, "frames.csv not written (" + why + "): frame removed");
     return;
+  }
+  if (item.camera_ns >= 0) {
+    std::lock_guard<std::mutex> lock(cam->mutex);
+    cam->clock_fit.Add(static_cast<double>(item.camera_ns) * 1e-9, static_cast<double>(item.at.mono_ns) * 1e-9);
   }
   syncer_->NoteWritten(static_cast<std::int64_t>(frame.total() * frame.elemSize()));
   ++cam->frame_index;

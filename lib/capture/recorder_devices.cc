@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 
 #include "io/error.h"
@@ -41,9 +42,34 @@ void Recorder::Connect() {
     cam->pool.resize(static_cast<std::size_t>(queue));
     for (int i = 0; i < queue; ++i) cam->free_buffers.push_back(i);
     cameras_.push_back(std::move(cam));
+    ReportFeatures(cameras_.back().get());
     Event(EventLevel::kInfo, "camera:" + cc.name,
           "opened " + cameras_.back()->src->kind() + " source '" + cc.source_text + "' at " +
               FormatFixed(cameras_.back()->fps, 3) + " fps, " + std::to_string(queue) + " frame buffers");
+  }
+}
+
+void Recorder::ReportFeatures(CameraStream* cam) {
+  const io::Json r = cam->src->StreamReport();
+  if (!r.is_object() || !r.contains("features")) return;
+  for (const io::Json& f : r["features"]) {
+    const std::string name = f.value("name", ""), asked = f.value("asked", ""), got = f.value("got", "");
+    if (f.contains("error")) {
+      Event(EventLevel::kWarning, "camera:" + cam->cfg.name,
+            "feature " + name + " = " + asked + " refused: " + f["error"].get<std::string>() + " (reads " + got + ")");
+    } else if (got != asked) {
+      // A number the camera rounded reads back as its own text: the same value in other digits is no change.
+      char* end = nullptr;
+      const double a = std::strtod(asked.c_str(), &end);
+      const bool a_num = end && *end == '\0' && !asked.empty();
+      const double g = std::strtod(got.c_str(), &end);
+      const bool g_num = end && *end == '\0' && !got.empty();
+      if (!(a_num && g_num && a == g)) {
+        Event(EventLevel::kWarning, "camera:" + cam->cfg.name, "feature " + name + " asked " + asked + ", got " + got);
+      }
+    } else {
+      Event(EventLevel::kInfo, "camera:" + cam->cfg.name, "feature " + name + " = " + got);
+    }
   }
 }
 

@@ -65,7 +65,11 @@ void Recorder::CreateLogs() {
     cam->frames_log = std::make_unique<AppendLog>(
         (fs::path(cam->folder) / trial::kFramesFile).string(),
         version + "camera " + cam->cfg.name + ", source '" + cam->cfg.source_text + "'; " + epoch_note +
-            "; seq = source frame counter (a jump = frames dropped)\n" + trial::kFramesColumns + "\n",
+            "; seq = source frame counter (a jump = frames dropped)" +
+            (cam->src->has_camera_clock() ? "; camera_ts_s = the camera's own time stamp of the frame, its clock as it "
+                                            "reads it (not re-based)"
+                                          : "") +
+            "\n" + trial::kFramesColumns + (cam->src->has_camera_clock() ? ",camera_ts_s" : "") + "\n",
         syncer_.get());
     AppendLog* log = cam->frames_log.get();
     CameraStream* c = cam.get();

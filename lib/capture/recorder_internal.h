@@ -53,6 +53,7 @@ struct CameraStream {
     int buffer = -1;
     Stamp at;
     std::int64_t seq = 0;
+    std::int64_t camera_ns = -1;  // the camera's own time stamp (aravis), −1 without
   };
   std::vector<cv::Mat> pool;
   std::vector<int> free_buffers;
@@ -72,6 +73,14 @@ struct CameraStream {
   std::unique_ptr<GapState> gap;
   DeviceReporter reporter;
 
+  // The camera clock → host clock mapping (a camera with its own clock): host_mono = offset + (1 + drift) ·
+  // camera, fitted by least squares over every written frame (sums about the first frame, under `mutex`).
+  struct ClockFit {
+    std::int64_t n = 0;
+    double x0 = 0, y0 = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, syy = 0;
+    void Add(double camera_s, double host_s);
+    io::Json ToJson() const;  // null before two frames
+  } clock_fit;
   std::atomic<std::int64_t> grabbed{0}, written{0}, dropped_queue{0}, dropped_disk{0}, write_failed{0},
       source_errors{0};
   std::atomic<bool> ended{false};
@@ -113,6 +122,9 @@ class Recorder {
 
   // --- streams (cameras in recorder_cameras.cc, devices in recorder_devices.cc) ---
   void GrabLoop(CameraStream* cam);
+  // The features an Aravis camera was asked for and what it took (events.log: a refused or changed value is a
+  // warning).
+  void ReportFeatures(CameraStream* cam);
   void WriteLoop(CameraStream* cam);
   void WriteFrame(CameraStream* cam, const CameraStream::Item& item);
   void OnRange(const RangeSample& s);

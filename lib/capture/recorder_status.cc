@@ -108,6 +108,11 @@ CaptureSummary Recorder::Summarise() {
     c.source_errors = cam->source_errors;
     c.segments = cam->segment + 1;
     c.ended = cam->ended;
+    c.stream = cam->src->StreamReport();
+    if (c.stream.is_object()) {
+      std::lock_guard<std::mutex> lock(cam->mutex);
+      c.stream["camera_clock"] = cam->clock_fit.ToJson();
+    }
     s.write_failures += c.dropped_disk + c.write_failed;
     s.cameras.push_back(c);
   }

@@ -1,12 +1,15 @@
 #include "capture/station_config.h"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <set>
 
 #include "camera/camera_model.h"
 #include "camera/pointing_model.h"
 #include "io/error.h"
+#include "io/file_util.h"
+#include "io/json_util.h"
 #include "trial/layout.h"
 
 namespace rk::capture {
@@ -51,6 +54,17 @@ std::string ResolvePort(const std::string& config_path, const std::string& port)
 void CheckReadable(const std::string& path, const std::string& where) {
   std::error_code ec;
   if (!fs::is_regular_file(path, ec)) throw IoError(path, "cannot read (named in " + where + ")");
+}
+
+// A feature value as GenICam takes it from a string: a number in full precision, a string as is, true/false.
+template <class J>
+std::string FeatureText(const J& v) {
+  if (v.is_string()) return v.template get<std::string>();
+  if (v.is_boolean()) return v.template get<bool>() ? "true" : "false";
+  if (v.is_number_integer()) return v.dump();
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.17g", v.template get<double>());
+  return buf;
 }
 
 CameraConfig CameraFromJson(const io::Json& c, const std::string& path, std::size_t index,
@@ -106,6 +120,21 @@ CameraConfig CameraFromJson(const io::Json& c, const std::string& path, std::siz
     CheckReadable(cam.target_path, where);
     io::LoadJson(cam.target_path);
   }
+  // GenICam features of an Aravis camera: names and scalar values (their order is taken from the file's text by
+  // LoadStationConfig: nlohmann's json sorts keys).
+  if (c.contains("features") && !c.at("features").is_null()) {
+    const io::Json& f = c.at("features");
+    if (!f.is_object()) throw DataError(where, 0, 0, "'features' must be an object of GenICam feature names and values");
+    if (cam.source_text.rfind("aravis:", 0) != 0) {
+      warnings->push_back(where + ": 'features' are set only on an aravis: camera; ignored");
+    }
+    for (const auto& [name, v] : f.items()) {
+      if (!(v.is_number() || v.is_string() || v.is_boolean())) {
+        throw DataError(where, 0, 0, "feature '" + name + "' must be a number, a string or true/false");
+      }
+      cam.source.features.emplace_back(name, FeatureText(v));
+    }
+  }
   // Validate the source string now (a bad synthetic: spec is a config error).
   try {
     MakeCameraSource(cam.source);
@@ -114,7 +143,7 @@ CameraConfig CameraFromJson(const io::Json& c, const std::string& path, std::siz
   }
   WarnUnknown(c,
               {"name", "source", "fps", "model", "role", "target", "format", "queue_frames", "width", "height",
-               "fourcc", "loop"},
+               "fourcc", "loop", "features"},
               where, warnings);
   return cam;
 }
@@ -244,7 +273,19 @@ StationConfig StationConfigFromJson(const io::Json& j, const std::string& path) 
 
 StationConfig LoadStationConfig(const std::string& path) {
   if (path == "-") throw UsageError("--config must name a file (paths in it are relative to it)");
-  return StationConfigFromJson(io::LoadJson(path), path);
+  const std::string text = io::ReadFile(path);
+  StationConfig c = StationConfigFromJson(io::ParseJson(text, path), path);
+  // The features in the order the file gives them (two features can share a register: order matters).
+  const nlohmann::ordered_json o = nlohmann::ordered_json::parse(text);
+  if (o.contains("cameras") && o["cameras"].is_array()) {
+    for (std::size_t i = 0; i < c.cameras.size() && i < o["cameras"].size(); ++i) {
+      const auto& cam = o["cameras"][i];
+      if (!cam.is_object() || !cam.contains("features") || !cam["features"].is_object()) continue;
+      c.cameras[i].source.features.clear();
+      for (const auto& [name, v] : cam["features"].items()) c.cameras[i].source.features.emplace_back(name, FeatureText(v));
+    }
+  }
+  return c;
 }
 
 }  // namespace rk::capture

@@ -27,3 +27,12 @@ set_tests_properties(rk_capture_disk_full PROPERTIES SKIP_RETURN_CODE 77)
 # The live status line: on a terminal (a pty from script(1)), rewritten in place with frames, drops, range
 # rate and turret angles; not printed when stderr is not a terminal.
 rk_cli_script(rk_capture/rk_capture_status_line)
+
+# GigE Vision through Aravis (issue 32): Aravis' software camera (arv-fake-gv-camera-0.8) in a private network
+# namespace (unshare -n, loopback only); --list-cameras lists it; 6 s recorded with a size, rate and exposure
+# other than its defaults, set in the file's order and read back (report, events.log); frame count = duration
+# × rate within a frame, camera stamps strictly increasing at the configured period within 1 %, ≥ 6 decimals;
+# stream counters and the camera → host clock fit in the report; a camera that does not answer: exit 4, no
+# trial. Skipped (77) without aravis-tools or without a network namespace.
+rk_cli_script(rk_capture/rk_capture_aravis)
+set_tests_properties(rk_capture_aravis PROPERTIES SKIP_RETURN_CODE 77)

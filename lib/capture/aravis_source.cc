@@ -1,0 +1,242 @@
+// "aravis:<id>" camera source (SPEC.md §6): a GigE Vision or USB3 Vision camera through Aravis' own API
+// (Debian libaravis-dev 0.8), with the camera's own clock; see camera_source.h and docs/rk-capture.md.
+//
+// Open: arv_camera_new(id) (an id as arv-tool-0.8 lists it, or an address); the station config's "features" set
+// through GenICam in the order the file gives them (arv_gc_feature_node_set_value_from_string: the camera's own
+// node decides the type) and each read back (asked, got: a refused or rounded value is kept for the report and
+// said by the recorder); continuous acquisition; on a GigE camera the packet size negotiated
+// (arv_camera_gv_auto_packet_size) and the stream's socket buffer sized for a whole frame; a pool of buffers of
+// one payload each, a second's worth (at least 8).
+// Grab: the next buffer (1 s timeout per wait, so that a stop is seen; kMaxSilenceS without a frame is an
+// error, on which the recorder closes and reopens: the same features are set again). A buffer that is not
+// complete (missing packets, timeout, size mismatch) is never returned as a frame: it is counted and given back.
+// The frame's camera time stamp (arv_buffer_get_timestamp, ns on the camera's clock) is kept for frames.csv;
+// the 16-bit GVSP frame ids (1..65535, then 1 again) count the frames the camera sent that never arrived.
+// Pixel formats: Mono8 (8-bit), Mono16 and the unpacked Mono10/Mono12 (16-bit, values as the camera gives them).
+#include "capture/aravis_source.h"
+
+#include <arv.h>
+
+#include <algorithm>
+#include <cstring>
+
+#include "io/error.h"
+
+namespace rk::capture {
+namespace {
+
+constexpr guint64 kPopTimeoutUs = 1000000;  // one wait for a buffer (a stop is seen within it)
+constexpr double kMaxSilenceS = 3.0;        // no frame for this long: the camera is gone
+constexpr int kMinBuffers = 8;
+constexpr std::uint64_t kFrameIdWrap = 65535;  // GVSP block ids run 1..65535
+
+std::string TakeError(GError** e) {
+  if (!*e) return "";
+  std::string m = (*e)->message ? (*e)->message : "unknown error";
+  g_clear_error(e);
+  return m;
+}
+
+}  // namespace
+
+struct AravisSource::Impl {
+  ArvCamera* camera = nullptr;
+  ArvStream* stream = nullptr;
+  std::int64_t last_frame_ns = 0;  // monotonic time of the last frame (silence)
+  std::uint64_t last_id = 0;
+  bool have_id = false;
+};
+
+AravisSource::AravisSource(CameraSourceOptions o) : o_(std::move(o)), impl_(std::make_unique<Impl>()) {
+  id_ = o_.source.substr(std::strlen("aravis:"));
+}
+
+AravisSource::~AravisSource() { Close(); }
+
+void AravisSource::Close() {
+  if (impl_->camera) {
+    GError* e = nullptr;
+    arv_camera_stop_acquisition(impl_->camera, &e);
+    g_clear_error(&e);
+  }
+  if (impl_->stream) g_object_unref(impl_->stream);
+  if (impl_->camera) g_object_unref(impl_->camera);
+  impl_->stream = nullptr;
+  impl_->camera = nullptr;
+}
+
+bool AravisSource::Open(std::string* why) {
+  Close();
+  GError* e = nullptr;
+  impl_->camera = arv_camera_new(id_.c_str(), &e);
+  if (!impl_->camera) {
+    *why = "Aravis camera '" + id_ + "' not found or not answering" + (e ? ": " + TakeError(&e) : "");
+    return false;
+  }
+  ArvDevice* dev = arv_camera_get_device(impl_->camera);
+  features_.clear();
+  for (const auto& [name, value] : o_.features) {
+    FeatureResult f{name, value, "", ""};
+    ArvGcNode* node = arv_device_get_feature(dev, name.c_str());
+    if (!node || !ARV_IS_GC_FEATURE_NODE(node)) {
+      f.error = "the camera has no feature '" + name + "'";
+    } else {
+      arv_gc_feature_node_set_value_from_string(ARV_GC_FEATURE_NODE(node), value.c_str(), &e);
+      f.error = TakeError(&e);
+      const char* got = arv_gc_feature_node_get_value_as_string(ARV_GC_FEATURE_NODE(node), &e);
+      if (got) f.got = got;
+      const std::string read_error = TakeError(&e);
+      if (f.error.empty() && !read_error.empty()) f.error = "read back: " + read_error;
+    }
+    features_.push_back(f);
+  }
+  arv_camera_set_acquisition_mode(impl_->camera, ARV_ACQUISITION_MODE_CONTINUOUS, &e);
+  g_clear_error(&e);
+  gv_ = arv_camera_is_gv_device(impl_->camera);
+  if (gv_) {
+    packet_size_ = static_cast<int>(arv_camera_gv_auto_packet_size(impl_->camera, &e));
+    g_clear_error(&e);
+  }
+  double rate = arv_camera_get_frame_rate(impl_->camera, &e);
+  if (e || !(rate > 0.0) || rate > 1e5) rate = o_.fps;
+  g_clear_error(&e);
+  fps_ = rate;
+  const guint payload = arv_camera_get_payload(impl_->camera, &e);
+  if (e || payload == 0) {
+    *why = "Aravis camera '" + id_ + "': no payload size" + (e ? ": " + TakeError(&e) : "");
+    Close();
+    return false;
+  }
+  impl_->stream = arv_camera_create_stream(impl_->camera, nullptr, nullptr, &e);
+  if (!impl_->stream) {
+    *why = "Aravis camera '" + id_ + "': cannot open its stream: " + TakeError(&e);
+    Close();
+    return false;
+  }
+  if (gv_) {
+    // A frame arrives as one burst of packets: a socket buffer that holds it, and resends where the camera
+    // supports them.
+    g_object_set(impl_->stream, "socket-buffer", ARV_GV_STREAM_SOCKET_BUFFER_AUTO, "packet-resend",
+                 ARV_GV_STREAM_PACKET_RESEND_ALWAYS, nullptr);
+  }
+  const int n = std::max(kMinBuffers, static_cast<int>(std::ceil(fps_)));
+  for (int i = 0; i < n; ++i) arv_stream_push_buffer(impl_->stream, arv_buffer_new_allocate(payload));
+  arv_camera_start_acquisition(impl_->camera, &e);
+  if (e) {
+    *why = "Aravis camera '" + id_ + "': cannot start acquisition: " + TakeError(&e);
+    Close();
+    return false;
+  }
+  impl_->last_frame_ns = MonoNowNs();
+  impl_->have_id = false;
+  ++opens_;
+  return true;
+}
+
+GrabResult AravisSource::Grab(cv::Mat* out, Stamp* at, std::string* why, const std::atomic<bool>& stop) {
+  if (!impl_->stream) {
+    *why = "Aravis camera '" + id_ + "' is not open";
+    return GrabResult::kError;
+  }
+  while (!stop.load()) {
+    ArvBuffer* b = arv_stream_timeout_pop_buffer(impl_->stream, kPopTimeoutUs);
+    if (!b) {
+      if (static_cast<double>(MonoNowNs() - impl_->last_frame_ns) * 1e-9 > kMaxSilenceS) {
+        ++stats_.timeouts;
+        *why = "Aravis camera '" + id_ + "' sent no frame for " + std::to_string(static_cast<int>(kMaxSilenceS)) + " s";
+        return GrabResult::kError;
+      }
+      continue;
+    }
+    *at = Now();
+    impl_->last_frame_ns = at->mono_ns;
+    const std::uint64_t id = arv_buffer_get_frame_id(b);
+    if (impl_->have_id && gv_) {
+      // Frames the camera sent that never reached us: the ids skipped (1..65535, wrapping to 1).
+      std::uint64_t step = id >= impl_->last_id ? id - impl_->last_id : id + kFrameIdWrap - impl_->last_id;
+      if (step > 1 && step < kFrameIdWrap) stats_.never_arrived += step - 1;
+    }
+    impl_->last_id = id;
+    impl_->have_id = true;
+    if (arv_buffer_get_status(b) != ARV_BUFFER_STATUS_SUCCESS) {
+      ++stats_.incomplete;
+      arv_stream_push_buffer(impl_->stream, b);
+      continue;
+    }
+    const ArvPixelFormat pf = arv_buffer_get_image_pixel_format(b);
+    const int w = arv_buffer_get_image_width(b), h = arv_buffer_get_image_height(b);
+    size_t size = 0;
+    const void* data = arv_buffer_get_image_data(b, &size);
+    int type = -1;
+    if (pf == ARV_PIXEL_FORMAT_MONO_8) type = CV_8UC1;
+    if (pf == ARV_PIXEL_FORMAT_MONO_16 || pf == ARV_PIXEL_FORMAT_MONO_10 || pf == ARV_PIXEL_FORMAT_MONO_12) type = CV_16UC1;
+    if (type < 0 || w <= 0 || h <= 0 || size < static_cast<size_t>(w) * static_cast<size_t>(h) * (type == CV_8UC1 ? 1u : 2u)) {
+      arv_stream_push_buffer(impl_->stream, b);
+      *why = "Aravis camera '" + id_ + "': pixel format 0x" + [&] {
+        char s[16];
+        std::snprintf(s, sizeof s, "%08x", static_cast<unsigned>(pf));
+        return std::string(s);
+      }() + " is not Mono8, Mono10, Mono12 or Mono16 (set PixelFormat in the camera's features)";
+      return GrabResult::kError;
+    }
+    const cv::Mat view(h, w, type, const_cast<void*>(data));
+    view.copyTo(*out);
+    camera_ns_ = static_cast<std::int64_t>(arv_buffer_get_timestamp(b));
+    ++stats_.complete;
+    arv_stream_push_buffer(impl_->stream, b);
+    return GrabResult::kFrame;
+  }
+  return GrabResult::kStopped;
+}
+
+AravisStreamStats AravisSource::stream_stats() const {
+  AravisStreamStats s = stats_;
+  if (impl_->stream) {
+    guint64 completed = 0, failures = 0, underruns = 0;
+    arv_stream_get_statistics(impl_->stream, &completed, &failures, &underruns);
+    s.lost_buffers = underruns;
+    if (gv_) {
+      guint64 resent = 0, missing = 0;
+      arv_gv_stream_get_statistics(ARV_GV_STREAM(impl_->stream), &resent, &missing);
+      s.resent_packets = resent;
+      s.missing_packets = missing;
+    }
+  }
+  return s;
+}
+
+io::Json AravisSource::StreamReport() const {
+  const AravisStreamStats s = stream_stats();
+  io::Json features = io::Json::array();
+  for (const FeatureResult& f : features_) {
+    io::Json j = {{"name", f.name}, {"asked", f.asked}, {"got", f.got}};
+    if (!f.error.empty()) j["error"] = f.error;
+    features.push_back(j);
+  }
+  return {{"id", id_},
+          {"gige", gv_},
+          {"packet_size", packet_size_},
+          {"opens", opens_},
+          {"frames_complete", s.complete},
+          {"frames_incomplete", s.incomplete},
+          {"frames_never_arrived", s.never_arrived},
+          {"resent_packets", s.resent_packets},
+          {"missing_packets", s.missing_packets},
+          {"lost_buffers", s.lost_buffers},
+          {"timeouts", s.timeouts},
+          {"features", features}};
+}
+
+std::vector<AravisCameraInfo> ListAravisCameras() {
+  arv_update_device_list();
+  std::vector<AravisCameraInfo> out;
+  const unsigned n = arv_get_n_devices();
+  for (unsigned i = 0; i < n; ++i) {
+    auto s = [](const char* c) { return std::string(c ? c : ""); };
+    out.push_back({s(arv_get_device_id(i)), s(arv_get_device_model(i)), s(arv_get_device_serial_nbr(i)),
+                   s(arv_get_device_address(i))});
+  }
+  return out;
+}
+
+}  // namespace rk::capture

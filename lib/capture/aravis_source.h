@@ -1,0 +1,62 @@
+// "aravis:<id>" camera source: a GigE Vision or USB3 Vision camera through Aravis (method in aravis_source.cc).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "capture/camera_source.h"
+#include "io/json_util.h"
+
+namespace rk::capture {
+
+struct AravisStreamStats {
+  std::uint64_t complete = 0;       // frames delivered whole
+  std::uint64_t incomplete = 0;     // buffers with missing packets, timed out or mis-sized: dropped, never written
+  std::uint64_t never_arrived = 0;  // frames the camera sent (its frame ids) that never reached the host
+  std::uint64_t resent_packets = 0, missing_packets = 0;  // GigE Vision stream (Aravis' counters)
+  std::uint64_t lost_buffers = 0;   // frames Aravis had no free buffer for (underruns)
+  std::uint64_t timeouts = 0;       // silences longer than the source's limit (a reconnect follows)
+};
+
+struct AravisCameraInfo {
+  std::string id, model, serial, address;
+};
+
+class AravisSource final : public CameraSource {
+ public:
+  explicit AravisSource(CameraSourceOptions o);
+  ~AravisSource() override;
+  bool Open(std::string* why) override;
+  void Close() override;
+  GrabResult Grab(cv::Mat* out, Stamp* at, std::string* why, const std::atomic<bool>& stop) override;
+  double fps() const override { return fps_; }
+  std::string kind() const override { return "aravis"; }
+  bool has_camera_clock() const override { return true; }
+  std::int64_t camera_ns() const override { return camera_ns_; }
+  io::Json StreamReport() const override;
+  AravisStreamStats stream_stats() const;
+
+  struct FeatureResult {
+    std::string name, asked, got, error;
+  };
+  const std::vector<FeatureResult>& features() const { return features_; }
+
+ private:
+  CameraSourceOptions o_;
+  std::string id_;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::vector<FeatureResult> features_;
+  AravisStreamStats stats_;
+  double fps_ = 0.0;
+  bool gv_ = false;
+  int packet_size_ = 0, opens_ = 0;
+  std::int64_t camera_ns_ = -1;
+};
+
+// What Aravis discovers (rk-capture --list-cameras).
+std::vector<AravisCameraInfo> ListAravisCameras();
+
+}  // namespace rk::capture
