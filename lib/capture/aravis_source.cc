@@ -150,16 +150,10 @@ GrabResult AravisSource::Grab(cv::Mat* out, Stamp* at, std::string* why, const s
     }
     *at = Now();
     impl_->last_frame_ns = at->mono_ns;
-    const std::uint64_t id = arv_buffer_get_frame_id(b);
-    if (impl_->have_id && gv_) {
-      // Frames the camera sent that never reached us: the ids skipped (1..65535, wrapping to 1).
-      std::uint64_t step = id >= impl_->last_id ? id - impl_->last_id : id + kFrameIdWrap - impl_->last_id;
-      if (step > 1 && step < kFrameIdWrap) stats_.never_arrived += step - 1;
-    }
-    impl_->last_id = id;
-    impl_->have_id = true;
+    CountFrameId(arv_buffer_get_frame_id(b));
     if (arv_buffer_get_status(b) != ARV_BUFFER_STATUS_SUCCESS) {
       ++stats_.incomplete;
+      ++lost_pending_;
       arv_stream_push_buffer(impl_->stream, b);
       continue;
     }
@@ -182,11 +176,37 @@ GrabResult AravisSource::Grab(cv::Mat* out, Stamp* at, std::string* why, const s
     const cv::Mat view(h, w, type, const_cast<void*>(data));
     view.copyTo(*out);
     camera_ns_ = static_cast<std::int64_t>(arv_buffer_get_timestamp(b));
+    lost_before_last_ = lost_pending_;
+    lost_pending_ = 0;
     ++stats_.complete;
     arv_stream_push_buffer(impl_->stream, b);
     return GrabResult::kFrame;
   }
   return GrabResult::kStopped;
+}
+
+void AravisSource::CountFrameId(std::uint64_t id) {
+  if (!gv_ || id == 0) return;  // 0: no id (USB3 Vision, or a buffer that never got one)
+  if (!impl_->have_id) {
+    impl_->last_id = id;
+    impl_->have_id = true;
+    return;
+  }
+  const std::uint64_t last = impl_->last_id;
+  std::uint64_t forward = 0;
+  bool ahead = false;
+  if (id <= kFrameIdWrap && last <= kFrameIdWrap) {
+    // 16-bit block ids 1..65535: the step forward modulo 65535; more than half the ring is a late buffer.
+    forward = (id + kFrameIdWrap - last) % kFrameIdWrap;
+    ahead = forward > 0 && forward <= kFrameIdWrap / 2;
+  } else {
+    forward = id > last ? id - last : 0;  // GigE Vision 2 extended (64-bit) ids
+    ahead = forward > 0;
+  }
+  if (!ahead) return;  // the same frame again, or one that arrived after a later one
+  stats_.never_arrived += forward - 1;
+  lost_pending_ += static_cast<std::int64_t>(forward - 1);
+  impl_->last_id = id;
 }
 
 AravisStreamStats AravisSource::stream_stats() const {

@@ -35,6 +35,7 @@ class AravisSource final : public CameraSource {
   std::string kind() const override { return "aravis"; }
   bool has_camera_clock() const override { return true; }
   std::int64_t camera_ns() const override { return camera_ns_; }
+  std::int64_t lost_before_last() const override { return lost_before_last_; }
   io::Json StreamReport() const override;
   AravisStreamStats stream_stats() const;
 
@@ -44,6 +45,9 @@ class AravisSource final : public CameraSource {
   const std::vector<FeatureResult>& features() const { return features_; }
 
  private:
+  // Frames the camera sent that never arrived, from the frame ids (every buffer's, complete or not).
+  void CountFrameId(std::uint64_t id);
+
   CameraSourceOptions o_;
   std::string id_;
   struct Impl;
@@ -54,6 +58,7 @@ class AravisSource final : public CameraSource {
   bool gv_ = false;
   int packet_size_ = 0, opens_ = 0;
   std::int64_t camera_ns_ = -1;
+  std::int64_t lost_before_last_ = 0, lost_pending_ = 0;
 };
 
 // What Aravis discovers (rk-capture --list-cameras).

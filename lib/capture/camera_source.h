@@ -58,6 +58,9 @@ class CameraSource {
   // A camera with its own clock: the time stamp of the last frame Grab returned, ns on that clock (−1 none).
   virtual bool has_camera_clock() const { return false; }
   virtual std::int64_t camera_ns() const { return -1; }
+  // Frames the source knows it lost just before the last one Grab returned (incomplete, never arrived): the
+  // recorder's seq jumps by as many, as frames.csv promises.
+  virtual std::int64_t lost_before_last() const { return 0; }
   // The stream's counters and the features asked and read back, for the report (null when the source has none).
   virtual io::Json StreamReport() const { return nullptr; }
 };

@@ -73,6 +73,7 @@ void Recorder::GrabLoop(CameraStream* cam) {
     }
     if (r == GrabResult::kFrame) {
       ++cam->grabbed;
+      seq += cam->src->lost_before_last();
       const std::int64_t cns = cam->src->camera_ns();
       if (cns >= 0 && last_camera_ns >= 0) {
         const double step_s = static_cast<double>(cns - last_camera_ns) * 1e-9;

@@ -32,7 +32,9 @@ rk_cli_script(rk_capture/rk_capture_status_line)
 # namespace (unshare -n, loopback only); --list-cameras lists it; 6 s recorded with a size, rate and exposure
 # other than its defaults, set in the file's order and read back (report, events.log); frame count = duration
 # × rate within a frame, camera stamps strictly increasing at the configured period within 1 %, ≥ 6 decimals;
-# stream counters and the camera → host clock fit in the report; a camera that does not answer: exit 4, no
-# trial. Skipped (77) without aravis-tools or without a network namespace.
+# stream counters and the camera → host clock fit in the report; paused (SIGSTOP) and resumed, then killed and
+# restarted: two gaps, one reconnect with the features set again, no duplicated frame; packet loss (the software
+# camera's -r): incomplete frames counted, none written, seq jumps by the lost; a camera that does not answer:
+# exit 4, no trial. Skipped (77) without aravis-tools or without a network namespace.
 rk_cli_script(rk_capture/rk_capture_aravis)
 set_tests_properties(rk_capture_aravis PROPERTIES SKIP_RETURN_CODE 77)

@@ -44,6 +44,15 @@ sleep 2; kill $fake; wait $fake 2>/dev/null || true; sleep 3
 arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK1 >"$d/fake2.log" 2>&1 &
 fake=$!
 wait $cap
+# Packet loss (the software camera's own option: 5 GVSP packets in 1000 lost; no resends): incomplete frames.
+# One software camera at a time: both would listen on the GVCP port of the one address.
+kill $fake; wait $fake 2>/dev/null || true
+arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK2 -r 5 >"$d/fake3.log" 2>&1 &
+lossy=$!
+sed 's/Aravis-Fake-RK1/Aravis-Fake-RK2/' "$d/station.json" >"$d/lossy.json"
+for _ in $(seq 50); do rk-capture --list-cameras | grep -q '^Aravis-Fake-RK2,' && break; sleep 0.1; done
+rk-capture --config "$d/lossy.json" --out "$d/trial3" --duration 5 --report "$d/report3.json" --quiet
+kill $lossy
 # A camera that does not answer: exit 4, one line naming it, no trial left behind.
 "$expect" 4 "$d/trial_missing" 'Aravis-Fake-NOSUCH' -- rk-capture --config "$d/missing.json" --out "$d/trial_missing" --duration 2 -q
 SH
@@ -96,6 +105,18 @@ assert ev.count("feature Width = 320") == 2 and "reopened" in ev, ev
 gaps = json.load(open(d + "/trial2/trial.json"))["capture"]["gaps"]
 spans = sorted(g["end_s"] - g["start_s"] for g in gaps)
 assert spans[0] > 1.9 and spans[1] > 3.0, gaps
+# Packet loss: frames with missing packets are counted and never written; frames.csv's seq jumps by the frames
+# lost (incomplete or never arrived) before each written one.
+c3 = json.load(open(d + "/report3.json"))["summary"]["cameras"]["gige"]
+s3 = c3["stream"]
+assert s3["frames_incomplete"] > 0, s3
+assert c3["frames_written"] == s3["frames_complete"] == c3["frames_grabbed"], (c3, s3)
+rows3 = list(csv.DictReader(l for l in open(d + "/trial3/gige/frames.csv") if not l.startswith("#")))
+seq3 = [int(r["seq"]) for r in rows3]
+lost = seq3[-1] + 1 - len(rows3)
+assert all(b > a for a, b in zip(seq3, seq3[1:]))
+assert 0 <= s3["frames_incomplete"] + s3["frames_never_arrived"] - lost <= 3, (lost, s3)
+print("lossy: written", len(rows3), "incomplete", s3["frames_incomplete"], "never arrived", s3["frames_never_arrived"])
 PY
 test ! -e "$d/trial_missing"
 echo ok
