@@ -84,6 +84,7 @@ void Recorder::GrabLoop(CameraStream* cam) {
                 "camera clock went back by " + FormatFixed(-step_s, 6) + " s: a new camera clock mapping starts");
           std::lock_guard<std::mutex> lock(cam->mutex);
           cam->clock_fit = {};
+          cam->clock_went_back = true;
         } else if (step_s > std::max(kSilenceMinS, kSilencePeriods * period_s)) {
           // The camera itself sent nothing for a while (paused, reconfigured): a gap from the last frame to this
           // one, closed when this frame is written.
@@ -181,14 +182,31 @@ void Recorder::WriteFrame(CameraStream* cam, const CameraStream::Item& item) {
     if (cam->writer->file_too_large() && cam->writer->frames_in_segment() > 0) cam->writer->End();
     return;
   }
-  const std::string row = std::to_string(cam->frame_index) + "," + FormatFixed(T(item.at), 9) + "," +
+  // A camera with its own clock: t_s from its stamp through the mapping onto the host clock (camera_clock.h),
+  // said in time_source; a frame without a stamp, or one the mapping would put at or before the last row, keeps
+  // its arrival time ("host").
+  double t_s = T(item.at);
+  std::string camera_cols;
+  if (cam->src->has_camera_clock()) {
+    const char* source = "host";
+    if (item.camera_ns >= 0) {
+      if (cam->clock_went_back.exchange(false)) cam->clock_map.Reset();
+      const double mapped = cam->clock_map.Add(item.camera_ns, static_cast<double>(item.at.mono_ns) * 1e-9) -
+                            static_cast<double>(epoch_.mono_ns) * 1e-9;
+      if (mapped > cam->last_t_s) {
+        t_s = mapped;
+        source = "camera";
+      }
+      camera_cols = "," + FormatFixed(static_cast<double>(item.camera_ns) * 1e-9, 9) + "," + source;
+    } else {
+      camera_cols = ",," + std::string(source);
+    }
+  }
+  cam->last_t_s = t_s;
+  const std::string row = std::to_string(cam->frame_index) + "," + FormatFixed(t_s, 9) + "," +
                           FormatFixed(static_cast<double>(item.at.mono_ns) * 1e-9, 9) + "," +
                           FormatFixed(static_cast<double>(item.at.real_ns) * 1e-9, 6) + "," +
-                          std::to_string(item.seq) + "," + std::to_string(cam->segment) +
-                          (cam->src->has_camera_clock()
-                               ? "," + (item.camera_ns >= 0 ? FormatFixed(static_cast<double>(item.camera_ns) * 1e-9, 9)
-                                                            : std::string())
-                               : std::string());
+                          std::to_string(item.seq) + "," + std::to_string(cam->segment) + camera_cols;
   if (!cam->frames_log->Append(row, &why)) {
     // The frame stays only if its time is on disk too.
     std::string uwhy;

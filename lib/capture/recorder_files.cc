@@ -66,10 +66,12 @@ void Recorder::CreateLogs() {
         (fs::path(cam->folder) / trial::kFramesFile).string(),
         version + "camera " + cam->cfg.name + ", source '" + cam->cfg.source_text + "'; " + epoch_note +
             "; seq = source frame counter (a jump = frames dropped)" +
-            (cam->src->has_camera_clock() ? "; camera_ts_s = the camera's own time stamp of the frame, its clock as it "
-                                            "reads it (not re-based)"
-                                          : "") +
-            "\n" + trial::kFramesColumns + (cam->src->has_camera_clock() ? ",camera_ts_s" : "") + "\n",
+            (cam->src->has_camera_clock()
+                 ? "; camera_ts_s = the camera's own time stamp of the frame, its clock as it reads it (not re-based); "
+                   "t_s = that stamp mapped onto the host clock (camera clock mapping followed as the run goes) "
+                   "where time_source is camera, else the arrival"
+                 : "") +
+            "\n" + trial::kFramesColumns + (cam->src->has_camera_clock() ? ",camera_ts_s,time_source" : "") + "\n",
         syncer_.get());
     AppendLog* log = cam->frames_log.get();
     CameraStream* c = cam.get();

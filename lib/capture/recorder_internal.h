@@ -11,6 +11,8 @@
 
 #include <atomic>
 #include <cmath>
+
+#include "capture/camera_clock.h"
 #include <condition_variable>
 #include <cstdint>
 #include <deque>
@@ -81,6 +83,9 @@ struct CameraStream {
     void Add(double camera_s, double host_s);
     io::Json ToJson() const;  // null before two frames
   } clock_fit;
+  CameraClockMapper clock_map;               // t_s of a camera with a clock (writer thread)
+  std::atomic<bool> clock_went_back{false};  // set by the grabber: the writer starts a new mapping
+  double last_t_s = -1e300;                  // the last row's t_s (writer thread)
   std::atomic<std::int64_t> grabbed{0}, written{0}, dropped_queue{0}, dropped_disk{0}, write_failed{0},
       source_errors{0};
   std::atomic<bool> ended{false};

@@ -72,6 +72,14 @@ assert all(x > 0 for x in dt), "camera stamps not strictly increasing"
 mean = sum(dt) / len(dt)
 assert abs(mean - 1 / RATE) < 0.01 / RATE, mean          # the configured period within 1 %
 assert all(len(r["camera_ts_s"].split(".")[1]) >= 6 for r in rows)
+# t_s from the camera's stamp through the clock mapping, said so, strictly increasing, within a few ms of the
+# host's arrival (the software camera stamps when it sends: its stamps jitter too).
+assert all(r["time_source"] == "camera" for r in rows), set(r["time_source"] for r in rows)
+t = [float(r["t_s"]) for r in rows]
+assert all(b > a for a, b in zip(t, t[1:]))
+host = [float(r["host_mono_s"]) for r in rows]
+arrival = [h - host[0] + t[0] for h in host]
+assert max(abs(a - b) for a, b in zip(t, arrival)) < 0.005
 seq = [int(r["seq"]) for r in rows]
 assert seq == list(range(len(rows))), "a frame dropped or duplicated"
 c = json.load(open(d + "/report.json"))["summary"]["cameras"]["gige"]
