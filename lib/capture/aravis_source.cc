@@ -90,6 +90,7 @@ bool AravisSource::Open(std::string* why) {
     }
     features_.push_back(f);
   }
+  if (o_.ptp) EnablePtp();
   arv_camera_set_acquisition_mode(impl_->camera, ARV_ACQUISITION_MODE_CONTINUOUS, &e);
   g_clear_error(&e);
   gv_ = arv_camera_is_gv_device(impl_->camera);
@@ -185,6 +186,30 @@ GrabResult AravisSource::Grab(cv::Mat* out, Stamp* at, std::string* why, const s
   return GrabResult::kStopped;
 }
 
+void AravisSource::EnablePtp() {
+  ArvDevice* dev = arv_camera_get_device(impl_->camera);
+  GError* e = nullptr;
+  for (const auto& [on, status] : {std::pair<const char*, const char*>{"PtpEnable", "PtpStatus"},
+                                   std::pair<const char*, const char*>{"GevIEEE1588", "GevIEEE1588Status"}}) {
+    ArvGcNode* node = arv_device_get_feature(dev, on);
+    if (!node || !ARV_IS_GC_FEATURE_NODE(node)) continue;
+    arv_gc_feature_node_set_value_from_string(ARV_GC_FEATURE_NODE(node), "true", &e);
+    const std::string set_error = TakeError(&e);
+    const char* got = arv_gc_feature_node_get_value_as_string(ARV_GC_FEATURE_NODE(node), &e);
+    g_clear_error(&e);
+    ptp_ = {{"feature", on}, {"enabled", got ? std::string(got) : std::string()}};
+    if (!set_error.empty()) ptp_["error"] = set_error;
+    ArvGcNode* st = arv_device_get_feature(dev, status);
+    if (st && ARV_IS_GC_FEATURE_NODE(st)) {
+      const char* s = arv_gc_feature_node_get_value_as_string(ARV_GC_FEATURE_NODE(st), &e);
+      g_clear_error(&e);
+      if (s) ptp_["status"] = s;
+    }
+    return;
+  }
+  ptp_ = {{"error", "the camera has neither PtpEnable nor GevIEEE1588: no IEEE 1588"}};
+}
+
 void AravisSource::CountFrameId(std::uint64_t id) {
   if (!gv_ || id == 0) return;  // 0: no id (USB3 Vision, or a buffer that never got one)
   if (!impl_->have_id) {
@@ -244,6 +269,7 @@ io::Json AravisSource::StreamReport() const {
           {"missing_packets", s.missing_packets},
           {"lost_buffers", s.lost_buffers},
           {"timeouts", s.timeouts},
+          {"ptp", ptp_},
           {"features", features}};
 }
 

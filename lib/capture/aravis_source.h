@@ -45,6 +45,9 @@ class AravisSource final : public CameraSource {
   const std::vector<FeatureResult>& features() const { return features_; }
 
  private:
+  // IEEE 1588 on request: the camera's own switch (SFNC PtpEnable, or GigE Vision's GevIEEE1588), read back, and
+  // its status (PtpStatus / GevIEEE1588Status) when it has one.
+  void EnablePtp();
   // Frames the camera sent that never arrived, from the frame ids (every buffer's, complete or not).
   void CountFrameId(std::uint64_t id);
 
@@ -59,6 +62,7 @@ class AravisSource final : public CameraSource {
   int packet_size_ = 0, opens_ = 0;
   std::int64_t camera_ns_ = -1;
   std::int64_t lost_before_last_ = 0, lost_pending_ = 0;
+  io::Json ptp_ = nullptr;  // asked: {"feature", "enabled", "status"} or {"error"}
 };
 
 // What Aravis discovers (rk-capture --list-cameras).

@@ -40,6 +40,7 @@ struct CameraSourceOptions {
   bool loop = false;          // file: start again at the end
   // aravis: GenICam features (name, value as text) in the order the station config gives them.
   std::vector<std::pair<std::string, std::string>> features;
+  bool ptp = false;           // aravis: enable IEEE 1588 on the camera (GevIEEE1588 or PtpEnable) and record its status
 };
 
 enum class GrabResult { kFrame, kEnd, kError, kStopped };

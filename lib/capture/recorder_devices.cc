@@ -52,6 +52,16 @@ void Recorder::Connect() {
 void Recorder::ReportFeatures(CameraStream* cam) {
   const io::Json r = cam->src->StreamReport();
   if (!r.is_object() || !r.contains("features")) return;
+  if (r.contains("ptp") && r["ptp"].is_object()) {
+    const io::Json& p = r["ptp"];
+    if (p.contains("error")) {
+      Event(EventLevel::kWarning, "camera:" + cam->cfg.name, "IEEE 1588 asked for: " + p["error"].get<std::string>());
+    } else {
+      Event(EventLevel::kInfo, "camera:" + cam->cfg.name,
+            "IEEE 1588: " + p.value("feature", "") + " = " + p.value("enabled", "") +
+                (p.contains("status") ? ", status " + p["status"].get<std::string>() : ""));
+    }
+  }
   for (const io::Json& f : r["features"]) {
     const std::string name = f.value("name", ""), asked = f.value("asked", ""), got = f.value("got", "");
     if (f.contains("error")) {

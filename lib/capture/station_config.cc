@@ -135,6 +135,7 @@ CameraConfig CameraFromJson(const io::Json& c, const std::string& path, std::siz
       cam.source.features.emplace_back(name, FeatureText(v));
     }
   }
+  cam.source.ptp = BoolOr(c, "ptp", false, where);
   // Validate the source string now (a bad synthetic: spec is a config error).
   try {
     MakeCameraSource(cam.source);
@@ -143,7 +144,7 @@ CameraConfig CameraFromJson(const io::Json& c, const std::string& path, std::siz
   }
   WarnUnknown(c,
               {"name", "source", "fps", "model", "role", "target", "format", "queue_frames", "width", "height",
-               "fourcc", "loop", "features"},
+               "fourcc", "loop", "features", "ptp"},
               where, warnings);
   return cam;
 }
