@@ -269,6 +269,93 @@ int SolveReassigning(const std::vector<Observation>& obs, std::vector<Spline>& s
   return iterations;
 }
 
+// The corrections' covariance from the whole normal matrix (Jacobian over [free corrections, control points]),
+// scaled by χ²/dof when above 1; fills the fit's offsets, σ, σ with the path known and correlation.
+void Covariance(ceres::Problem* problem, std::vector<Spline>& splines, std::vector<double>& delta,
+                const std::vector<Observation>& obs, const TimeOffsetOptions& options, TimeOffsetFit* fit) {
+  const std::size_t S = delta.size();
+  std::vector<double*> blocks;
+  std::vector<std::size_t> free_station;
+  for (std::size_t s = 0; s < S; ++s) {
+    if (s != fit->reference && problem->HasParameterBlock(&delta[s]) && fit->rows[s] > 0) {
+      blocks.push_back(&delta[s]);
+      free_station.push_back(s);
+    }
+  }
+  const std::size_t nd = blocks.size();
+  for (Spline& sp : splines) {
+    for (Eigen::Vector3d& c : sp.c) blocks.push_back(c.data());
+  }
+  ceres::Problem::EvaluateOptions eo;
+  eo.parameter_blocks = blocks;
+  eo.num_threads = 1;
+  double cost = 0.0;
+  ceres::CRSMatrix crs;
+  problem->Evaluate(eo, &cost, nullptr, nullptr, &crs);
+  fit->parameters = static_cast<std::size_t>(crs.num_cols);
+  const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>> J(
+      crs.num_rows, crs.num_cols, static_cast<Eigen::Index>(crs.values.size()), crs.rows.data(), crs.cols.data(),
+      crs.values.data());
+  const Eigen::SparseMatrix<double> N = (J.transpose() * J).pruned();
+  // Residual count: two angles per row, a range where it has one (the range residual of a row without one is
+  // always 0: not a residual), the priors' pseudo-observations.
+  std::size_t zero_rows = 0;
+  for (const Observation& ob : obs) zero_rows += ob.o.has_range ? 0 : 1;
+  const double dof = std::max(1.0, static_cast<double>(crs.num_rows) - static_cast<double>(crs.num_cols) -
+                                       static_cast<double>(zero_rows));
+  fit->chi2_per_dof = 2.0 * cost / dof;
+  fit->sigma_scale = std::sqrt(std::max(1.0, fit->chi2_per_dof));
+  fit->offset_s = fit->start_s;
+  fit->sigma_s.assign(S, 0.0);
+  fit->sigma_known_s.assign(S, 0.0);
+  fit->correlation = Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(S), static_cast<Eigen::Index>(S));
+  for (std::size_t s : free_station) fit->offset_s[s] += delta[s];
+  if (nd == 0) return;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(N);
+  if (ldlt.info() != Eigen::Success) throw ProcessingError("clock offsets: the normal matrix is singular");
+  Eigen::MatrixXd E = Eigen::MatrixXd::Zero(crs.num_cols, static_cast<Eigen::Index>(nd));
+  for (std::size_t k = 0; k < nd; ++k) E(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)) = 1.0;
+  const Eigen::MatrixXd X = ldlt.solve(E);
+  Eigen::MatrixXd C = X.topRows(static_cast<Eigen::Index>(nd));
+  C = 0.5 * (C + C.transpose()).eval() * fit->sigma_scale * fit->sigma_scale;
+  const double prior_info = 1.0 / (options.correction_sigma_s * options.correction_sigma_s);
+  for (std::size_t a = 0; a < nd; ++a) {
+    const Eigen::Index ia = static_cast<Eigen::Index>(a);
+    fit->sigma_s[free_station[a]] = std::sqrt(C(ia, ia));
+    // With the path known: the correction's own information, its Jacobian column without the prior.
+    fit->sigma_known_s[free_station[a]] = fit->sigma_scale / std::sqrt(std::max(1e-300, N.coeff(ia, ia) - prior_info));
+    for (std::size_t b = 0; b < nd; ++b) {
+      const Eigen::Index ib = static_cast<Eigen::Index>(b);
+      fit->correlation(static_cast<Eigen::Index>(free_station[a]), static_cast<Eigen::Index>(free_station[b])) =
+          C(ia, ib) / std::sqrt(C(ia, ia) * C(ib, ib));
+    }
+  }
+}
+
+// Poorly determined offsets, in words.
+void Warn(const std::vector<double>& interval, const TimeOffsetOptions& options, TimeOffsetFit* fit) {
+  for (std::size_t s = 0; s < fit->sigma_s.size(); ++s) {
+    if (s == fit->reference || !(fit->sigma_s[s] > 0.0)) continue;
+    const double inflation = fit->sigma_s[s] / fit->sigma_known_s[s];
+    char buf[512];
+    if (inflation > options.poor_inflation) {
+      std::snprintf(buf, sizeof buf,
+                    "the clock offset of '%s' is poorly determined: its 1σ %.3g ms is %.0f× what its own rows would "
+                    "give with the path known — a time shift and a shift of the path look alike from these "
+                    "stations (a straight pass along a line of stations); its σ says so honestly, but the trajectory "
+                    "leans on it",
+                    fit->names[s].c_str(), 1e3 * fit->sigma_s[s], inflation);
+      fit->warnings.push_back(buf);
+    } else if (interval[s] > 0.0 && fit->sigma_s[s] > kFrameFractionWarn * interval[s]) {
+      std::snprintf(buf, sizeof buf,
+                    "the clock offset of '%s' is poorly determined: its 1σ %.3g ms is more than half its frame "
+                    "interval (%.3g ms)",
+                    fit->names[s].c_str(), 1e3 * fit->sigma_s[s], 1e3 * interval[s]);
+      fit->warnings.push_back(buf);
+    }
+  }
+}
+
 }  // namespace
 
 namespace internal {
@@ -376,83 +463,8 @@ TimeOffsetFit EstimateTimeOffsets(const formats::StationsFile& stations, const s
   fit.iterations += SolveReassigning(obs, splines, frames, delta, fit.reference, true, options, &built);
   fit.rms_arcsec_estimated = RmsArcsec(obs, splines, frames, delta);
 
-  // Covariance of the corrections: the Jacobian over [free corrections, control points].
-  std::vector<double*> blocks;
-  std::vector<std::size_t> free_station;
-  for (std::size_t s = 0; s < S; ++s) {
-    if (s != fit.reference && built.problem->HasParameterBlock(&delta[s]) && fit.rows[s] > 0) {
-      blocks.push_back(&delta[s]);
-      free_station.push_back(s);
-    }
-  }
-  const std::size_t nd = blocks.size();
-  for (Spline& s : splines) {
-    for (Eigen::Vector3d& c : s.c) blocks.push_back(c.data());
-  }
-  ceres::Problem::EvaluateOptions eo;
-  eo.parameter_blocks = blocks;
-  eo.num_threads = 1;
-  double cost = 0.0;
-  ceres::CRSMatrix crs;
-  built.problem->Evaluate(eo, &cost, nullptr, nullptr, &crs);
-  fit.parameters = static_cast<std::size_t>(crs.num_cols);
-  const Eigen::Map<const Eigen::SparseMatrix<double, Eigen::RowMajor>> J(
-      crs.num_rows, crs.num_cols, static_cast<Eigen::Index>(crs.values.size()), crs.rows.data(), crs.cols.data(),
-      crs.values.data());
-  const Eigen::SparseMatrix<double> N = (J.transpose() * J).pruned();
-  // Residual count: two angles per row, a range where it has one, the priors' pseudo-observations.
-  const double dof = std::max(1.0, static_cast<double>(crs.num_rows) - static_cast<double>(crs.num_cols));
-  std::size_t zero_rows = 0;  // the range residual of a row without one is always 0: not a residual
-  for (const Observation& ob : obs) zero_rows += ob.o.has_range ? 0 : 1;
-  const double dof_real = std::max(1.0, dof - static_cast<double>(zero_rows));
-  fit.chi2_per_dof = 2.0 * cost / dof_real;
-  fit.sigma_scale = std::sqrt(std::max(1.0, fit.chi2_per_dof));
-  fit.offset_s = fit.start_s;
-  fit.sigma_s.assign(S, 0.0);
-  fit.sigma_known_s.assign(S, 0.0);
-  fit.correlation = Eigen::MatrixXd::Identity(static_cast<Eigen::Index>(S), static_cast<Eigen::Index>(S));
-  for (std::size_t k = 0; k < nd; ++k) fit.offset_s[free_station[k]] += delta[free_station[k]];
-  if (nd > 0) {
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(N);
-    if (ldlt.info() != Eigen::Success) throw ProcessingError("clock offsets: the normal matrix is singular");
-    Eigen::MatrixXd E = Eigen::MatrixXd::Zero(crs.num_cols, static_cast<Eigen::Index>(nd));
-    for (std::size_t k = 0; k < nd; ++k) E(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)) = 1.0;
-    const Eigen::MatrixXd X = ldlt.solve(E);
-    Eigen::MatrixXd C = X.topRows(static_cast<Eigen::Index>(nd));
-    C = 0.5 * (C + C.transpose()).eval() * fit.sigma_scale * fit.sigma_scale;
-    for (std::size_t a = 0; a < nd; ++a) {
-      const Eigen::Index ia = static_cast<Eigen::Index>(a);
-      fit.sigma_s[free_station[a]] = std::sqrt(C(ia, ia));
-      // With the path known: the correction's own information, its Jacobian column without the prior.
-      fit.sigma_known_s[free_station[a]] =
-          fit.sigma_scale / std::sqrt(std::max(1e-300, N.coeff(ia, ia) - 1.0 / (options.correction_sigma_s * options.correction_sigma_s)));
-      for (std::size_t b = 0; b < nd; ++b) {
-        const Eigen::Index ib = static_cast<Eigen::Index>(b);
-        fit.correlation(static_cast<Eigen::Index>(free_station[a]), static_cast<Eigen::Index>(free_station[b])) =
-            C(ia, ib) / std::sqrt(C(ia, ia) * C(ib, ib));
-      }
-    }
-  }
-  // Poorly determined offsets, in words.
-  for (std::size_t s : free_station) {
-    const double inflation = fit.sigma_s[s] / fit.sigma_known_s[s];
-    char buf[512];
-    if (inflation > options.poor_inflation) {
-      std::snprintf(buf, sizeof buf,
-                    "the clock offset of '%s' is poorly determined: its 1σ %.3g ms is %.0f× what its own rows would "
-                    "give with the path known — a time shift and a shift of the path look alike from these "
-                    "stations (a straight pass along a line of stations); its σ says so honestly, but the trajectory "
-                    "leans on it",
-                    fit.names[s].c_str(), 1e3 * fit.sigma_s[s], inflation);
-      fit.warnings.push_back(buf);
-    } else if (interval[s] > 0.0 && fit.sigma_s[s] > kFrameFractionWarn * interval[s]) {
-      std::snprintf(buf, sizeof buf,
-                    "the clock offset of '%s' is poorly determined: its 1σ %.3g ms is more than half its frame "
-                    "interval (%.3g ms)",
-                    fit.names[s].c_str(), 1e3 * fit.sigma_s[s], 1e3 * interval[s]);
-      fit.warnings.push_back(buf);
-    }
-  }
+  Covariance(built.problem.get(), splines, delta, obs, options, &fit);
+  Warn(interval, options, &fit);
   return fit;
 }
 

@@ -18,7 +18,7 @@ python3 "$src/scripts/check_module_deps.py" "$w" > "$w/out2.txt" && { echo "miss
 grep -q "module 'newmod' (lib/newmod) is not in the module graph" "$w/out2.txt"
 # The graph's second copy: a module's CMake list that links a module its row does not name (issue 28).
 rm -rf "$w/lib/newmod"; cp -r "$src/lib/intersect" "$w/lib/intersect.orig"
-sed -i 's/PRIVATE rangekit::track rangekit::numeric)/PRIVATE rangekit::track rangekit::numeric rangekit::sim)/' \
+sed -i 's/PRIVATE rangekit::track rangekit::numeric /PRIVATE rangekit::track rangekit::numeric rangekit::sim /' \
   "$w/lib/intersect/CMakeLists.txt"
 grep -q "rangekit::sim" "$w/lib/intersect/CMakeLists.txt"
 python3 "$src/scripts/check_module_deps.py" "$w" > "$w/out3.txt" && { echo "CMake list not checked"; exit 1; }
