@@ -12,7 +12,8 @@
 // complete (missing packets, timeout, size mismatch) is never returned as a frame: it is counted and given back.
 // The frame's camera time stamp (arv_buffer_get_timestamp, ns on the camera's clock) is kept for frames.csv;
 // the 16-bit GVSP frame ids (1..65535, then 1 again) count the frames the camera sent that never arrived.
-// Pixel formats: Mono8 (8-bit), Mono16 and the unpacked Mono10/Mono12 (16-bit, values as the camera gives them).
+// Pixel formats: Mono8 (8-bit); Mono10/12/16 and the packed Mono10p/12p/10Packed/12Packed as 16-bit, deep
+// samples scaled to 16 bits by bit replication (lib/video/packed_pixels.h, as a camera file's are).
 #include "capture/aravis_source.h"
 
 #include <arv.h>
@@ -21,6 +22,7 @@
 #include <cstring>
 
 #include "io/error.h"
+#include "video/packed_pixels.h"
 
 namespace rk::capture {
 namespace {
@@ -29,6 +31,30 @@ constexpr guint64 kPopTimeoutUs = 1000000;  // one wait for a buffer (a stop is 
 constexpr double kMaxSilenceS = 3.0;        // no frame for this long: the camera is gone
 constexpr int kMinBuffers = 8;
 constexpr std::uint64_t kFrameIdWrap = 65535;  // GVSP block ids run 1..65535
+
+// The mono pixel formats recorded (PFNC / GigE Vision codes; Aravis 0.8's headers lack the PFNC packed
+// Mono10p 0x010a0046 and Mono12p 0x010c0047) and their packing in lib/video (the one owner of unpacking).
+struct Mono {
+  std::uint32_t code;
+  video::Packing packing;
+  int bits;
+};
+constexpr Mono kMono[] = {
+    {0x01080001u, video::Packing::kU8, 8},       // Mono8
+    {0x01100003u, video::Packing::kU16LE, 10},   // Mono10 (in 16 bits)
+    {0x01100005u, video::Packing::kU16LE, 12},   // Mono12 (in 16 bits)
+    {0x01100007u, video::Packing::kU16LE, 16},   // Mono16
+    {0x010a0046u, video::Packing::kP10LSB, 10},  // Mono10p
+    {0x010c0047u, video::Packing::kP12LSB, 12},  // Mono12p
+    {0x010c0004u, video::Packing::kP10GEV, 10},  // Mono10Packed
+    {0x010c0006u, video::Packing::kP12GEV, 12},  // Mono12Packed
+};
+const Mono* FindMono(std::uint32_t code) {
+  for (const Mono& m : kMono) {
+    if (m.code == code) return &m;
+  }
+  return nullptr;
+}
 
 std::string TakeError(GError** e) {
   if (!*e) return "";
@@ -161,21 +187,28 @@ GrabResult AravisSource::Grab(cv::Mat* out, Stamp* at, std::string* why, const s
     const ArvPixelFormat pf = arv_buffer_get_image_pixel_format(b);
     const int w = arv_buffer_get_image_width(b), h = arv_buffer_get_image_height(b);
     size_t size = 0;
-    const void* data = arv_buffer_get_image_data(b, &size);
-    int type = -1;
-    if (pf == ARV_PIXEL_FORMAT_MONO_8) type = CV_8UC1;
-    if (pf == ARV_PIXEL_FORMAT_MONO_16 || pf == ARV_PIXEL_FORMAT_MONO_10 || pf == ARV_PIXEL_FORMAT_MONO_12) type = CV_16UC1;
-    if (type < 0 || w <= 0 || h <= 0 || size < static_cast<size_t>(w) * static_cast<size_t>(h) * (type == CV_8UC1 ? 1u : 2u)) {
+    const auto* data = static_cast<const std::uint8_t*>(arv_buffer_get_image_data(b, &size));
+    const Mono* fmt = FindMono(static_cast<std::uint32_t>(pf));
+    const std::uint64_t pixels = static_cast<std::uint64_t>(std::max(w, 0)) * static_cast<std::uint64_t>(std::max(h, 0));
+    if (!fmt || pixels == 0 || !video::FillsGroups(fmt->packing, pixels) ||
+        size < video::PackedBytes(fmt->packing, pixels)) {
       arv_stream_push_buffer(impl_->stream, b);
-      *why = "Aravis camera '" + id_ + "': pixel format 0x" + [&] {
-        char s[16];
-        std::snprintf(s, sizeof s, "%08x", static_cast<unsigned>(pf));
-        return std::string(s);
-      }() + " is not Mono8, Mono10, Mono12 or Mono16 (set PixelFormat in the camera's features)";
+      char s[16];
+      std::snprintf(s, sizeof s, "%08x", static_cast<unsigned>(pf));
+      *why = "Aravis camera '" + id_ + "': pixel format 0x" + s + (fmt ? " with " + std::to_string(w) + "x" +
+                                                                              std::to_string(h) + " pixels does not fill its packing"
+                                                                        : " is not Mono8, Mono10, Mono12, Mono16 or a "
+                                                                          "packed Mono10/12 (set PixelFormat in the camera's features)");
       return GrabResult::kError;
     }
-    const cv::Mat view(h, w, type, const_cast<void*>(data));
-    view.copyTo(*out);
+    if (fmt->packing == video::Packing::kU8) {
+      out->create(h, w, CV_8UC1);
+      video::Unpack8(data, pixels, out->ptr<std::uint8_t>());
+    } else {
+      // Deep samples scaled to 16 bits by bit replication, as lib/video delivers a camera file's.
+      out->create(h, w, CV_16UC1);
+      video::Unpack16(fmt->packing, fmt->bits, data, pixels, out->ptr<std::uint16_t>());
+    }
     camera_ns_ = static_cast<std::int64_t>(arv_buffer_get_timestamp(b));
     lost_before_last_ = lost_pending_;
     lost_pending_ = 0;

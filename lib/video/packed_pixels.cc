@@ -21,11 +21,15 @@
 namespace rk::video {
 namespace {
 
-constexpr std::array<PackingInfo, 4> kPackings{{
+constexpr std::array<PackingInfo, 8> kPackings{{
     {Packing::kU8, "8-bit", 8, 1, 1},
     {Packing::kU16LE, "16-bit little-endian", 16, 1, 2},
     {Packing::kP10BE, "10-bit packed", 10, 4, 5},
     {Packing::kP12BE, "12-bit packed", 12, 2, 3},
+    {Packing::kP10LSB, "Mono10p", 10, 4, 5},
+    {Packing::kP12LSB, "Mono12p", 12, 2, 3},
+    {Packing::kP10GEV, "Mono10Packed", 10, 2, 3},
+    {Packing::kP12GEV, "Mono12Packed", 12, 2, 3},
 }};
 
 // v (b significant bits) → 16 bits, by replicating the top bits into the low ones (b ≥ 8).
@@ -118,6 +122,47 @@ void UnpackP10(const std::uint8_t* src, std::uint64_t pixels, std::uint16_t* dst
   }
 }
 
+// The GenICam packings (a camera's stream, not a file read in place: no SIMD kernel, the frame is small
+// beside the network's time).
+void UnpackGenICam(Packing packing, const std::uint8_t* src, std::uint64_t pixels, std::uint16_t* dst) {
+  switch (packing) {
+    case Packing::kP10LSB:
+      for (std::uint64_t g = 0; g < pixels / 4; ++g) {
+        const std::uint8_t* s = src + 5 * g;
+        const std::uint32_t b0 = s[0], b1 = s[1], b2 = s[2], b3 = s[3], b4 = s[4];
+        std::uint16_t* d = dst + 4 * g;
+        d[0] = Widen(b0 | ((b1 & 0x03u) << 8), 10);
+        d[1] = Widen((b1 >> 2) | ((b2 & 0x0Fu) << 6), 10);
+        d[2] = Widen((b2 >> 4) | ((b3 & 0x3Fu) << 4), 10);
+        d[3] = Widen((b3 >> 6) | (b4 << 2), 10);
+      }
+      return;
+    case Packing::kP12LSB:
+      for (std::uint64_t g = 0; g < pixels / 2; ++g) {
+        const std::uint32_t b0 = src[3 * g], b1 = src[3 * g + 1], b2 = src[3 * g + 2];
+        dst[2 * g] = Widen(b0 | ((b1 & 0x0Fu) << 8), 12);
+        dst[2 * g + 1] = Widen((b1 >> 4) | (b2 << 4), 12);
+      }
+      return;
+    case Packing::kP10GEV:
+      for (std::uint64_t g = 0; g < pixels / 2; ++g) {
+        const std::uint32_t b0 = src[3 * g], b1 = src[3 * g + 1], b2 = src[3 * g + 2];
+        dst[2 * g] = Widen((b0 << 2) | (b1 & 0x03u), 10);
+        dst[2 * g + 1] = Widen((b2 << 2) | ((b1 >> 4) & 0x03u), 10);
+      }
+      return;
+    case Packing::kP12GEV:
+      for (std::uint64_t g = 0; g < pixels / 2; ++g) {
+        const std::uint32_t b0 = src[3 * g], b1 = src[3 * g + 1], b2 = src[3 * g + 2];
+        dst[2 * g] = Widen((b0 << 4) | (b1 & 0x0Fu), 12);
+        dst[2 * g + 1] = Widen((b2 << 4) | (b1 >> 4), 12);
+      }
+      return;
+    default:
+      throw std::logic_error("video: not a GenICam packing");
+  }
+}
+
 // 16-bit little-endian samples of `bits` significant bits.
 std::uint64_t UnpackU16(int bits, const std::uint8_t* src, std::uint64_t pixels, std::uint16_t* dst) {
   if (static_cast<const void*>(dst) != static_cast<const void*>(src)) std::memcpy(dst, src, pixels * 2);  // x86-64 and every target Debian builds rangekit for: little-endian
@@ -163,6 +208,12 @@ std::uint64_t Unpack16(Packing packing, int significant_bits, const std::uint8_t
       return 0;
     case Packing::kU16LE:
       return UnpackU16(significant_bits, src, pixels, dst16);
+    case Packing::kP10LSB:
+    case Packing::kP12LSB:
+    case Packing::kP10GEV:
+    case Packing::kP12GEV:
+      UnpackGenICam(packing, src, pixels, dst16);
+      return 0;
     case Packing::kU8:
       break;
   }

@@ -1,4 +1,4 @@
-// Pixel packings of high-speed camera files, as one table (kPackings): how many pixels a group of bytes
+// Pixel packings of high-speed camera files and of GenICam cameras (rk-capture aravis:), as one table (kPackings): how many pixels a group of bytes
 // holds and in which bit order, and the one unpacking loop per packing. Deep samples are delivered as
 // 16-bit, scaled to the full 16-bit range by bit replication (v << (16 - b) | v >> (2b - 16)), as ffmpeg
 // delivers a 10- or 12-bit source as gray16le: a recording read here and the same recording decoded by
@@ -16,6 +16,11 @@ enum class Packing {
   kU16LE,   // two bytes per pixel, little-endian (Phantom 16-bit, Photron 16-bit MRAW)
   kP10BE,   // four pixels in five bytes, most significant bit first (Phantom "packed 10-bit", biCompression 256)
   kP12BE,   // two pixels in three bytes, most significant bit first (Photron 12-bit MRAW, Phantom P12L, 1024)
+  kP10LSB,  // four pixels in five bytes, least significant bit first (GenICam PFNC Mono10p)
+  kP12LSB,  // two pixels in three bytes, least significant bit first (GenICam PFNC Mono12p)
+  kP10GEV,  // two pixels in three bytes: each pixel's 8 high bits in its own byte, both pixels' 2 low bits in the
+            // middle one, pixel 0's in bits 0–1, pixel 1's in bits 4–5 (GigE Vision Mono10Packed)
+  kP12GEV,  // the same with 4 low bits: pixel 0's in bits 0–3, pixel 1's in bits 4–7 (GigE Vision Mono12Packed)
 };
 
 struct PackingInfo {

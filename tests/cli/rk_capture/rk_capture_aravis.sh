@@ -49,8 +49,10 @@ wait $cap
 kill $fake; wait $fake 2>/dev/null || true
 arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK2 -r 5 >"$d/fake3.log" 2>&1 &
 lossy=$!
-# (and IEEE 1588 asked for, which the software camera does not have: said, not silently ignored)
-sed -e 's/Aravis-Fake-RK1/Aravis-Fake-RK2/' -e 's/"fps": 20,/"fps": 20, "ptp": true,/' "$d/station.json" >"$d/lossy.json"
+# (and IEEE 1588 asked for, which the software camera does not have: said, not silently ignored; and 16-bit
+# frames, Mono16)
+sed -e 's/Aravis-Fake-RK1/Aravis-Fake-RK2/' -e 's/"fps": 20,/"fps": 20, "ptp": true,/' \
+  -e 's/"ExposureTimeAbs": 2500}/"ExposureTimeAbs": 2500, "PixelFormat": "Mono16"}/' "$d/station.json" >"$d/lossy.json"
 for _ in $(seq 50); do rk-capture --list-cameras | grep -q '^Aravis-Fake-RK2,' && break; sleep 0.1; done
 rk-capture --config "$d/lossy.json" --out "$d/trial3" --duration 5 --report "$d/report3.json" --quiet
 kill $lossy
@@ -119,6 +121,7 @@ assert spans[0] > 1.9 and spans[1] > 3.0, gaps
 c3 = json.load(open(d + "/report3.json"))["summary"]["cameras"]["gige"]
 s3 = c3["stream"]
 assert s3["frames_incomplete"] > 0, s3
+assert c3["bit_depth"] == 16, c3
 assert c3["frames_written"] == s3["frames_complete"] == c3["frames_grabbed"], (c3, s3)
 rows3 = list(csv.DictReader(l for l in open(d + "/trial3/gige/frames.csv") if not l.startswith("#")))
 seq3 = [int(r["seq"]) for r in rows3]
