@@ -24,13 +24,11 @@ const char* const kTool = "rk-intersect";
 
 // Why the offsets matter, in metres: the same intersection with the offsets as given, and how far the
 // trajectory moves between the two (RMS and largest over the rows ok in both).
-void AddTrajectoryShift(const rk::formats::StationsFile& stations, const std::vector<rk::formats::LocatedFile>& files,
+void AddTrajectoryShift(const rk::formats::StationsFile& stations, const std::vector<rk::intersect::StationTrack>& given,
                         const rk::intersect::IntersectOptions& opt, const std::vector<double>& times,
                         const rk::intersect::IntersectResult& estimated, rk::io::RunSummary* summary) {
   rk::intersect::IntersectOptions plain = opt;
   plain.smooth = false;
-  std::vector<rk::intersect::StationTrack> given;
-  for (std::size_t s = 0; s < files.size(); ++s) given.emplace_back(files[s], opt.Defaults(), stations.stations[s].time_offset_s);
   rk::intersect::IntersectResult as_given;
   try {
     as_given = rk::intersect::Intersect(stations, given, times, plain);
@@ -119,12 +117,13 @@ int main(int argc, char** argv) {
     // estimates the offsets (the given ones are the start) and the trajectory is made with them.
     std::optional<rk::intersect::TimeOffsetFit> fit;
     rk::formats::StationsFile clocked = stations;
+    // One target's tracks on the clocks as given: the estimation's start, and the trajectory it is compared with.
+    std::vector<rk::intersect::StationTrack> start;
     if (opt.estimate_time_offsets) {
       const rk::intersect::TimeOffsetOptions to;
       if (by_id) {
         fit = rk::intersect::EstimateTimeOffsetsById(stations, files, opt, to);
       } else {
-        std::vector<rk::intersect::StationTrack> start;
         rk::intersect::OffsetTarget target;
         for (std::size_t s = 0; s < files.size(); ++s) {
           start.emplace_back(files[s], opt.Defaults(), stations.stations[s].time_offset_s);
@@ -157,7 +156,7 @@ int main(int argc, char** argv) {
       const rk::intersect::IntersectResult result = rk::intersect::Intersect(clocked, tracks, times, opt);
       summary = result.Summary();
       AddTimeOffsets(fit, &summary);
-      if (fit) AddTrajectoryShift(stations, files, opt, times, result, &summary);
+      if (fit) AddTrajectoryShift(stations, start, opt, times, result, &summary);
       rk::cli::WarnAll(kTool, common, summary);
       rk::intersect::TrajectoryCsv(result).Write(out_path);
     }
