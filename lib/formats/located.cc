@@ -82,7 +82,61 @@ void LocatedWriter::Add(const LocatedRecord& row) {
   w_.EndRow();
 }
 
-LocatedFile ReadLocated(const io::CsvTable& table) {
+namespace {
+
+// Three optional numbers of a row: all given, all empty, or a DataError at the first empty one.
+std::optional<Eigen::Vector3d> Triple(const io::CsvTable& table, std::size_t i, const int (&cols)[3]) {
+  if (cols[0] < 0 || cols[1] < 0 || cols[2] < 0) return std::nullopt;
+  std::optional<double> v[3];
+  for (int k = 0; k < 3; ++k) v[k] = table.OptionalDouble(i, cols[k]);
+  if (!v[0] && !v[1] && !v[2]) return std::nullopt;
+  for (int k = 0; k < 3; ++k) {
+    if (!v[k]) throw table.CellError(i, cols[k], "empty where the row's other coordinates are given");
+  }
+  return Eigen::Vector3d(*v[0], *v[1], *v[2]);
+}
+
+// The position columns of LocatedRead::kPositions; the WGS-84 ones are required.
+struct PositionColumns {
+  int enu[3] = {-1, -1, -1}, sigma[3] = {-1, -1, -1}, geo[3] = {-1, -1, -1};
+};
+
+PositionColumns FindPositionColumns(const io::CsvTable& table) {
+  PositionColumns p;
+  const char* enu[3] = {"e_m", "n_m", "u_m"};
+  const char* sigma[3] = {"sigma_e_m", "sigma_n_m", "sigma_u_m"};
+  const char* geo[3] = {"lat_deg", "lon_deg", "h_m"};
+  for (int k = 0; k < 3; ++k) {
+    p.enu[k] = table.Column(enu[k]);
+    p.sigma[k] = table.Column(sigma[k]);
+    p.geo[k] = table.Column(geo[k]);
+    if (p.geo[k] < 0) {
+      throw DataError(table.name(), table.header_line(), 1,
+                      "no WGS-84 columns lat_deg, lon_deg, h_m: a located target without its station's position "
+                      "(rk-locate writes them with --station)");
+    }
+  }
+  return p;
+}
+
+void ReadPositions(const io::CsvTable& table, std::size_t i, const PositionColumns& p, LocatedRecord* r) {
+  r->enu_m = Triple(table, i, p.enu);
+  r->sigma_enu_m = Triple(table, i, p.sigma);
+  if (r->sigma_enu_m) {
+    for (int k = 0; k < 3; ++k) {
+      if ((*r->sigma_enu_m)(k) < 0.0) throw table.CellError(i, p.sigma[k], "a 1-sigma must not be negative");
+    }
+  }
+  const std::optional<Eigen::Vector3d> g = Triple(table, i, p.geo);
+  if (!g) return;
+  if (!((*g)(0) >= -90.0 && (*g)(0) <= 90.0)) throw table.CellError(i, p.geo[0], "latitude must be in [-90, 90]");
+  if (!((*g)(1) >= -180.0 && (*g)(1) <= 360.0)) throw table.CellError(i, p.geo[1], "longitude must be in [-180, 360]");
+  r->geodetic = geo::Geodetic{(*g)(0), (*g)(1), (*g)(2)};
+}
+
+}  // namespace
+
+LocatedFile ReadLocated(const io::CsvTable& table, LocatedRead what) {
   LocatedFile out;
   out.source = table.name();
   const int c_t = table.RequireColumn("t_s"), c_az = table.RequireColumn("az_deg"),
@@ -94,6 +148,8 @@ LocatedFile ReadLocated(const io::CsvTable& table) {
   out.has_sigma = c_saz >= 0 && c_sel >= 0;
   const int c_id = table.Column("id");
   out.has_id = c_id >= 0;
+  const std::optional<PositionColumns> positions =
+      what == LocatedRead::kPositions ? std::optional<PositionColumns>(FindPositionColumns(table)) : std::nullopt;
   std::map<std::string, std::pair<double, std::size_t>, std::less<>> last;  // id → its last t_s, line
   if (out.has_id) {
     table.RequireNonDecreasing(c_t);
@@ -138,6 +194,7 @@ LocatedFile ReadLocated(const io::CsvTable& table) {
         throw table.CellError(i, c_corr, "corr_az_el must be in [-1, 1]");
       }
     }
+    if (positions) ReadPositions(table, i, *positions, &r);
     out.rows.push_back(std::move(r));
   }
   return out;
@@ -152,10 +209,15 @@ std::vector<std::string> LocatedFile::Ids() const {
   return ids;
 }
 
-io::CsvRowRule LocatedRowRule() {
+io::CsvRowRule LocatedRowRule(LocatedRead what) {
   io::CsvRowRule rule;
   rule.numbers = {"t_s"};
   rule.optional_numbers = {"az_deg", "el_deg", "range_m", "sigma_az_deg", "sigma_el_deg", "sigma_range_m", "corr_az_el"};
+  if (what == LocatedRead::kPositions) {
+    for (const char* c : {"e_m", "n_m", "u_m", "sigma_e_m", "sigma_n_m", "sigma_u_m", "lat_deg", "lon_deg", "h_m"}) {
+      rule.optional_numbers.push_back(c);
+    }
+  }
   // Non-decreasing only: a points track's ids share their frames' times (ReadLocated checks each id; a time
   // repeated in a file without ids stops the run rather than dropping a row).
   rule.non_decreasing = "t_s";

@@ -1,6 +1,6 @@
 // Located target (SPEC.md §2.1 `t_s,az_deg,el_deg,range_m,e_m,n_m,u_m,status` + 1σ, WGS-84 and corr_az_el):
 // written by rk-locate (locate::LocatedCsv) and rk-sim multistation, read by rk-intersect
-// (intersect::StationTrack). Angles are radians here, degrees in the file.
+// (intersect::StationTrack) and, with its positions, by rk-export. Angles are radians here, degrees in the file.
 #pragma once
 
 #include <Eigen/Core>
@@ -75,12 +75,18 @@ struct LocatedFile {
   std::vector<std::string> Ids() const;
 };
 
+// What ReadLocated reads besides the lines of sight (angles, range, their σ): kPositions also the ENU position and
+// its 1σ (e_m,n_m,u_m, sigma_e_m,sigma_n_m,sigma_u_m where present) and the WGS-84 columns lat_deg,lon_deg,h_m,
+// which must then be in the header (rk-locate writes them with --station; DataError naming the file otherwise).
+// A row's position is all three values or none (a row without a range has none).
+enum class LocatedRead { kLinesOfSight, kPositions };
+
 // Reads every row: t_s strictly increasing (one row per frame; with an id column, per id, and non-decreasing
 // over the file: the rows of a frame together), an id not empty where the column is, status in the SPEC vocabulary, σ > 0 and
 // corr_az_el in [−1, 1] where given (DataError at file:line:col).
-LocatedFile ReadLocated(const io::CsvTable& table);
+LocatedFile ReadLocated(const io::CsvTable& table, LocatedRead what = LocatedRead::kLinesOfSight);
 // The cells ReadLocated needs of every row (for io::CsvReadOptions::rule, --bad-rows skip): t_s a number that
 // does not go back (a time repeated without an id column is ReadLocated's error, never a dropped row).
-io::CsvRowRule LocatedRowRule();
+io::CsvRowRule LocatedRowRule(LocatedRead what = LocatedRead::kLinesOfSight);
 
 }  // namespace rk::formats

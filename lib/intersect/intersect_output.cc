@@ -1,9 +1,10 @@
-// rk-intersect's trajectory CSV and report; columns in docs/rk-intersect.md "Columns".
+// rk-intersect's trajectory CSV (formats/trajectory.h) and report; columns in docs/rk-intersect.md "Columns".
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <limits>
 
+#include "formats/trajectory.h"
 #include "intersect/intersect_common.h"
 #include "intersect/intersect.h"
 #include "io/error.h"
@@ -30,11 +31,10 @@ void AddVector(io::CsvWriter* w, bool have, const Eigen::Vector3d& v, int decima
 std::vector<std::string> Columns(const IntersectResult& r, bool with_id = false) {
   std::vector<std::string> cols = {"t_s"};
   if (with_id) cols.push_back("id");
-  const std::vector<std::string> rest = {"e_m",       "n_m",       "u_m",        "lat_deg",
-                                   "lon_deg",   "h_m",       "sigma_e_m", "sigma_n_m",  "sigma_u_m",
-                                   "n_stations", "status",   "rms_residual_arcsec", "rho_en", "rho_eu",
-                                   "rho_nu",    "intersection_angle_deg", "gdop", "n_rejected"};
-  cols.insert(cols.end(), rest.begin(), rest.end());
+  // The SPEC.md §7 columns (formats/trajectory.h, which rk-export reads), then rk-intersect's own.
+  const std::vector<std::string>& spec = formats::TrajectoryColumns();
+  cols.insert(cols.end(), spec.begin(), spec.end());
+  for (const char* c : {"rho_en", "rho_eu", "rho_nu", "intersection_angle_deg", "gdop", "n_rejected"}) cols.push_back(c);
   if (r.smoothed) {
     for (const char* c : {"ve_mps", "vn_mps", "vu_mps", "sigma_ve_mps", "sigma_vn_mps", "sigma_vu_mps", "ae_mps2",
                           "an_mps2", "au_mps2", "sigma_ae_mps2", "sigma_an_mps2", "sigma_au_mps2"}) {

@@ -18,6 +18,10 @@ const char* RowStatusName(RowStatus status) {
   return "invalid";
 }
 
+bool RowStatusHasValues(RowStatus status) {
+  return status == RowStatus::kOk || status == RowStatus::kReacquired || status == RowStatus::kPredicted;
+}
+
 bool ParseRowStatus(std::string_view text, RowStatus* status) {
   for (RowStatus s : {RowStatus::kOk, RowStatus::kReacquired, RowStatus::kPredicted, RowStatus::kLost,
                       RowStatus::kInvalid}) {

@@ -13,6 +13,9 @@ namespace rk {
 enum class RowStatus { kOk, kReacquired, kPredicted, kLost, kInvalid };
 
 const char* RowStatusName(RowStatus status);
+// Whether a row of this status carries values (ok, reacquired, predicted); lost and invalid rows have them empty.
+// A row whose status has none is never drawn or placed (rk-export).
+bool RowStatusHasValues(RowStatus status);
 // Parses a status name; false if `text` is not one of the five.
 bool ParseRowStatus(std::string_view text, RowStatus* status);
 

@@ -3,6 +3,8 @@
 #include "io/error.h"
 
 #include <charconv>
+#include <cmath>
+#include <cstdio>
 
 namespace rk::io {
 namespace {
@@ -91,6 +93,43 @@ double UnixSeconds(const UtcTime& t) {
   const int doe = yoe * 365 + yoe / 4 - yoe / 100 + doy;
   const long long days = static_cast<long long>(era) * 146097 + doe - 719468;
   return static_cast<double>(days) * 86400.0 + t.hour * 3600.0 + t.minute * 60.0 + t.second;
+}
+
+std::string FormatUtcIso(double unix_s, int decimals, Rounding rounding) {
+  RK_CHECK(decimals >= 0 && decimals <= 6 && std::isfinite(unix_s), "FormatUtcIso: decimals in [0, 6], a finite time");
+  long long scale = 1;
+  for (int k = 0; k < decimals; ++k) scale *= 10;
+  const double scaled = unix_s * static_cast<double>(scale);
+  const double whole = rounding == Rounding::kDown ? std::floor(scaled)
+                       : rounding == Rounding::kUp ? std::ceil(scaled)
+                                                   : std::round(scaled);
+  const long long units = static_cast<long long>(whole);
+  const long long per_day = 86400LL * scale;
+  long long days = units / per_day, rest = units % per_day;
+  if (rest < 0) {
+    rest += per_day;
+    --days;
+  }
+  // The civil date of a day count (proleptic Gregorian), H. Hinnant's algorithm (the inverse of UnixSeconds').
+  const long long z = days + 719468;
+  const long long era = (z >= 0 ? z : z - 146096) / 146097;
+  const long long doe = z - era * 146097;
+  const long long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+  const long long doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+  const long long mp = (5 * doy + 2) / 153;
+  const long long day = doy - (153 * mp + 2) / 5 + 1;
+  const long long month = mp < 10 ? mp + 3 : mp - 9;
+  const long long year = yoe + era * 400 + (month <= 2 ? 1 : 0);
+  const long long second_units = rest % (60 * scale);
+  const long long minutes = rest / (60 * scale);
+  char text[64];
+  int n = std::snprintf(text, sizeof text, "%04lld-%02lld-%02lldT%02lld:%02lld:%02lld", year, month, day, minutes / 60,
+                        minutes % 60, second_units / scale);
+  if (decimals > 0) {
+    n += std::snprintf(text + n, sizeof text - static_cast<std::size_t>(n), ".%0*lld", decimals, second_units % scale);
+  }
+  std::snprintf(text + n, sizeof text - static_cast<std::size_t>(n), "Z");
+  return text;
 }
 
 std::optional<double> ParseEpochOption(const std::string& text, const std::string& option) {

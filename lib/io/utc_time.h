@@ -26,6 +26,12 @@ double UnixSeconds(const UtcTime& t);
 // when it is not ISO-8601 UTC.
 std::optional<double> ParseEpochOption(const std::string& text, const std::string& option = "--epoch-utc");
 
+// The ISO-8601 UTC text of POSIX seconds `unix_s` with `decimals` (0 to 6) digits of the second and a Z:
+// 2026-01-01T00:00:01.250Z. Rounded to the nearest unit of the last digit, or down or up (the start and stop of an
+// interval that must hold a time). POSIX time has no leap second: none is ever written as 23:59:60.
+enum class Rounding { kNearest, kDown, kUp };
+std::string FormatUtcIso(double unix_s, int decimals, Rounding rounding = Rounding::kNearest);
+
 // The format in words, for messages.
 inline constexpr const char* kUtcIsoFormat = "YYYY-MM-DDThh:mm:ss[.fff]Z (UTC, e.g. 2026-11-21T08:00:00Z)";
 
