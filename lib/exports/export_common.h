@@ -17,10 +17,10 @@ struct ExportHeader {
   std::string source;      // the input file, for the description
 };
 
-// Digits written: 1e-9° (0.1 mm on the earth) for latitude and longitude, 0.1 mm for heights (as a trajectory writes h_m), 1e-9 s for the times
+// Digits written: 1e-9° (0.1 mm on the earth) for latitude and longitude, 1 µm for heights (a located target writes h_m so), 1e-9 s for the times
 // after the epoch (as t_s is written), 1e-4 m for a 1σ; absolute times to the microsecond.
 inline constexpr int kDegDecimals = 9;
-inline constexpr int kHeightDecimals = 4;
+inline constexpr int kHeightDecimals = 6;
 inline constexpr int kTimeDecimals = 9;
 inline constexpr int kSigmaDecimals = 4;
 inline constexpr int kUtcDecimals = 6;

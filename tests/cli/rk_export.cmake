@@ -4,7 +4,7 @@
 rk_cli_script(rk_export/export_cli_data SETUP export_data)
 
 # Good input: KML and CZML of the trajectory, of the ids and of the located target; coordinates equal the CSV's
-# WGS-84 columns to 1e-7 deg (heights to 0.1 mm, less --geoid-undulation in KML), KML time stamps = epoch + t_s, the
+# WGS-84 columns to 1e-7 deg (heights to 1 µm, less --geoid-undulation in KML), KML time stamps = epoch + t_s, the
 # CZML packets as its specification describes them (rk_export/check_export.py); -o - equals -o FILE; stdin input;
 # the report; --bad-rows skip; the CZML warning without an epoch.
 rk_cli_script(rk_export/export_cli_good REQUIRES export_data)

@@ -29,8 +29,8 @@ using ::testing::Not;
 
 // The target: coordinates equal the trajectory's WGS-84 columns to 1e-7°.
 constexpr double kDegTolerance = 1e-7;
-// Heights are written to 0.1 mm.
-constexpr double kHeightTolerance = 0.5e-4;
+// Heights are written to the micrometre.
+constexpr double kHeightTolerance = 1e-6;
 
 const char* const kHeader = "t_s,e_m,n_m,u_m,lat_deg,lon_deg,h_m,sigma_e_m,sigma_n_m,sigma_u_m,n_stations,status\n";
 
@@ -178,7 +178,7 @@ TEST(Kml, LinesAndSamplesCarryTheFilesCoordinates) {
   }
   EXPECT_THAT(kml, HasSubstr("<SimpleData name=\"sigma_u_m\">0.3000</SimpleData>"));
   EXPECT_THAT(kml, HasSubstr("<SimpleData name=\"status\">predicted</SimpleData>"));
-  EXPECT_THAT(kml, HasSubstr("<SimpleData name=\"h_ellipsoid_m\">505.0000</SimpleData>"));
+  EXPECT_THAT(kml, HasSubstr("<SimpleData name=\"h_ellipsoid_m\">505.000000</SimpleData>"));
 }
 
 TEST(Kml, EpochGivesTimeStampsAndSpansAndNamesAreEscaped) {

@@ -10,11 +10,11 @@ of that id between them.
 KML (OGC KML 2.2): a kml root in the KML 2.2 namespace holding one Document; per path a Folder whose LineStrings
 hold, in order, every placed row of each run of two or more rows, and whose Points (in a "samples" Folder) hold
 placed rows found by their SimpleData t_s; coordinates lon,lat,alt equal the CSV's lon_deg, lat_deg to 1e-7 deg
-and h_m - geoid to 0.1 mm; altitudeMode absolute; with an epoch each Point has TimeStamp/when = epoch + t_s (1 µs).
+and h_m - geoid to 1 µm; altitudeMode absolute; with an epoch each Point has TimeStamp/when = epoch + t_s (1 µs).
 CZML (CZML Guide, "Packet"): a JSON array; its first packet has id "document" and version "1.0"; every packet an
 object with a string id, ids unique; per path a packet with position.epoch ISO-8601 UTC, cartographicDegrees an
 array of 4·n numbers [t, lon, lat, h, ...] with t increasing, equal to the CSV's placed rows (t = t_s to 1e-9 s,
-degrees to 1e-7, h to 0.1 mm); availability an ISO-8601 interval or array of them, one per run, START <= STOP;
+degrees to 1e-7, h to 1 µm); availability an ISO-8601 interval or array of them, one per run, START <= STOP;
 properties sigma_*_m as {"epoch", "number": [t, v, ...]} with 2·n numbers where given.
 """
 import argparse
@@ -27,7 +27,7 @@ import sys
 import xml.etree.ElementTree as ET
 
 DEG_TOL = 1e-7       # the issue's target
-H_TOL = 0.5e-4       # heights written to 0.1 mm, as the trajectory
+H_TOL = 1e-6         # heights written to the micrometre
 T_TOL = 1e-9         # t_s written with 9 decimals
 WHEN_TOL_S = 1e-6    # absolute times to the microsecond
 KML_NS = "{http://www.opengis.net/kml/2.2}"
