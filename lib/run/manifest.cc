@@ -33,6 +33,8 @@ const std::vector<StepKindInfo>& StepKinds() {
       {"register", "radar", "rk-register", "bernoulli", {"plots", "nav"}},
       {"register-batch", "radar", "rk-register", "batch", {"plots", "nav"}},
       {"intersect", "trajectory", "rk-intersect", "", {"stations"}},
+      {"export-kml", "trajectory", "rk-export", "kml", {"trajectory", "located", "epoch-utc", "name"}},
+      {"export-czml", "trajectory", "rk-export", "czml", {"trajectory", "located", "epoch-utc", "name"}},
       {"plot", "*", "rk-plot", "", {"i", "input"}},
   };
   return kinds;
@@ -161,14 +163,16 @@ TrialManifest CheckSteps(trial::Manifest read, const std::string& manifest_path)
       for (const auto& k : StepKinds()) known += std::string(known.empty() ? "" : ", ") + k.kind;
       c.Fail(p, "unknown step '" + kind + "' (steps: " + known + ")", true);
     }
-    if (std::string(info->unit) == trial::kTrajectoryUnit && !m.multi_station()) {
+    // The intersection needs several stations; the exports also take a single station's located target.
+    if (std::string(info->kind) == "intersect" && !m.multi_station()) {
       c.Fail(p, "step '" + kind + "' needs several stations (a manifest with 'stations')", true);
     }
     if (!unit.empty()) {
       std::string unit_role;
       if (unit == "radar") {
         unit_role = "radar";
-      } else if (unit == trial::kTrajectoryUnit && m.multi_station()) {
+      } else if (unit == trial::kTrajectoryUnit &&
+                 (m.multi_station() || std::string(info->unit) == trial::kTrajectoryUnit)) {
         unit_role = trial::kTrajectoryUnit;
       } else {
         unit_role = CameraUnitRole(m, unit);

@@ -31,7 +31,8 @@ using trial::RadarEntry;
 // options rk-run sets on them itself.
 struct StepKindInfo {
   const char* kind;     // "extract-beacon", "locate", ...
-  const char* unit;     // "beacon", "features", "silhouette", "points", "radar" or "*" (any unit: plots)
+  const char* unit;     // "beacon", "features", "silhouette", "points", "radar", "trajectory" (the intersection of
+                        // several stations, and the exports, plan.cc Export()) or "*" (any unit: plots)
   const char* tool;     // "rk-extract"
   const char* subcommand;  // "beacon" or "" (single-mode tool)
   // The input bindings: every option the plan (plan.cc) gives this kind from the manifest, long name and

@@ -67,6 +67,7 @@ class PlanBuilder {
     st_ = nullptr;
     if (m_.radar) Radar(*m_.radar);
     if (m_.multi_station()) Intersect();
+    Export();
     return steps_;
   }
 
@@ -405,6 +406,40 @@ class PlanBuilder {
     s.table = dir + trial::kTrajectoryFile;
     Finish(&s);
     Plot(s, "trajectory", s.table, "e_m,n_m,u_m", "trajectory (origin ENU)");
+  }
+
+  // The trajectory for viewers of the earth (docs/rk-run.md "Exports: KML and CZML"): rk-export kml and czml into
+  // out/trajectory.kml and out/trajectory.czml, with the manifest's epoch_utc and name. What is exported: the
+  // intersection's trajectory (several stations), or, in a single-station trial whose manifest gives the station's
+  // position and a range log, the located target of its first located camera (beacon or points, in name order:
+  // its WGS-84 columns). Any other trial has nothing in WGS-84, and no export step.
+  void Export() {
+    const Step* from = nullptr;
+    std::string table, option;
+    if (m_.multi_station()) {
+      const auto it = std::find_if(steps_.begin(), steps_.end(), [](const Step& x) { return x.kind == "intersect"; });
+      if (it == steps_.end()) return;
+      from = &*it;
+      table = std::string(trial::kTrajectoryUnit) + "/" + trial::kTrajectoryFile;
+      option = "trajectory";
+    } else {
+      const trial::StationEntry& st = m_.stations.front();
+      if (located_.empty() || !st.station.is_object() || st.range.empty()) return;
+      const auto it = std::find_if(steps_.begin(), steps_.end(), [&](const Step& x) { return x.id == located_[0].step; });
+      from = &*it;
+      table = located_[0].located;
+      option = "located";
+    }
+    const Step source = *from;  // steps_ grows below
+    for (const auto& [kind, file] : {std::pair<const char*, const char*>{"export-kml", "trajectory.kml"},
+                                     std::pair<const char*, const char*>{"export-czml", "trajectory.czml"}}) {
+      Step s = Make(trial::kTrajectoryUnit, kind);
+      Upstream(&s, option, source, table);
+      if (!m_.epoch_utc.empty()) Bind(&s, "epoch-utc", m_.epoch_utc);
+      Bind(&s, "name", m_.name);
+      Out(&s, "-o", file);
+      Finish(&s);
+    }
   }
 
   struct Located {

@@ -8,6 +8,9 @@
 //   points     extract-points (the camera's seeds) → locate-points (one located series per id; turret or
 //              theodolite log, range log if any)
 //   radar      register (GM Bernoulli), register-batch
+//   trajectory intersect (several stations: rk-intersect on every located camera); export-kml, export-czml
+//              (rk-export of the trajectory, or of a single station's first located target when the manifest
+//              gives the station's position and a range log) into out/trajectory.kml, out/trajectory.czml
 // and a plot step (rk-plot) for each main series. Paths are relative to the trial folder; outputs
 // relative to out/.
 #pragma once

@@ -102,7 +102,11 @@ std::vector<UnitPlan> PlanByUnit(const TrialManifest& m, const std::vector<Step>
     }
   }
   if (m.radar) units.push_back(UnitOf("radar", "radar", plan));
-  if (m.multi_station()) units.push_back(UnitOf(trial::kTrajectoryUnit, "intersection of the stations", plan));
+  if (m.multi_station()) {
+    units.push_back(UnitOf(trial::kTrajectoryUnit, "intersection of the stations", plan));
+  } else if (std::any_of(plan.begin(), plan.end(), [](const Step& s) { return s.unit == trial::kTrajectoryUnit; })) {
+    units.push_back(UnitOf(trial::kTrajectoryUnit, "export of the located target", plan));
+  }
   for (const trial::StationEntry& st : stations) UnusedLogs(st, plan, &units);
   if (plan.empty()) {
     UnitPlan u;
@@ -126,6 +130,11 @@ void CheckRequestedProducts(const TrialManifest& m, const std::vector<Step>& pla
     // Plots are warnings; the intersection is checked last, after the cameras whose chains it needs.
     if (kind == "plot" || kind == "intersect") continue;
     const std::string pointer = "/steps/" + io::PointerToken(key);
+    const bool exported = kind.rfind("export-", 0) == 0;
+    if (exported && std::none_of(plan.begin(), plan.end(), [&](const Step& s) { return s.kind == kind; })) {
+      fail(pointer, "asks for " + kind + ", but the trial has nothing in WGS-84 to export: it needs several stations, "
+                    "or a station position, a range log and a beacon or points camera", true);
+    }
     if (unit == "radar" && !m.radar) {
       fail(pointer, "asks for " + kind + " of the radar, but the manifest has no \"radar\" block ({\"plots\", \"nav\"})",
            true);

@@ -61,7 +61,8 @@ TEST(Plan, BeaconChainFollowsSpecCommandLines) {
   std::vector<std::string> ids;
   for (const auto& s : plan) ids.push_back(s.id);
   EXPECT_EQ(ids, (std::vector<std::string>{"az/extract-beacon", "az/locate", "az/plot-located", "az/smooth",
-                                           "az/plot-rates", "az/resample-range"}));
+                                           "az/plot-rates", "az/resample-range", "trajectory/export-kml",
+                                           "trajectory/export-czml"}));
   EXPECT_EQ(Argv(Find(plan, "az/extract-beacon")),
             (std::vector<std::string>{"rk-extract", "beacon", "--video", "az/seg_000.mkv", "--video", "az/seg_001.mkv",
                                       "--frames", "az/frames.csv", "-o", "out/az/track.csv"}));
@@ -77,7 +78,12 @@ TEST(Plan, BeaconChainFollowsSpecCommandLines) {
                                       "az/frames.csv", "-o", "out/az/range_at_frames.csv"}));
   EXPECT_EQ(Find(plan, "az/smooth").depends_on, (std::vector<std::string>{"az/locate"}));
   EXPECT_TRUE(Find(plan, "az/plot-located").warn_only);
-  EXPECT_EQ(BuildPlan(m, PlanOptions{false}).size(), 4u);  // --no-plots
+  // A station position and a range log: the located target is exported for earth viewers (issue 34).
+  EXPECT_EQ(Argv(Find(plan, "trajectory/export-kml")),
+            (std::vector<std::string>{"rk-export", "kml", "--located", "out/az/located.csv", "--epoch-utc",
+                                      "2026-11-21T08:00:00Z", "--name", "t0001", "-o", "out/trajectory.kml"}));
+  EXPECT_EQ(Find(plan, "trajectory/export-czml").depends_on, (std::vector<std::string>{"az/locate"}));
+  EXPECT_EQ(BuildPlan(m, PlanOptions{false}).size(), 6u);  // --no-plots
 }
 
 TEST(Plan, OffAndNotApplicablePropagate) {
@@ -272,12 +278,13 @@ TEST(Plan, PlanByUnitSaysWhatIsPlannedAndSkipped) {
                                     "\"theodolite\": \"theo.csv\"");
   const TrialManifest m = ParseManifest(text, "/t/trial.json");
   const std::vector<UnitPlan> units = PlanByUnit(m, BuildPlan(m, PlanOptions{}));
-  ASSERT_EQ(units.size(), 2u);
+  ASSERT_EQ(units.size(), 3u);
   EXPECT_EQ(units[0].Line(),
             "az (beacon camera): planned extract-beacon, locate, plot-located, smooth, plot-rates; skipped "
             "resample-range (off: switched off in trial.json \"steps\")");
-  EXPECT_EQ(units[1].unit, "theodolite");
-  EXPECT_EQ(units[1].Line(),
+  EXPECT_EQ(units[1].Line(), "trajectory (export of the located target): planned export-kml, export-czml");
+  EXPECT_EQ(units[2].unit, "theodolite");
+  EXPECT_EQ(units[2].Line(),
             "theodolite (log theo.csv): not used: no silhouette camera, and the beacon cameras use the turret log");
   const io::Json j = units[0].ToJson();
   EXPECT_EQ(j["skipped"][0]["step"], "resample-range");
@@ -383,6 +390,11 @@ TEST(Plan, SeveralStationsRunEachChainThenTheIntersection) {
   EXPECT_EQ(Argv(in), (std::vector<std::string>{"rk-intersect", "--smooth", "--stations", "out/trajectory/stations.json",
                                                 "-o", "out/trajectory/trajectory.csv"}));
   EXPECT_EQ(in.depends_on, (std::vector<std::string>{"s1/az/locate", "s2/az/locate"}));
+  // The trajectory for earth viewers (issue 34): no epoch_utc in this manifest, so no --epoch-utc.
+  EXPECT_EQ(Argv(Find(plan, "trajectory/export-czml")),
+            (std::vector<std::string>{"rk-export", "czml", "--trajectory", "out/trajectory/trajectory.csv", "--name",
+                                      "ms", "-o", "out/trajectory.czml"}));
+  EXPECT_EQ(Find(plan, "trajectory/export-kml").depends_on, (std::vector<std::string>{"trajectory/intersect"}));
   // The intersection comes after every locate step it reads.
   const auto pos = [&](const std::string& id) {
     return std::find_if(plan.begin(), plan.end(), [&](const Step& s) { return s.id == id; }) - plan.begin();
@@ -435,14 +447,58 @@ TEST(Plan, SeveralStationsErrorsAtTheirPlace) {
   EXPECT_EQ(ok.Settings("s2/az", "locate").options.size(), 1u);
 }
 
-// A single-station manifest plans exactly as before: no trajectory unit, camera units by their names.
+// A single-station manifest plans as before: no intersection, camera units by their names; only the exports of its
+// located target are in the unit trajectory.
 TEST(Plan, SingleStationManifestHasNoIntersection) {
   const TrialManifest m = ParseManifest(testing::kBeaconManifest, "/t/trial.json");
   for (const Step& s : BuildPlan(m, PlanOptions{})) {
     EXPECT_NE(s.kind, "intersect");
     EXPECT_TRUE(s.generated.empty());
-    EXPECT_EQ(s.id.rfind("az/", 0), 0u) << s.id;
+    if (s.unit == "trajectory") {
+      EXPECT_EQ(s.kind.rfind("export-", 0), 0u) << s.id;
+    } else {
+      EXPECT_EQ(s.id.rfind("az/", 0), 0u) << s.id;
+    }
   }
+}
+
+// The exports (issue 34): only where something has a WGS-84 position (several stations, or one station with its
+// position and a range log); switched off, given options, asked for where nothing can be exported (an error at the
+// key); their inputs, epoch and name are rk-run's.
+TEST(Plan, ExportsOnlyWhatHasAPlaceOnTheEarth) {
+  const auto kinds = [](const std::vector<Step>& plan) {
+    std::vector<std::string> k;
+    for (const Step& s : plan) {
+      if (s.unit == "trajectory") k.push_back(s.kind + ":" + PlanStateName(s.state));
+    }
+    return k;
+  };
+  const std::string no_range = Replaced(testing::kBeaconManifest, "\"range\": \"range.csv\"", "\"range\": null");
+  const TrialManifest nr = ParseManifest(no_range, "/t/trial.json");
+  EXPECT_TRUE(kinds(BuildPlan(nr, PlanOptions{})).empty());
+  const std::string no_station =
+      Replaced(testing::kBeaconManifest, "\"station\": {\"lat_deg\": 10, \"lon_deg\": 20, \"h_m\": 5},", "");
+  const TrialManifest ns = ParseManifest(no_station, "/t/trial.json");
+  EXPECT_TRUE(kinds(BuildPlan(ns, PlanOptions{})).empty());
+  const TrialManifest asked = ParseManifest(Replaced(no_range, "\"steps\": {}", "\"steps\": {\"export-kml\": true}"),
+                                            "/t/trial.json");
+  EXPECT_NE(RequestError(asked, BuildPlan(asked, PlanOptions{})).find(
+                "steps.export-kml: asks for export-kml, but the trial has nothing in WGS-84 to export"),
+            std::string::npos);
+  const TrialManifest off = ParseManifest(
+      WithSteps(R"({"export-kml": false, "trajectory/export-czml": {"path-width": 3}})"), "/t/trial.json");
+  const std::vector<Step> plan = BuildPlan(off, PlanOptions{});
+  EXPECT_EQ(kinds(plan), (std::vector<std::string>{"export-kml:off", "export-czml:active"}));
+  const std::vector<std::string> argv = Argv(Find(plan, "trajectory/export-czml"));
+  EXPECT_EQ(std::vector<std::string>(argv.end() - 4, argv.end()),
+            (std::vector<std::string>{"--path-width", "3", "-o", "out/trajectory.czml"}));
+  EXPECT_NO_THROW(CheckRequestedProducts(off, plan));
+  for (const char* option : {"trajectory", "located", "epoch-utc", "name"}) {
+    EXPECT_TRUE(IsReservedOption("export-kml", option)) << option;
+  }
+  // The locate step switched off: nothing to export, and nothing asked for.
+  const TrialManifest no_locate = ParseManifest(WithSteps(R"({"locate": false})"), "/t/trial.json");
+  EXPECT_TRUE(kinds(BuildPlan(no_locate, PlanOptions{})).empty());
 }
 
 }  // namespace

@@ -18,7 +18,7 @@ import json, sys
 d = json.load(open(sys.argv[1] + "/out/report.json"))
 steps = {s["id"]: s for s in d["steps"]}
 assert d["result"] == "done", d["result"]
-assert sorted(s["status"] for s in d["steps"]) == ["ok"] * 6, [s["status"] for s in d["steps"]]
+assert sorted(s["status"] for s in d["steps"]) == ["ok"] * 8, [s["status"] for s in d["steps"]]
 assert d["inputs"]["turret.csv"]["sha256"] == sys.argv[2] and d["inputs"]["az/video.mkv"]["sha256"] == sys.argv[3]
 assert d["tools"]["rk-locate"]["version"].startswith("rk-locate (rangekit) ")
 assert steps["az/locate"]["time"]["wall_s"] >= 0 and steps["az/locate"]["tool_report"]["tool"] == "rk-locate"
@@ -38,6 +38,13 @@ assert steps["az/extract-beacon"]["quality"]["frames"] == 60 and steps["az/locat
 print("report ok")
 PY
 head -c 8 "$t/out/plots/az_located.png" | od -c | grep -q 'P   N   G'
+# Issue 34: a single station with its position and a range log exports its located target (WGS-84 columns from
+# --station) beside the page, with the manifest's epoch; every coordinate equals located.csv's to 1e-7 deg.
+grep -Eq '^trajectory/export-kml +ok' "$data/run/chain.out"
+grep -Eq '^trajectory/export-czml +ok' "$data/run/chain.out"
+python3 "$src/tests/cli/rk_export/check_export.py" "$t/out/az/located.csv" --kml "$t/out/trajectory.kml" \
+  --czml "$t/out/trajectory.czml" --epoch "$(json "$t/trial.json" 'd["epoch_utc"]')"
+grep -Eq -- '--located out[^ ]*/az/located.csv --epoch-utc 2026-01-01T00:00:00Z --name small' "$t/out/steps/trajectory.export-kml.log"
 grep -q '^t_s,kind,az_deg,el_deg,range_m,e_m,n_m,u_m,status,az_rate_deg_s' "$t/out/az/smoothed.csv"
 grep -q ',smoothed,' "$t/out/az/smoothed.csv"
 rk-analyze compare --estimate "$t/out/az/located.csv" --reference "$t/truth/target.csv" \

@@ -45,6 +45,17 @@ print("rows", len(rows), "ok", len(ok), "worst axis error m", round(worst, 3))
 assert worst <= TOL_M, worst
 PY
 rk-run "$t" --no-plots | grep -q 'trajectory/intersect *skipped'
+# Issue 34: the trajectory for earth viewers beside the page, out/trajectory.kml and out/trajectory.czml (rk-export
+# with the manifest's epoch and name); every coordinate equals the trajectory's WGS-84 columns to 1e-7 deg, the CZML
+# packets are as its specification describes; the KML validates against the OGC schema where xmllint and the schema are.
+for s in trajectory/export-kml trajectory/export-czml; do
+  grep -Eq "^$s +ok" "$d/run.out" || { echo "step $s did not run ok"; exit 1; }
+done
+python3 "$src/tests/cli/rk_export/check_export.py" "$t/out/trajectory/trajectory.csv" --kml "$t/out/trajectory.kml" \
+  --czml "$t/out/trajectory.czml" --epoch "$(json "$t/trial.json" 'd["epoch_utc"]')"
+json "$t/out/trajectory.czml" 'd[0]["name"]' | grep -qx ms
+schema=${RK_KML_SCHEMA:-/usr/share/pytrainer/schemas/ogckml22.xsd}
+if command -v xmllint >/dev/null && [ -r "$schema" ]; then xmllint --noout --nonet --schema "$schema" "$t/out/trajectory.kml"; fi
 # The report page draws the trajectory and the stations from the tools' WGS-84 columns and the manifest's
 # positions (issue 28: the page converts no coordinates): a plan view in longitude and latitude with the
 # three stations named, and the stations' table without converted ENU columns.
