@@ -10,7 +10,8 @@
 #   scripts/setup.sh --tshark   also Debian's tshark (Wireshark's ASTERIX dissector), the independent decoder the
 #                               radar-feed test checks rk-import asterix against
 #   scripts/setup.sh --gige     also Aravis' software GigE Vision camera and arv-tool (aravis-tools, -cli), which the
-#                               aravis: capture test runs in a private network namespace
+#                               aravis: capture test runs in a private network namespace, and faketime (the
+#                               software camera's clock set back and forth: a camera clock that resets)
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 ASAN=0
@@ -55,8 +56,9 @@ if [ "$FUZZ" = 1 ]; then PACKAGES+=(clang libclang-rt-14-dev); fi
 if [ "$BROWSER" = 1 ]; then PACKAGES+=(chromium); fi
 # tshark only for the test that compares rk-import asterix with Wireshark's decoder (import_cli_asterix_real).
 if [ "$TSHARK" = 1 ]; then PACKAGES+=(tshark); fi
-# Aravis' software GigE Vision camera (arv-fake-gv-camera-0.8) and arv-tool-0.8 for the aravis: capture tests.
-if [ "$GIGE" = 1 ]; then PACKAGES+=(aravis-tools aravis-tools-cli iproute2 util-linux); fi
+# Aravis' software GigE Vision camera (arv-fake-gv-camera-0.8) and arv-tool-0.8 for the aravis: capture tests;
+# faketime to give the software camera a clock that resets.
+if [ "$GIGE" = 1 ]; then PACKAGES+=(aravis-tools aravis-tools-cli iproute2 util-linux faketime); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then

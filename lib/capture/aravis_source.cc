@@ -18,7 +18,15 @@
 
 #include <arv.h>
 
+#include <pthread.h>
+#include <sched.h>
+#include <sys/resource.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 #include "io/error.h"
@@ -31,6 +39,10 @@ constexpr guint64 kPopTimeoutUs = 1000000;  // one wait for a buffer (a stop is 
 constexpr double kMaxSilenceS = 3.0;        // no frame for this long: the camera is gone
 constexpr int kMinBuffers = 8;
 constexpr std::uint64_t kFrameIdWrap = 65535;  // GVSP block ids run 1..65535
+// The stream's receive thread: a low real-time priority (above every normal thread, below the kernel's own
+// threaded interrupts at 50), else this nice level.
+constexpr int kReceiveFifoPriority = 10;
+constexpr int kReceiveNice = -10;
 
 // The mono pixel formats recorded (PFNC / GigE Vision codes; Aravis 0.8's headers lack the PFNC packed
 // Mono10p 0x010a0046 and Mono12p 0x010c0047) and their packing in lib/video (the one owner of unpacking).
@@ -64,6 +76,43 @@ std::string TakeError(GError** e) {
 }
 
 }  // namespace
+
+TriggerTiming DecideTrigger(const std::function<std::optional<std::string>(const char*)>& get) {
+  TriggerTiming t;
+  const std::optional<std::string> mode = get("TriggerMode");
+  if (!mode || *mode != "On") return t;
+  const std::optional<std::string> selector = get("TriggerSelector");
+  const std::optional<std::string> source = get("TriggerSource");
+  t.report = {{"mode", *mode}};
+  if (selector) t.report["selector"] = *selector;
+  if (source) t.report["source"] = *source;
+  // Each frame has a trigger of its own only for FrameStart (ExposureStart); an AcquisitionStart or
+  // FrameBurstStart trigger starts frames the camera then times itself.
+  if (selector && *selector != "FrameStart" && *selector != "ExposureStart") {
+    t.report["frame_time"] = "camera stamp (the " + *selector + " trigger does not start each frame)";
+    return t;
+  }
+  if (!source || source->rfind("Software", 0) == 0) {
+    t.report["frame_time"] = "camera stamp (a software trigger has no time of its own)";
+    return t;
+  }
+  t.hardware = true;
+  for (const char* name : {"TriggerDelay", "TriggerDelayAbs"}) {
+    const std::optional<std::string> v = get(name);
+    if (!v) continue;
+    char* end = nullptr;
+    const double us = std::strtod(v->c_str(), &end);
+    if (end == v->c_str() || *end != '\0' || !std::isfinite(us) || us < 0.0 || us > 1e9) continue;
+    t.delay_ns = std::llround(us * 1e3);
+    t.report["delay_feature"] = name;
+    t.report["delay_s"] = us * 1e-6;
+    t.report["frame_time"] = std::string("trigger: camera stamp - ") + name;
+    return t;
+  }
+  t.report["delay_s"] = 0.0;
+  t.report["frame_time"] = "trigger: camera stamp (the camera has no TriggerDelay: taken as 0)";
+  return t;
+}
 
 struct AravisSource::Impl {
   ArvCamera* camera = nullptr;
@@ -117,6 +166,16 @@ bool AravisSource::Open(std::string* why) {
     features_.push_back(f);
   }
   if (o_.ptp) EnablePtp();
+  trigger_ = DecideTrigger([dev](const char* name) -> std::optional<std::string> {
+    ArvGcNode* node = arv_device_get_feature(dev, name);
+    if (!node || !ARV_IS_GC_FEATURE_NODE(node)) return std::nullopt;
+    GError* err = nullptr;
+    const char* v = arv_gc_feature_node_get_value_as_string(ARV_GC_FEATURE_NODE(node), &err);
+    const bool ok = v && !err;
+    g_clear_error(&err);
+    if (!ok) return std::nullopt;
+    return std::string(v);
+  });
   arv_camera_set_acquisition_mode(impl_->camera, ARV_ACQUISITION_MODE_CONTINUOUS, &e);
   g_clear_error(&e);
   gv_ = arv_camera_is_gv_device(impl_->camera);
@@ -134,7 +193,9 @@ bool AravisSource::Open(std::string* why) {
     Close();
     return false;
   }
+  RaiseForReceiveThread();
   impl_->stream = arv_camera_create_stream(impl_->camera, nullptr, nullptr, &e);
+  RestoreAfterReceiveThread();
   if (!impl_->stream) {
     *why = "Aravis camera '" + id_ + "': cannot open its stream: " + TakeError(&e);
     Close();
@@ -176,6 +237,14 @@ GrabResult AravisSource::Grab(cv::Mat* out, Stamp* at, std::string* why, const s
       continue;
     }
     *at = Now();
+    // The host's arrival is the frame's first packet's (Aravis' system time stamp, real-time clock), not this
+    // pop: the monotonic reading moved back by as much, when the two agree within a second.
+    const std::int64_t arrived_real = static_cast<std::int64_t>(arv_buffer_get_system_timestamp(b));
+    const std::int64_t waited = at->real_ns - arrived_real;
+    if (arrived_real > 0 && waited >= 0 && waited < 1000000000) {
+      at->real_ns = arrived_real;
+      at->mono_ns -= waited;
+    }
     impl_->last_frame_ns = at->mono_ns;
     CountFrameId(arv_buffer_get_frame_id(b));
     if (arv_buffer_get_status(b) != ARV_BUFFER_STATUS_SUCCESS) {
@@ -243,6 +312,41 @@ void AravisSource::EnablePtp() {
   ptp_ = {{"error", "the camera has neither PtpEnable nor GevIEEE1588: no IEEE 1588"}};
 }
 
+void AravisSource::RaiseForReceiveThread() {
+  policy_raised_ = nice_raised_ = false;
+  sched_param sp{};
+  pthread_getschedparam(pthread_self(), &saved_policy_, &sp);
+  saved_priority_ = sp.sched_priority;
+  sched_param rt{};
+  rt.sched_priority = kReceiveFifoPriority;
+  const int fifo_error = pthread_setschedparam(pthread_self(), SCHED_FIFO, &rt);
+  if (fifo_error == 0) {
+    policy_raised_ = true;
+    receive_thread_ = "SCHED_FIFO priority " + std::to_string(kReceiveFifoPriority);
+    return;
+  }
+  const std::string fifo_why = std::strerror(fifo_error);
+  const id_t tid = static_cast<id_t>(gettid());
+  errno = 0;
+  saved_nice_ = getpriority(PRIO_PROCESS, tid);
+  if (errno == 0 && setpriority(PRIO_PROCESS, tid, kReceiveNice) == 0) {
+    nice_raised_ = true;
+    receive_thread_ = "nice " + std::to_string(kReceiveNice) + " (SCHED_FIFO refused: " + fifo_why + ")";
+    return;
+  }
+  receive_thread_ = "normal scheduling (SCHED_FIFO refused: " + fifo_why + "; nice " + std::to_string(kReceiveNice) +
+                    " refused: " + std::strerror(errno) + ")";
+}
+
+void AravisSource::RestoreAfterReceiveThread() {
+  if (policy_raised_) {
+    sched_param sp{};
+    sp.sched_priority = saved_priority_;
+    pthread_setschedparam(pthread_self(), saved_policy_, &sp);
+  }
+  if (nice_raised_) setpriority(PRIO_PROCESS, static_cast<id_t>(gettid()), saved_nice_);
+}
+
 void AravisSource::CountFrameId(std::uint64_t id) {
   if (!gv_ || id == 0) return;  // 0: no id (USB3 Vision, or a buffer that never got one)
   if (!impl_->have_id) {
@@ -303,6 +407,8 @@ io::Json AravisSource::StreamReport() const {
           {"lost_buffers", s.lost_buffers},
           {"timeouts", s.timeouts},
           {"ptp", ptp_},
+          {"trigger", trigger_.report},
+          {"receive_thread", receive_thread_},
           {"features", features}};
 }
 

@@ -59,6 +59,8 @@ class CameraSource {
   // A camera with its own clock: the time stamp of the last frame Grab returned, ns on that clock (−1 none).
   virtual bool has_camera_clock() const { return false; }
   virtual std::int64_t camera_ns() const { return -1; }
+  // What to subtract from camera_ns for the frame's time (a hardware trigger's delay before the exposure; 0).
+  virtual std::int64_t frame_time_shift_ns() const { return 0; }
   // Frames the source knows it lost just before the last one Grab returned (incomplete, never arrived): the
   // recorder's seq jumps by as many, as frames.csv promises.
   virtual std::int64_t lost_before_last() const { return 0; }

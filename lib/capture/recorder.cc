@@ -26,7 +26,7 @@ io::Json CameraSummary::ToJson() const {
           {"width", width},               {"height", height},           {"bit_depth", bit_depth},
           {"frames_grabbed", grabbed},    {"frames_written", written},  {"dropped_queue_full", dropped_queue},
           {"dropped_disk_low", dropped_disk}, {"write_failed", write_failed}, {"source_errors", source_errors},
-          {"segments", segments},         {"source_ended", ended},      {"stream", stream}};
+          {"frames_outside_recording", outside}, {"segments", segments},         {"source_ended", ended},      {"stream", stream}};
 }
 
 io::Json CaptureSummary::ToJson() const {
@@ -112,6 +112,7 @@ CaptureSummary Recorder::Run() {
   Connect();
   CreateLogs();
   record_start_ns_ = MonoNowNs();
+  if (opt_.duration_s > 0) record_stop_ns_ = record_start_ns_ + static_cast<std::int64_t>(opt_.duration_s * 1e9);
   WriteManifest("recording");
 
   // Recording: from here on nothing throws out of Run; faults become events and gaps.
@@ -181,8 +182,7 @@ void Recorder::StartThreads() {
 void Recorder::Supervise() {
   const std::int64_t manifest_period = static_cast<std::int64_t>(cfg_.manifest_s * 1e9);
   const std::int64_t status_period = static_cast<std::int64_t>(opt_.status_period_s * 1e9);
-  const std::int64_t end_ns = opt_.duration_s > 0 ? record_start_ns_ + static_cast<std::int64_t>(opt_.duration_s * 1e9)
-                                                  : INT64_MAX;
+  const std::int64_t end_ns = record_stop_ns_;
   std::int64_t next_manifest = record_start_ns_ + manifest_period, next_status = record_start_ns_ + status_period;
   status_t_ = epoch_.TrialSeconds(record_start_ns_);
   while (true) {

@@ -46,6 +46,7 @@ struct CameraSummary {
   double fps = 0;
   int width = 0, height = 0, bit_depth = 0;
   std::int64_t grabbed = 0, written = 0, dropped_queue = 0, dropped_disk = 0, write_failed = 0, source_errors = 0;
+  std::int64_t outside = 0;  // frames that arrived before the recording began or after --duration: not recorded
   int segments = 0;
   bool ended = false;  // the source ended before the recording did (a file without loop)
   io::Json stream;     // an Aravis camera's stream counters and features (AravisSource::StreamReport), else null

@@ -4,6 +4,7 @@
 #include "capture/recorder_internal.h"
 
 #include <algorithm>
+#include <cmath>
 #include <exception>
 
 #include "camera/camera_model.h"
@@ -13,6 +14,9 @@ namespace rk::capture::internal {
 namespace {
 constexpr double kSilencePeriods = 5.0;  // a camera stamp step beyond this many frame periods ...
 constexpr double kSilenceMinS = 0.2;     // ... and this long is a gap
+// A camera stamp step that differs from the host's arrival step by more than this is the camera's clock
+// stepping (reset, PTP set), not a silence: longer than any stall of the host (Aravis holds a second of frames).
+constexpr double kClockStepMinS = 10.0;
 }  // namespace
 
 void CameraStream::ClockFit::Add(double camera_s, double host_s) {
@@ -51,6 +55,7 @@ void Recorder::GrabLoop(CameraStream* cam) {
   std::int64_t seq = 0;
   cv::Mat discard;
   std::int64_t last_camera_ns = -1;  // the camera's own stamps: a silence, a clock that went back
+  bool new_clock_unqueued = false;     // a clock step seen on a frame that found no free buffer
   Stamp last_at;
   while (!stop_.load()) {
     int b = -1;
@@ -71,20 +76,35 @@ void Recorder::GrabLoop(CameraStream* cam) {
       why = e.what();
       r = GrabResult::kError;
     }
+    if (r == GrabResult::kFrame && (at.mono_ns < record_start_ns_ || at.mono_ns >= record_stop_ns_)) {
+      // Outside the recording (sent before it began, or after --duration): not part of it, no loss either.
+      ++cam->outside;
+      if (b >= 0) {
+        std::lock_guard<std::mutex> lock(cam->mutex);
+        cam->free_buffers.push_back(b);
+      }
+      continue;
+    }
     if (r == GrabResult::kFrame) {
       ++cam->grabbed;
       seq += cam->src->lost_before_last();
       const std::int64_t cns = cam->src->camera_ns();
+      bool new_clock = false;
       if (cns >= 0 && last_camera_ns >= 0) {
         const double step_s = static_cast<double>(cns - last_camera_ns) * 1e-9;
+        const double host_step_s = static_cast<double>(at.mono_ns - last_at.mono_ns) * 1e-9;
         const double period_s = cam->fps > 0 ? 1.0 / cam->fps : 0.0;
-        if (step_s <= 0.0) {
-          // A camera that reset its clock (power cycle): its stamps start again; so does the clock mapping.
+        if (step_s <= 0.0 || std::abs(step_s - host_step_s) > kClockStepMinS) {
+          // A camera that reset its clock (power cycle) or had it set (PTP): its stamps start again; so does
+          // the clock mapping, from this frame.
           Event(EventLevel::kWarning, "camera:" + cam->cfg.name,
-                "camera clock went back by " + FormatFixed(-step_s, 6) + " s: a new camera clock mapping starts");
+                (step_s <= 0.0 ? "camera clock went back by " + FormatFixed(-step_s, 6) + " s"
+                               : "camera clock stepped by " + FormatFixed(step_s, 6) + " s while the host's advanced " +
+                                     FormatFixed(host_step_s, 6) + " s") +
+                    ": a new camera clock mapping starts");
           std::lock_guard<std::mutex> lock(cam->mutex);
           cam->clock_fit = {};
-          cam->clock_went_back = true;
+          new_clock = true;
         } else if (step_s > std::max(kSilenceMinS, kSilencePeriods * period_s)) {
           // The camera itself sent nothing for a while (paused, reconfigured): a gap from the last frame to this
           // one, closed when this frame is written.
@@ -95,13 +115,15 @@ void Recorder::GrabLoop(CameraStream* cam) {
         last_camera_ns = cns;
         last_at = at;
       }
+      new_clock = new_clock || new_clock_unqueued;
+      new_clock_unqueued = b < 0 && new_clock;
       if (b < 0) {
         ++cam->dropped_queue;
         cam->Fault(at, "frames dropped: " + std::to_string(cam->pool.size()) +
                            " frames already wait for the disk (seq " + std::to_string(seq) + ")");
       } else {
         std::lock_guard<std::mutex> lock(cam->mutex);
-        cam->queue.push_back({b, at, seq, cam->src->camera_ns()});
+        cam->queue.push_back({b, at, seq, cns, cam->src->frame_time_shift_ns(), new_clock});
         cam->cv.notify_one();
       }
       ++seq;
@@ -135,6 +157,7 @@ void Recorder::GrabLoop(CameraStream* cam) {
 }
 
 void Recorder::WriteFrame(CameraStream* cam, const CameraStream::Item& item) {
+  if (item.new_clock) cam->clock_restart_pending = true;  // even if this frame is not written
   const cv::Mat& frame = cam->pool[static_cast<std::size_t>(item.buffer)];
   const std::string stream = "camera:" + cam->cfg.name;
   if (!cam->have_format) {
@@ -190,9 +213,11 @@ void Recorder::WriteFrame(CameraStream* cam, const CameraStream::Item& item) {
   if (cam->src->has_camera_clock()) {
     const char* source = "host";
     if (item.camera_ns >= 0) {
-      if (cam->clock_went_back.exchange(false)) cam->clock_map.Reset();
+      if (cam->clock_restart_pending) cam->clock_map.Reset();
+      cam->clock_restart_pending = false;
+      // A hardware trigger's time: the stamp (exposure start) less the trigger's delay, on the camera's clock.
       const double mapped = cam->clock_map.Add(item.camera_ns, static_cast<double>(item.at.mono_ns) * 1e-9) -
-                            static_cast<double>(epoch_.mono_ns) * 1e-9;
+                            static_cast<double>(item.shift_ns) * 1e-9 - static_cast<double>(epoch_.mono_ns) * 1e-9;
       if (mapped > cam->last_t_s) {
         t_s = mapped;
         source = "camera";

@@ -62,6 +62,15 @@ void Recorder::ReportFeatures(CameraStream* cam) {
                 (p.contains("status") ? ", status " + p["status"].get<std::string>() : ""));
     }
   }
+  if (r.contains("trigger") && r["trigger"].is_object()) {
+    const io::Json& t = r["trigger"];
+    Event(EventLevel::kInfo, "camera:" + cam->cfg.name,
+          "trigger " + t.value("selector", std::string("(no selector)")) + " " + t.value("mode", "") + " from " +
+              t.value("source", std::string("(no source)")) + ": the frame's time is the " + t.value("frame_time", ""));
+  }
+  if (r.contains("receive_thread") && r["receive_thread"].is_string()) {
+    Event(EventLevel::kInfo, "camera:" + cam->cfg.name, "stream receive thread: " + r["receive_thread"].get<std::string>());
+  }
   for (const io::Json& f : r["features"]) {
     const std::string name = f.value("name", ""), asked = f.value("asked", ""), got = f.value("got", "");
     if (f.contains("error")) {

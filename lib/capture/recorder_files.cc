@@ -159,6 +159,7 @@ io::Json Recorder::StreamsJson() {
     c["bit_depth"] = known ? io::Json(cam->format.bit_depth) : io::Json(nullptr);
     c["frames_grabbed"] = cam->grabbed.load();
     c["frames_written"] = cam->written.load();
+    c["frames_outside_recording"] = cam->outside.load();
     c["dropped_queue_full"] = cam->dropped_queue.load();
     c["dropped_disk_low"] = cam->dropped_disk.load();
     c["write_failed"] = cam->write_failed.load();

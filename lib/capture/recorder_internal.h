@@ -56,7 +56,10 @@ struct CameraStream {
     Stamp at;
     std::int64_t seq = 0;
     std::int64_t camera_ns = -1;  // the camera's own time stamp (aravis), −1 without
+    std::int64_t shift_ns = 0;    // subtracted from camera_ns for the frame's time (a hardware trigger's delay)
+    bool new_clock = false;       // the camera's clock stepped before this frame: a new mapping starts here
   };
+  bool clock_restart_pending = false;  // writer thread: a new mapping from the next frame that is written
   std::vector<cv::Mat> pool;
   std::vector<int> free_buffers;
   std::deque<Item> queue;
@@ -84,10 +87,9 @@ struct CameraStream {
     io::Json ToJson() const;  // null before two frames
   } clock_fit;
   CameraClockMapper clock_map;               // t_s of a camera with a clock (writer thread)
-  std::atomic<bool> clock_went_back{false};  // set by the grabber: the writer starts a new mapping
   double last_t_s = -1e300;                  // the last row's t_s (writer thread)
   std::atomic<std::int64_t> grabbed{0}, written{0}, dropped_queue{0}, dropped_disk{0}, write_failed{0},
-      source_errors{0};
+      source_errors{0}, outside{0};
   std::atomic<bool> ended{false};
   std::thread grab_thread, write_thread;
 
@@ -158,6 +160,7 @@ class Recorder {
   TrialEpoch epoch_;
   Stamp started_;
   std::int64_t record_start_ns_ = 0, record_end_ns_ = 0;
+  std::int64_t record_stop_ns_ = INT64_MAX;  // start + --duration: frames that arrive later are not recorded
   std::unique_ptr<Syncer> syncer_;
   std::unique_ptr<AppendLog> events_;
   std::atomic<std::int64_t> events_lost_{0}, manifest_failures_{0};

@@ -102,6 +102,7 @@ CaptureSummary Recorder::Summarise() {
     c.bit_depth = cam->have_format ? cam->format.bit_depth : 0;
     c.grabbed = cam->grabbed;
     c.written = cam->written;
+    c.outside = cam->outside;
     c.dropped_queue = cam->dropped_queue;
     c.dropped_disk = cam->dropped_disk;
     c.write_failed = cam->write_failed;

@@ -29,12 +29,15 @@ set_tests_properties(rk_capture_disk_full PROPERTIES SKIP_RETURN_CODE 77)
 rk_cli_script(rk_capture/rk_capture_status_line)
 
 # GigE Vision through Aravis (issue 32): Aravis' software camera (arv-fake-gv-camera-0.8) in a private network
-# namespace (unshare -n, loopback only); --list-cameras lists it; 6 s recorded with a size, rate and exposure
+# namespace (unshare -n, loopback only); --list-cameras lists it; 10 s recorded with a size, rate and exposure
 # other than its defaults, set in the file's order and read back (report, events.log); frame count = duration
-# × rate within a frame, camera stamps strictly increasing at the configured period within 1 %, ≥ 6 decimals;
+# × rate within a frame (the frames the camera's clock spans; every frame it sent written), camera stamps strictly
+# increasing at the configured period within 1 %, ≥ 6 decimals; the receive thread's scheduling as the report
+# says (/proc);
 # stream counters and the camera → host clock fit in the report; paused (SIGSTOP) and resumed, then killed and
 # restarted: two gaps, one reconnect with the features set again, no duplicated frame; packet loss (the software
-# camera's -r): incomplete frames counted, none written, seq jumps by the lost; a camera that does not answer:
+# camera's -r): incomplete frames counted, none written, seq jumps by the lost; a camera whose clock resets and
+# is set forward again (restarted under libfaketime): a new mapping each time, t_s continuous; a camera that does not answer:
 # exit 4, no trial. Skipped (77) without aravis-tools or without a network namespace.
 rk_cli_script(rk_capture/rk_capture_aravis)
 # Alone: the software camera stamps its frames by its own timer, which other tests' load would delay.
