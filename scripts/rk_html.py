@@ -130,16 +130,19 @@ def utc_now():
     return datetime.datetime.now(datetime.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
 
 
-def page(title, header_html, nav, body):
-    """A whole page: no <script>, no external resource."""
+def page(title, header_html, nav, body, scripts=""):
+    """A whole page: no external resource. `scripts`: inline <script> and <style> elements put at the end of the
+    body (the interactive figures, scripts/rk_interactive.py); without them the page has no script at all."""
     links = "".join('<a href="#%s">%s</a>' % (esc(a), esc(t)) for a, t in nav)
     return ("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
             "<meta name=\"viewport\" content=\"width=device-width,initial-scale=1\">"
-            # Forbids every fetch, so that a page that would reach out breaks visibly in any browser.
+            # Forbids every fetch, so that a page that would reach out breaks visibly in any browser; inline
+            # scripts only when the page has them.
             "<meta http-equiv=\"Content-Security-Policy\" content=\"default-src 'none'; "
-            "style-src 'unsafe-inline'; img-src data:\">"
-            "<title>%s</title><style>%s</style></head>\n<body><header>%s</header>%s<main>\n%s\n</main></body></html>\n"
-            % (esc(title), CSS, header_html, "<nav>%s</nav>" % links if nav else "", body))
+            "style-src 'unsafe-inline'; img-src data:%s\">"
+            "<title>%s</title><style>%s</style></head>\n<body><header>%s</header>%s<main>\n%s\n</main>%s</body></html>\n"
+            % ("; script-src 'unsafe-inline'" if scripts else "", esc(title), CSS, header_html,
+               "<nav>%s</nav>" % links if nav else "", body, scripts))
 
 
 def step_quality(step):

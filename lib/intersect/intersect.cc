@@ -185,6 +185,7 @@ IntersectResult Intersect(const formats::StationsFile& stations, const std::vect
     frames.push_back(MakeStationFrame(stations.origin, stations.stations[s].position));
     r.names.push_back(stations.stations[s].name);
     r.has_range.push_back(tracks[s].has_range());
+    r.station_enu.push_back(frames.back().a);
   }
   const std::size_t S = tracks.size();
   const geo::LocalEnu origin(stations.origin);

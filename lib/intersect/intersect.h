@@ -74,6 +74,7 @@ struct IntersectResult {
   std::string id;                  // the point's id (IntersectById); "" for the one trajectory of a beacon
   std::vector<std::string> names;  // stations
   std::vector<bool> has_range;     // station file has a range column
+  std::vector<Eigen::Vector3d> station_enu;  // each station's position in the output's ENU frame (m)
   std::vector<TrajectoryRow> rows;
   std::vector<LineUse> use;              // rows × stations
   std::vector<Eigen::Vector3d> residual;  // rows × stations: az·cos el (arcsec), el (arcsec), range (m)

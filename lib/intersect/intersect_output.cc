@@ -175,7 +175,9 @@ io::Json IntersectResult::ToJson() const {
   for (std::size_t s = 0; s < names.size(); ++s) {
     const StationCounts& c = stations[s];
     const double n = static_cast<double>(c.rows_used);
-    st[names[s]] = {{"rows_contributed", c.rows_contributed},
+    const Eigen::Vector3d enu = s < station_enu.size() ? station_enu[s] : Eigen::Vector3d::Constant(NAN);
+    st[names[s]] = {{"enu_m", {NumberOrNull(enu.x()), NumberOrNull(enu.y()), NumberOrNull(enu.z())}},
+                    {"rows_contributed", c.rows_contributed},
                     {"rows_used", c.rows_used},
                     {"rows_rejected", c.rows_rejected},
                     {"rms_az_residual_arcsec", NumberOrNull(n > 0 ? std::sqrt(c.sum2_az / n) : NAN)},

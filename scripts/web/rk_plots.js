@@ -1,0 +1,309 @@
+// The report page's interactive figures (issue 34; docs/rk-run.md "The report page"): time series that zoom and
+// pan at full resolution (uPlot), and a 3-D view of a trajectory (three.js), linked by one time cursor.
+// Bundled with uPlot and three.js into one script by esbuild at build time (apps/CMakeLists.txt) and inlined into
+// each page by scripts/rk-report: the page fetches nothing.
+//
+// The page carries its data once, in <script type="application/json" id="rk-data">:
+//   {"tables": {ID: {"n": rows, "t": base64 float64 t_s, "cols": {name: base64 float32},
+//                    "sigma": {name: base64 float32 1σ of that column}, "bad": [[t0, t1], ...]}}}
+// and says where the figures go:
+//   <div class="rk-chart" data-table=ID data-cols='["az_deg",...]' data-group=UNIT data-title=...>
+//     one panel per column against t_s, its ±1σ band, the lost / invalid / predicted spans shaded; drag to zoom,
+//     double-click to reset; the panels of one group (a unit) share their time window and cursor; the read-out
+//     under each panel gives every series' value and 1σ at the cursor.
+//   <div class="rk-3d" data-table=ID data-x=e_m data-y=n_m data-z=u_m data-colour=time|status
+//        data-stations='[{"name", "e", "n", "u"}]' data-group=UNIT>
+//     the path coloured by time (or status), the stations, the ground plane, and at the cursor's time the
+//     target and every station's line of sight to it; drag to orbit, wheel to zoom, right-drag to pan.
+import uPlot from "uplot";
+import * as THREE from "three";
+import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
+
+const data = JSON.parse(document.getElementById("rk-data").textContent);
+const decoded = new Map();
+
+function bytes(b64) {
+  const s = atob(b64);
+  const out = new Uint8Array(s.length);
+  for (let i = 0; i < s.length; ++i) out[i] = s.charCodeAt(i);
+  return out.buffer;
+}
+
+// A table's columns as plain arrays (uPlot draws null as a gap; NaN in the file is a gap).
+function table(id) {
+  if (decoded.has(id)) return decoded.get(id);
+  const src = data.tables[id];
+  const toArray = (typed) => Array.from(typed, (v) => (Number.isFinite(v) ? v : null));
+  const tab = { n: src.n, t: toArray(new Float64Array(bytes(src.t))), cols: {}, sigma: {}, bad: src.bad || [],
+                status: src.status ? Array.from(new Uint8Array(bytes(src.status.codes)), (c) => src.status.names[c]) : null };
+  for (const [k, v] of Object.entries(src.cols)) tab.cols[k] = toArray(new Float32Array(bytes(v)));
+  for (const [k, v] of Object.entries(src.sigma || {})) tab.sigma[k] = toArray(new Float32Array(bytes(v)));
+  decoded.set(id, tab);
+  return tab;
+}
+
+// Index of the row nearest t (t sorted ascending, gaps allowed).
+function nearest(ts, t) {
+  let lo = 0, hi = ts.length - 1;
+  while (lo < hi) {
+    const mid = (lo + hi) >> 1;
+    if (ts[mid] === null || ts[mid] < t) lo = mid + 1; else hi = mid;
+  }
+  if (lo > 0 && ts[lo - 1] !== null && Math.abs(ts[lo - 1] - t) <= Math.abs(ts[lo] - t)) return lo - 1;
+  return lo;
+}
+
+function fmt(v) {
+  if (v === null || v === undefined || !Number.isFinite(v)) return "—";
+  const a = Math.abs(v);
+  if (a !== 0 && (a < 1e-3 || a >= 1e7)) return v.toExponential(6);
+  return Number(v.toPrecision(9)).toString();
+}
+
+// ---------------------------------------------------------------------------------------- the time cursor
+const listeners = [];
+function onTime(f) { listeners.push(f); }
+function timeChanged(t, group) { for (const f of listeners) f(t, group); }
+
+// ---------------------------------------------------------------------------------------------- charts
+const groups = new Map();  // group → {charts: [uPlot], x: [min, max] | null, busy}
+window.rkCharts = [];      // every chart made, for the browser test and the console
+
+function group(name) {
+  if (!groups.has(name)) groups.set(name, { charts: [], x: null, busy: false });
+  return groups.get(name);
+}
+
+const COLOURS = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b"];
+
+function makePanel(el, tab, col, k, g, groupName) {
+  const sigma = tab.sigma[col] || null;
+  const y = tab.cols[col];
+  const colour = COLOURS[k % COLOURS.length];
+  const series = [{ label: "t_s" }, { label: col, stroke: colour, width: 1, spanGaps: false,
+                                      points: { show: false } }];
+  const rows = [tab.t, y];
+  const bands = [];
+  if (sigma) {
+    const lo = y.map((v, i) => (v === null || sigma[i] === null ? null : v - sigma[i]));
+    const hi = y.map((v, i) => (v === null || sigma[i] === null ? null : v + sigma[i]));
+    rows.push(hi, lo);
+    series.push({ label: col + " +1σ", stroke: "transparent", points: { show: false } },
+                { label: col + " −1σ", stroke: "transparent", points: { show: false } });
+    bands.push({ series: [2, 3], fill: colour + "40" });
+  }
+  const readout = document.createElement("div");
+  readout.className = "rk-readout";
+  const box = document.createElement("div");
+  el.appendChild(box);
+  el.appendChild(readout);
+  const width = Math.max(300, el.clientWidth || 800);
+  const opts = {
+    width, height: 170, series, bands,
+    legend: { show: false },
+    scales: { x: { time: false } },
+    axes: [{ label: k === 0 ? "" : "", size: 36 }, { label: col, size: 70 }],
+    cursor: { sync: { key: groupName }, drag: { x: true, y: false, setScale: true } },
+    hooks: {
+      // The lost / invalid / predicted spans, under the lines.
+      drawClear: [(u) => {
+        if (!tab.bad.length) return;
+        const ctx = u.ctx;
+        ctx.save();
+        ctx.fillStyle = "rgba(217,83,79,0.15)";
+        const { left, top, width: w, height: h } = u.bbox;
+        for (const [a, b] of tab.bad) {
+          const x0 = Math.max(left, u.valToPos(a, "x", true));
+          const x1 = Math.min(left + w, u.valToPos(b, "x", true));
+          if (x1 > x0) ctx.fillRect(x0, top, Math.max(1, x1 - x0), h);
+        }
+        ctx.restore();
+      }],
+      setCursor: [(u) => {
+        const i = u.cursor.idx;
+        if (i === null || i === undefined) return;
+        const t = tab.t[i];
+        readout.textContent = "t_s " + fmt(t) + " · " + col + " " + fmt(y[i]) +
+          (sigma ? " ± " + fmt(sigma[i]) + " (1σ)" : "") + (tab.status ? " · " + tab.status[i] : "");
+        readout.dataset.t = String(t);
+        readout.dataset.value = String(y[i]);
+        readout.dataset.sigma = sigma ? String(sigma[i]) : "";
+        if (!g.busy) timeChanged(t, groupName);
+      }],
+      // One time window for every panel of the group (drag to zoom, double-click to reset).
+      setScale: [(u, key) => {
+        if (key !== "x" || g.busy) return;
+        g.busy = true;
+        const { min, max } = u.scales.x;
+        g.x = [min, max];
+        for (const other of g.charts) if (other !== u) other.setScale("x", { min, max });
+        g.busy = false;
+      }],
+    },
+  };
+  const u = new uPlot(opts, rows, box);
+  u.rkColumn = col;
+  u.rkReadout = readout;
+  u.rkGroup = groupName;
+  g.charts.push(u);
+  window.rkCharts.push(u);
+  if (g.x) {
+    g.busy = true;
+    u.setScale("x", { min: g.x[0], max: g.x[1] });
+    g.busy = false;
+  }
+  return u;
+}
+
+function makeChart(el) {
+  const tab = table(el.dataset.table);
+  const cols = JSON.parse(el.dataset.cols);
+  const g = group(el.dataset.group || el.dataset.table);
+  cols.forEach((c, k) => { if (tab.cols[c]) makePanel(el, tab, c, k, g, el.dataset.group || el.dataset.table); });
+}
+
+// --------------------------------------------------------------------------------------------- 3-D view
+function viridis(f) {
+  const stops = [[68, 1, 84], [59, 82, 139], [33, 145, 140], [94, 201, 98], [253, 231, 37]];
+  const x = Math.min(1, Math.max(0, f)) * (stops.length - 1);
+  const i = Math.min(stops.length - 2, Math.floor(x));
+  const r = x - i;
+  return stops[i].map((c, k) => (c + r * (stops[i + 1][k] - c)) / 255);
+}
+const STATUS_RGB = { ok: [0.17, 0.63, 0.17], reacquired: [0.12, 0.47, 0.71], predicted: [1.0, 0.5, 0.05],
+                     lost: [0.5, 0.5, 0.5], invalid: [0.84, 0.15, 0.16] };
+
+function make3d(el) {
+  const tab = table(el.dataset.table);
+  const X = tab.cols[el.dataset.x], Y = tab.cols[el.dataset.y], Z = tab.cols[el.dataset.z];
+  const stations = JSON.parse(el.dataset.stations || "[]");
+  const canvasBox = document.createElement("div");
+  const info = document.createElement("div");
+  info.className = "rk-readout";
+  el.appendChild(canvasBox);
+  el.appendChild(info);
+  let renderer;
+  try {
+    renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+  } catch (e) {
+    info.textContent = "The 3-D view needs WebGL, which this browser does not offer (" + e.message + ").";
+    el.dataset.ready = "no-webgl";
+    return;
+  }
+  const width = Math.max(300, el.clientWidth || 800), height = 480;
+  renderer.setPixelRatio(window.devicePixelRatio || 1);
+  renderer.setSize(width, height);
+  canvasBox.appendChild(renderer.domElement);
+  // Scene axes: x east, y up, z south (three.js is y-up): ENU (e, n, u) → (e, u, −n), about the path's centre.
+  const pts = [];
+  for (let i = 0; i < tab.n; ++i) if (X[i] !== null && Y[i] !== null && Z[i] !== null) pts.push(i);
+  const lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+  const grow = (e, n, u) => { [e, n, u].forEach((v, k) => { lo[k] = Math.min(lo[k], v); hi[k] = Math.max(hi[k], v); }); };
+  for (const i of pts) grow(X[i], Y[i], Z[i]);
+  for (const s of stations) grow(s.e, s.n, s.u);
+  if (!pts.length) { info.textContent = "no position to show"; return; }
+  const c = [(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, 0];
+  const span = Math.max(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2], 1);
+  const v3 = (e, n, u) => new THREE.Vector3(e - c[0], u - c[2], -(n - c[1]));
+  const scene = new THREE.Scene();
+  scene.background = new THREE.Color(0xffffff);
+  // Framed on the bounding sphere of the path, the stations and the ground under them, seen from the south-west
+  // and above.
+  const centre = v3(c[0], c[1], (Math.min(lo[2], 0) + hi[2]) / 2);
+  const radius = 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - Math.min(lo[2], 0)) || 1;
+  const fov = 45;
+  const camera = new THREE.PerspectiveCamera(fov, width / height, radius / 1000, radius * 40);
+  const distance = 1.15 * radius / Math.sin((fov / 2) * Math.PI / 180);
+  const look = new THREE.Vector3(-0.55, 0.45, 0.7).normalize();  // from the south-west, 27° above the horizon
+  camera.position.copy(centre.clone().addScaledVector(look, distance));
+  const controls = new OrbitControls(camera, renderer.domElement);
+  controls.target.copy(centre);
+  controls.update();
+  // The path: every row, coloured by time (or status).
+  const pos = new Float32Array(pts.length * 3), col = new Float32Array(pts.length * 3);
+  const t0 = tab.t[pts[0]], t1 = tab.t[pts[pts.length - 1]];
+  pts.forEach((i, k) => {
+    const p = v3(X[i], Y[i], Z[i]);
+    pos.set([p.x, p.y, p.z], 3 * k);
+    const rgb = el.dataset.colour === "status" && tab.status ? (STATUS_RGB[tab.status[i]] || [0, 0, 0])
+      : viridis((tab.t[i] - t0) / Math.max(t1 - t0, 1e-9));
+    col.set(rgb, 3 * k);
+  });
+  const geo = new THREE.BufferGeometry();
+  geo.setAttribute("position", new THREE.BufferAttribute(pos, 3));
+  geo.setAttribute("color", new THREE.BufferAttribute(col, 3));
+  scene.add(new THREE.Line(geo, new THREE.LineBasicMaterial({ vertexColors: true })));
+  // The ground plane (u = 0 of the frame) as a grid.
+  const grid = new THREE.GridHelper(span * 1.4, 14, 0x999999, 0xdddddd);
+  grid.position.copy(v3(c[0], c[1], 0));
+  scene.add(grid);
+  // The stations.
+  const marker = (colour, size) => new THREE.Mesh(new THREE.SphereGeometry(size, 16, 12),
+                                                 new THREE.MeshBasicMaterial({ color: colour }));
+  for (const s of stations) {
+    const m = marker(0x000000, span / 120);
+    m.position.copy(v3(s.e, s.n, s.u));
+    scene.add(m);
+  }
+  // At the cursor's time: the target and each station's line of sight to it.
+  const target = marker(0xd62728, span / 150);
+  target.visible = false;
+  scene.add(target);
+  const sight = new THREE.LineSegments(new THREE.BufferGeometry(), new THREE.LineBasicMaterial({ color: 0xd62728 }));
+  sight.geometry.setAttribute("position", new THREE.BufferAttribute(new Float32Array(Math.max(1, stations.length) * 6), 3));
+  sight.visible = false;
+  scene.add(sight);
+  const render = () => renderer.render(scene, camera);
+  controls.addEventListener("change", render);
+  onTime((t) => {
+    const i = nearest(tab.t, t);
+    if (X[i] === null || Y[i] === null || Z[i] === null) return;
+    const p = v3(X[i], Y[i], Z[i]);
+    target.position.copy(p);
+    target.visible = true;
+    const a = sight.geometry.attributes.position;
+    stations.forEach((s, k) => {
+      const q = v3(s.e, s.n, s.u);
+      a.setXYZ(2 * k, q.x, q.y, q.z);
+      a.setXYZ(2 * k + 1, p.x, p.y, p.z);
+    });
+    a.needsUpdate = true;
+    sight.geometry.setDrawRange(0, 2 * stations.length);
+    sight.visible = stations.length > 0;
+    info.textContent = "t_s " + fmt(tab.t[i]) + " · " + el.dataset.x + " " + fmt(X[i]) + " · " + el.dataset.y + " " +
+      fmt(Y[i]) + " · " + el.dataset.z + " " + fmt(Z[i]) + (tab.status ? " · " + tab.status[i] : "");
+    info.dataset.t = String(tab.t[i]);
+    render();
+  });
+  render();
+  el.dataset.ready = "yes";
+  window.rkViews = (window.rkViews || []).concat([{ el, scene, camera, controls, render }]);
+}
+
+// -------------------------------------------------------------------------------------------- start-up
+// Figures are made when they come near the screen, so a long page paints at once.
+function start() {
+  const made = new WeakSet();
+  const make = (el) => {
+    if (made.has(el)) return;
+    made.add(el);
+    try {
+      if (el.classList.contains("rk-chart")) makeChart(el); else make3d(el);
+    } catch (e) {
+      el.textContent = "figure not drawn: " + e.message;
+      el.dataset.ready = "error";
+      throw e;
+    }
+  };
+  const els = document.querySelectorAll(".rk-chart, .rk-3d");
+  window.rkMakeAll = () => els.forEach(make);
+  if ("IntersectionObserver" in window) {
+    const io = new IntersectionObserver((entries) => {
+      for (const e of entries) if (e.isIntersecting) { make(e.target); io.unobserve(e.target); }
+    }, { rootMargin: "400px" });
+    els.forEach((el) => io.observe(el));
+  } else {
+    window.rkMakeAll();
+  }
+}
+start();
