@@ -49,9 +49,10 @@ struct ExportInputArgs {
                       {{"-o", output}});
     header->epoch_unix_s = io::ParseEpochOption(epoch_utc);
     header->epoch_text = epoch_utc;
-    header->source = input();
-    header->name = !name.empty() ? name : input() == "-" ? std::string("stdin")
-                                                         : std::filesystem::path(input()).filename().string();
+    // The input's file name, not its path: the document is the same wherever the file lies (rk-run's working
+    // folder has a random name).
+    header->source = input() == "-" ? std::string("stdin") : std::filesystem::path(input()).filename().string();
+    header->name = !name.empty() ? name : header->source;
     return exports::ReadGeoTrack(input(), kind(), bad_rows);
   }
 

@@ -52,7 +52,7 @@ class CzmlDocument {
       t0 = std::min(t0, p.samples.front().t_s);
       t1 = std::max(t1, p.samples.back().t_s);
     }
-    std::string d = "rk-export czml of the " + std::string(InputKindName(t_.kind)) + " " + t_.source + ": " +
+    std::string d = "rk-export czml of the " + std::string(InputKindWords(t_.kind)) + " " + h_.source + ": " +
                     std::to_string(t_.placed) + " of " + std::to_string(t_.rows) + " rows placed, " +
                     std::to_string(t_.Runs()) + (t_.Runs() == 1 ? " run" : " runs") + "; heights above the WGS-84 ellipsoid. ";
     d += h_.epoch_unix_s ? "Times: t_s after the epoch " + h_.epoch_text + "."
@@ -60,7 +60,7 @@ class CzmlDocument {
                                ", a stand-in (the clock's dates mean nothing).";
     Ordered doc;
     doc["id"] = "document";
-    doc["name"] = h_.name.empty() ? t_.source : h_.name;
+    doc["name"] = h_.name.empty() ? h_.source : h_.name;
     doc["version"] = "1.0";
     doc["description"] = d;
     const std::string start = Utc(t0, io::Rounding::kDown);

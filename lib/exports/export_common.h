@@ -14,7 +14,7 @@ struct ExportHeader {
   std::string name;
   std::optional<double> epoch_unix_s;
   std::string epoch_text;  // "" without an epoch
-  std::string source;      // the input file, for the description
+  std::string source;      // the input file's name (not its folder: the document stays the same where it is moved)
 };
 
 // Digits written: 1e-9° (0.1 mm on the earth) for latitude and longitude, 1 µm for heights (a located target writes h_m so), 1e-9 s for the times

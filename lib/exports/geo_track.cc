@@ -48,6 +48,7 @@ void CloseRuns(GeoTrack* track) {
 }  // namespace
 
 const char* InputKindName(InputKind kind) { return kind == InputKind::kTrajectory ? "trajectory" : "located"; }
+const char* InputKindWords(InputKind kind) { return kind == InputKind::kTrajectory ? "trajectory" : "located target"; }
 
 double WrapLongitudeDeg(double lon_deg) {
   if (lon_deg >= -180.0 && lon_deg < 180.0) return lon_deg;  // the file's number, untouched

@@ -42,7 +42,8 @@ struct GeoPath {
 };
 
 enum class InputKind { kTrajectory, kLocated };
-const char* InputKindName(InputKind kind);  // "trajectory", "located"
+const char* InputKindName(InputKind kind);   // "trajectory", "located" (the report's input role)
+const char* InputKindWords(InputKind kind);  // "trajectory", "located target" (for people)
 
 struct GeoTrack {
   std::string source;  // the input file

@@ -52,7 +52,7 @@ class KmlDocument {
     p_.OpenElement("kml");
     p_.PushAttribute("xmlns", kKmlNamespace);
     p_.OpenElement("Document");
-    Leaf("name", h_.name.empty() ? t_.source : h_.name);
+    Leaf("name", h_.name.empty() ? h_.source : h_.name);
     Leaf("open", "1");
     Leaf("description", Description());
     for (std::size_t i = 0; i < t_.paths.size(); ++i) Styles(i);
@@ -74,7 +74,7 @@ class KmlDocument {
   }
 
   std::string Description() const {
-    std::string d = "rk-export kml of the " + std::string(InputKindName(t_.kind)) + " " + t_.source + ": " +
+    std::string d = "rk-export kml of the " + std::string(InputKindWords(t_.kind)) + " " + h_.source + ": " +
                     std::to_string(t_.placed) + " of " + std::to_string(t_.rows) + " rows placed (status ok, " +
                     "reacquired or predicted with a WGS-84 position), " + std::to_string(t_.Runs()) +
                     (t_.Runs() == 1 ? " run. " : " runs. ");
