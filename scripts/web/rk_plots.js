@@ -4,8 +4,9 @@
 // each page by scripts/rk-report: the page fetches nothing.
 //
 // The page carries its data once, in <script type="application/json" id="rk-data">:
-//   {"tables": {ID: {"n": rows, "t": base64 float64 t_s, "cols": {name: base64 float32},
-//                    "sigma": {name: base64 float32 1σ of that column}, "bad": [[t0, t1], ...]}}}
+//   {"tables": {ID: {"n": rows, "t": SERIES, "cols": {name: SERIES}, "sigma": {name: SERIES (1σ of that column)},
+//                    "status": {"names": [...], "codes": SERIES}, "bad": [[t0, t1], ...]}}}
+// SERIES: {"q", "k0", "z"} (zlib int32 deltas, scripts/rk_interactive.py encode) or {"f64"}.
 // and says where the figures go:
 //   <div class="rk-chart" data-table=ID data-cols='["az_deg",...]' data-group=UNIT data-title=...>
 //     one panel per column against t_s, its ±1σ band, the lost / invalid / predicted spans shaded; drag to zoom,
@@ -26,21 +27,41 @@ function bytes(b64) {
   const s = atob(b64);
   const out = new Uint8Array(s.length);
   for (let i = 0; i < s.length; ++i) out[i] = s.charCodeAt(i);
-  return out.buffer;
+  return out;
 }
 
-// A table's columns as plain arrays (uPlot draws null as a gap; NaN in the file is a gap).
-function table(id) {
-  if (decoded.has(id)) return decoded.get(id);
-  const src = data.tables[id];
-  const toArray = (typed) => Array.from(typed, (v) => (Number.isFinite(v) ? v : null));
-  const tab = { n: src.n, t: toArray(new Float64Array(bytes(src.t))), cols: {}, sigma: {}, bad: src.bad || [],
-                status: src.status ? Array.from(new Uint8Array(bytes(src.status.codes)), (c) => src.status.names[c]) : null };
-  for (const [k, v] of Object.entries(src.cols)) tab.cols[k] = toArray(new Float32Array(bytes(v)));
-  for (const [k, v] of Object.entries(src.sigma || {})) tab.sigma[k] = toArray(new Float32Array(bytes(v)));
-  decoded.set(id, tab);
-  return tab;
+async function inflate(b64) {
+  const stream = new Blob([bytes(b64)]).stream().pipeThrough(new DecompressionStream("deflate"));
+  return new Response(stream).arrayBuffer();
 }
+
+// One series (scripts/rk_interactive.py encode): int32 deltas of the value in units of q from k0, INT32_MIN a
+// gap; or plain float64. A gap is null (uPlot draws none).
+const NULL_DELTA = -2147483648;
+async function decodeSeries(s) {
+  if (s.f64) return Array.from(new Float64Array(await inflate(s.f64)), (v) => (Number.isFinite(v) ? v : null));
+  const d = new Int32Array(await inflate(s.z));
+  const out = new Array(d.length);
+  let k = s.k0;
+  for (let i = 0; i < d.length; ++i) {
+    const x = d[i];
+    if (x === NULL_DELTA) { out[i] = null; continue; }
+    k += x;
+    out[i] = k * s.q;
+  }
+  return out;
+}
+
+async function decodeTable(id) {
+  const src = data.tables[id];
+  const tab = { n: src.n, t: await decodeSeries(src.t), cols: {}, sigma: {}, bad: src.bad || [], status: null };
+  for (const [k, v] of Object.entries(src.cols)) tab.cols[k] = await decodeSeries(v);
+  for (const [k, v] of Object.entries(src.sigma || {})) tab.sigma[k] = await decodeSeries(v);
+  if (src.status) tab.status = (await decodeSeries(src.status.codes)).map((c) => src.status.names[c]);
+  decoded.set(id, tab);
+}
+
+function table(id) { return decoded.get(id); }
 
 // Index of the row nearest t (t sorted ascending, gaps allowed).
 function nearest(ts, t) {
@@ -306,4 +327,10 @@ function start() {
     window.rkMakeAll();
   }
 }
-start();
+Promise.all(Object.keys(data.tables).map(decodeTable)).then(() => {
+  start();
+  window.rkReady = true;
+}, (e) => {
+  document.querySelectorAll(".rk-chart, .rk-3d").forEach((el) => { el.textContent = "figure not drawn: " + e.message; });
+  throw e;
+});

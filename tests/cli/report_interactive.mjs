@@ -82,6 +82,7 @@ try {
   page.on("pageerror", (e) => problems.push("uncaught: " + e.message));
   page.on("request", (r) => { if (r.url() !== url && !r.url().startsWith("data:")) problems.push("request: " + r.url()); });
   await page.goto(url, { waitUntil: "load" });
+  await page.waitForFunction(() => window.rkReady === true, null, { timeout: 30000 });
   await page.waitForFunction(() => performance.getEntriesByName("first-contentful-paint").length > 0, null,
                              { timeout: 10000 }).catch(() => {});
   const timing = await page.evaluate(() => {
@@ -114,31 +115,43 @@ try {
     const t = u.data[0].filter((v) => v !== null);
     return { t0: t[0], t1: t[t.length - 1], min: u.scales.x.min, max: u.scales.x.max };
   }, k);
+  // Drag boxes, each at most 40 times narrower than the window shown (a 1-s box on an hour is under a pixel),
+  // until the window is --window seconds about the data's middle.
   const mid = (span.t0 + span.t1) / 2;
-  const a = mid - opt.window / 2, b = mid + opt.window / 2;
-  const box = await over.boundingBox();
-  const px = await page.evaluate(([k, a, b]) => {
-    const u = window.rkCharts[k];
-    return [u.valToPos(a, "x"), u.valToPos(b, "x")];
-  }, [k, a, b]);
-  const y = box.y + box.height / 2;
-  await page.mouse.move(box.x + px[0], y);
-  await page.mouse.down();
-  await page.mouse.move(box.x + (px[0] + px[1]) / 2, y, { steps: 4 });
-  await page.mouse.move(box.x + px[1], y, { steps: 4 });
-  await page.mouse.up();
-  const zoomed = await page.evaluate(([k, g]) => {
-    const u = window.rkCharts[k];
-    const others = window.rkCharts.filter((o) => o.rkGroup === g && o !== u).map((o) => [o.scales.x.min, o.scales.x.max]);
-    return { min: u.scales.x.min, max: u.scales.x.max, others, pxPerS: u.bbox.width / devicePixelRatio / (u.scales.x.max - u.scales.x.min) };
-  }, [k, opt.group]);
-  const tolerance = 4 / zoomed.pxPerS;  // four pixels (the drag snaps to whole pixels at each end)
-  if (Math.abs(zoomed.min - a) > tolerance || Math.abs(zoomed.max - b) > tolerance) {
-    fail("zoom window [" + zoomed.min + ", " + zoomed.max + "] is not the dragged [" + a + ", " + b + "] (±" + tolerance + " s)");
+  let box, px, y, a, b, zoomed, tolerance;
+  for (let step = 0; step < 8; ++step) {
+    const now = await page.evaluate((k) => [window.rkCharts[k].scales.x.min, window.rkCharts[k].scales.x.max], k);
+    const w = Math.max(opt.window, (now[1] - now[0]) / 40);
+    a = mid - w / 2;
+    b = mid + w / 2;
+    box = await over.boundingBox();
+    // Four pixels of the window the box is dragged on (the drag snaps to whole pixels at each end).
+    tolerance = 4 * (now[1] - now[0]) / box.width;
+    px = await page.evaluate(([k, a, b]) => {
+      const u = window.rkCharts[k];
+      return [u.valToPos(a, "x"), u.valToPos(b, "x")];
+    }, [k, a, b]);
+    y = box.y + box.height / 2;
+    await page.mouse.move(box.x + px[0], y);
+    await page.mouse.down();
+    await page.mouse.move(box.x + (px[0] + px[1]) / 2, y, { steps: 4 });
+    await page.mouse.move(box.x + px[1], y, { steps: 4 });
+    await page.mouse.up();
+    zoomed = await page.evaluate(([k, g]) => {
+      const u = window.rkCharts[k];
+      const others = window.rkCharts.filter((o) => o.rkGroup === g && o !== u).map((o) => [o.scales.x.min, o.scales.x.max]);
+      return { min: u.scales.x.min, max: u.scales.x.max, others, pxPerS: u.bbox.width / devicePixelRatio / (u.scales.x.max - u.scales.x.min) };
+    }, [k, opt.group]);
+    if (Math.abs(zoomed.min - a) > tolerance || Math.abs(zoomed.max - b) > tolerance) {
+      fail("zoom window [" + zoomed.min + ", " + zoomed.max + "] is not the dragged [" + a + ", " + b + "] (±" + tolerance + " s)");
+    }
+    for (const [lo, hi] of zoomed.others) {
+      if (lo !== zoomed.min || hi !== zoomed.max) fail("another panel of " + opt.group + " shows [" + lo + ", " + hi + "]");
+    }
+    if (w === opt.window) break;
   }
-  for (const [lo, hi] of zoomed.others) {
-    if (lo !== zoomed.min || hi !== zoomed.max) fail("another panel of " + opt.group + " shows [" + lo + ", " + hi + "]");
-  }
+  if (Math.abs(zoomed.max - zoomed.min - opt.window) > 2 * tolerance) fail("not zoomed to " + opt.window + " s");
+  tolerance = 4 / zoomed.pxPerS;
   if (opt.shots) {
     await page.mouse.move(box.x + (px[0] + px[1]) / 2, y);
     await over.locator("xpath=ancestor::div[contains(@class,'rk-chart')]").screenshot({ path: path.join(opt.shots, "zoomed.png") });

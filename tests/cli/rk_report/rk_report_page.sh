@@ -15,12 +15,17 @@ import json, re, sys
 t = sys.argv[1]
 page = open(t + "/out/report.html").read()
 rep = json.load(open(t + "/out/report.json"))
-# Self-contained: nothing for a browser to fetch. Only in-page anchors; the SVG namespaces are names, not fetches.
-for bad in ("<script", "<link", "<iframe", "<img src=\"http", "@import", "url(http"):
+# Self-contained: nothing for a browser to fetch. Only in-page anchors; the SVG namespaces are names, not fetches;
+# scripts inline (the interactive charts), the page's CSP forbidding every fetch.
+for bad in ("<script src", "<link", "<iframe", "<img src=\"http", "@import", "url(http"):
     assert bad not in page, bad
+assert "default-src 'none'; style-src 'unsafe-inline'; img-src data:; script-src 'unsafe-inline'\"" in page
 refs = re.findall(r'(?:src|href)="([^"]*)"', page)
 assert all(r.startswith("#") or r.startswith("data:") for r in refs), [r for r in refs if not r.startswith("#")][:5]
-assert page.count("<svg") >= 4, page.count("<svg")          # track, az/el, range, trajectory at least
+assert page.count("<svg") >= 2, page.count("<svg")          # the track in the image and the plan view at least
+assert page.count('class="rk-chart"') >= 4, page.count('class="rk-chart"')  # x/y, az/el, range, height
+assert page.count('class="rk-3d"') >= 1                      # the located target's 3-D view
+assert page.count('id="rk-data"') == 1
 ex = [s for s in rep["steps"] if s["id"] == "az/extract-beacon"][0]
 pct = "%.1f %%" % (100 * ex["quality"]["ok_fraction"])
 assert pct in page, pct
@@ -55,6 +60,13 @@ test "$rc1" = 4; grep -q '^rk-report: error: .*report.json: cannot read' "$data/
 test "$rc2" = 3; grep -q 'not an rk-run report' "$data/report/e2"
 rk-report "$t/out" --matplotlib -o "$data/report/mpl.html" --quiet   # the same figures drawn by matplotlib
 test "$(grep -o '<svg' "$data/report/mpl.html" | wc -l)" = "$(grep -o '<svg' "$p" | wc -l)"
+# --static: every figure an SVG, no script at all (the page of before issue 34), the CSP without scripts.
+rk-report "$t/out" --static -o "$data/report/static.html" --quiet
+if grep -q '<script' "$data/report/static.html"; then echo "--static has a script"; exit 1; fi
+test "$(grep -o '<svg' "$data/report/static.html" | wc -l)" -ge 4
+grep -q "img-src data:\">" "$data/report/static.html"
+rk-report "$t/out" --static --matplotlib -o "$data/report/static_mpl.html" --quiet
+test "$(grep -o '<svg' "$data/report/static_mpl.html" | wc -l)" = "$(grep -o '<svg' "$data/report/static.html" | wc -l)"
 rk-report "$t/out" --no-figures -o "$data/report/tables.html" --quiet
 grep -q 'Figures left out' "$data/report/tables.html"
 if grep -q '<svg' "$data/report/tables.html"; then echo "--no-figures drew figures"; exit 1; fi

@@ -12,6 +12,14 @@ fi
 t=$data/report/page                   # made by rk_report_page
 pct=$(json "$t/out/report.json" '"%.1f %%" % (100 * [s for s in d["steps"] if s["id"] == "az/extract-beacon"][0]["quality"]["ok_fraction"])')
 python3 "$check" "$t/out/report.html" --expect "$pct" --expect "az/extract-beacon" --expect "Warnings"
+# The interactive figures (issue 34), driven by playwright-core: a zoom box dragged to a 1-s window on the azimuth
+# panel and back, every panel of the unit following, the read-out at the cursor equal to located.csv's row.
+if command -v node > /dev/null; then
+  node "$src/tests/cli/report_interactive.mjs" "$t/out/report.html" --csv "$t/out/az/located.csv" --group az \
+    --column az_deg --window 1
+else
+  echo "node is not installed: the interactive figures were not driven (scripts/setup.sh installs it)"
+fi
 # A nightly root: the good trial and one that fails (a bad range row); the index lists the failure first.
 r=$data/report/nightly; rm -rf "$r"; mkdir -p "$r"
 cp -r "$t" "$r/good"; fresh "$r/bad"
