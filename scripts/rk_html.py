@@ -150,9 +150,21 @@ def step_quality(step):
     return q if isinstance(q, dict) else {}
 
 
+def _is_number(v):
+    return isinstance(v, (int, float)) and not isinstance(v, bool) and v == v
+
+
+def _figure(label, value, unit, note):
+    """(label, value or None, unit, note, text): one headline figure; the text as the pages show it."""
+    if not _is_number(value):
+        return (label, None, unit, note, "—")
+    text = percent(value) if unit == "fraction" else ("%s %s" % (num(value), unit)).strip()
+    return (label, value, unit, note, text)
+
+
 def typed_headline(step):
-    """[(label, value text, note)] of the "headline" figures of a step's tool report (issue 28 item 4), or None
-    for a report written before it."""
+    """[(label, value or None, unit, note, text)] of the "headline" figures of a step's tool report (issue 28 item
+    4), or None for a report written before it."""
     tr = step.get("tool_report")
     if not isinstance(tr, dict) or not isinstance(tr.get("headline"), dict):
         return None
@@ -160,22 +172,21 @@ def typed_headline(step):
     for name, f in tr["headline"].items():
         if not isinstance(f, dict):
             continue
-        v, u = f.get("value"), f.get("unit", "")
-        if isinstance(v, (int, float)) and not isinstance(v, bool):
-            text = percent(v) if u == "fraction" else ("%s %s" % (num(v), u)).strip()
-        else:
-            text = "—"
         label = ("%s %s" % (step.get("unit", ""), name)).strip()
-        out.append((label, text, f.get("note", "")))
+        out.append(_figure(label, f.get("value"), f.get("unit", ""), f.get("note", "")))
     return out
 
 
-def headline_figures(report):
-    """[(label, value text, unit/step)] of a trial: the figures a person looks at first, each step's tool report's
-    "headline" (docs/rk-run.md "The summary contract"); for a report of an older rk, from the step's quality
-    record by step kind."""
+def headline(report):
+    """[(label, value or None, unit, note, text)] of a trial: the figures a person looks at first, each step's tool
+    report's "headline" (docs/rk-run.md "The summary contract"); for a report of an older rk, from the step's
+    quality record by step kind. The one source of headline_figures (the pages) and headline_values (the
+    nightly trend)."""
     out = []
-    for st in report.get("steps", []) if isinstance(report, dict) else []:
+    steps = report.get("steps") if isinstance(report, dict) else None
+    for st in steps if isinstance(steps, list) else []:
+        if not isinstance(st, dict):
+            continue
         if st.get("status", "ok") not in ("ok", "skipped"):  # a failed step's figures are not the trial's
             continue
         typed = typed_headline(st)
@@ -188,24 +199,34 @@ def headline_figures(report):
             continue
         rows = q.get("rows")
         okf = q.get("ok_fraction")
-        if kind == "extract-beacon" and isinstance(okf, (int, float)):
-            out.append(("%s tracked frames" % unit, percent(okf), "%s of %s frames" % (
+        if kind == "extract-beacon" and _is_number(okf):
+            out.append(_figure("%s tracked frames" % unit, okf, "fraction", "%s of %s frames" % (
                 num(q.get("status", {}).get("ok", round(okf * (rows or 0)))), num(rows))))
-        elif kind == "locate" and isinstance(q.get("range_coverage"), (int, float)):
-            out.append(("%s range coverage" % unit, percent(q["range_coverage"]), "rows with a range"))
-        elif kind == "attitude-oi" and isinstance(q.get("poses"), (int, float)) and q.get("frames"):
-            out.append(("%s poses" % unit, percent(q["poses"] / q["frames"]), "%s of %s frames" % (
+        elif kind == "locate" and _is_number(q.get("range_coverage")):
+            out.append(_figure("%s range coverage" % unit, q["range_coverage"], "fraction", "rows with a range"))
+        elif kind == "attitude-oi" and _is_number(q.get("poses")) and q.get("frames"):
+            out.append(_figure("%s poses" % unit, q["poses"] / q["frames"], "fraction", "%s of %s frames" % (
                 num(q["poses"]), num(q["frames"]))))
-        elif kind in ("extract-features", "extract-silhouette", "attitude-cylinder") and isinstance(okf, (int, float)):
-            out.append(("%s %s ok" % (unit, kind), percent(okf), "%s rows" % num(rows)))
+        elif kind in ("extract-features", "extract-silhouette", "attitude-cylinder") and _is_number(okf):
+            out.append(_figure("%s %s ok" % (unit, kind), okf, "fraction", "%s rows" % num(rows)))
         elif kind.startswith("register") and isinstance(q.get("estimate"), dict):
             for radar, est in sorted(q["estimate"].items()):
-                if isinstance(est, dict) and isinstance(est.get("range_m"), (int, float)):
+                if isinstance(est, dict) and _is_number(est.get("range_m")):
                     sig = q.get("sigma", {}).get(radar, {}) if isinstance(q.get("sigma"), dict) else {}
                     s = sig.get("range_m") if isinstance(sig, dict) else None
-                    out.append(("radar %s range bias (%s)" % (radar, kind), num(est["range_m"]) + " m",
-                                "1σ %s m" % num(s) if isinstance(s, (int, float)) else ""))
+                    out.append(_figure("radar %s range bias (%s)" % (radar, kind), est["range_m"], "m",
+                                       "1σ %s m" % num(s) if _is_number(s) else ""))
     return out
+
+
+def headline_figures(report):
+    """[(label, value text, note)] of a trial's headline figures, as the pages show them."""
+    return [(label, text, note) for label, _, _, note, text in headline(report)]
+
+
+def headline_values(report):
+    """[(label, value, unit)] of a trial's numeric headline figures (the nightly trend)."""
+    return [(label, value, unit) for label, value, unit, _, _ in headline(report) if value is not None]
 
 
 def headline_html(figs):
@@ -247,7 +268,85 @@ def index_row(r, root):
                esc(num(r.get("wall_s"))), esc(r.get("steps_run", 0)), esc(r.get("steps_skipped", 0)), cell))
 
 
-def index_html(summary, root):
+def night_headlines(summary):
+    """{trial: [(label, value, unit)]} of one night's summary (rk-nightly puts each trial's numeric headline
+    figures in its row as "headline")."""
+    out = {}
+    for r in summary.get("trials", []) if isinstance(summary, dict) else []:
+        h = r.get("headline") if isinstance(r, dict) else None
+        if isinstance(h, list):
+            out[r.get("trial", "?")] = [(f.get("label"), f.get("value"), f.get("unit", "")) for f in h
+                                        if isinstance(f, dict) and _is_number(f.get("value"))]
+    return out
+
+
+MAX_TREND_PANELS = 8  # headline figures per trial in the trend (the rest are listed in the table only)
+
+
+def trend_html(summaries):
+    """The nightly index's trend: each trial's headline figures against the night they ran, from the summaries of
+    the previous nights and this one (oldest first), one small figure per trial and a table of first, last and
+    change, so that a slow drift (a camera going out of focus, a turret wearing) shows before it fails."""
+    import rk_svg  # noqa: E402 - only the index with a history draws
+    nights = []
+    for s in summaries:
+        t = parse_utc(s.get("started_utc")) if isinstance(s, dict) else None
+        if t is not None:
+            nights.append((t, night_headlines(s)))
+    nights.sort(key=lambda n: n[0])
+    if len(nights) < 2:
+        return "<p class=\"muted\">A trend needs two nights or more; %d summary so far (kept in ROOT/.rk-nightly/history/).</p>" % len(nights)
+    t0 = nights[0][0]
+    series = {}  # trial -> label -> ([days], [values], unit)
+    for t, by_trial in nights:
+        days = (t - t0).total_seconds() / 86400.0
+        for trial, figs in by_trial.items():
+            for label, value, unit in figs:
+                xs, ys, _ = series.setdefault(trial, {}).setdefault(label, ([], [], unit))
+                xs.append(days)
+                ys.append(value)
+    parts = ["<p>%d nights from %s to %s (x: days since the first).</p>" % (
+        len(nights), esc(t0.strftime("%Y-%m-%d %H:%M")), esc(nights[-1][0].strftime("%Y-%m-%d %H:%M")))]
+    for trial in sorted(series):
+        labels = [k for k, v in series[trial].items() if len(v[0]) >= 2]
+        if not labels:
+            continue
+        shown = labels[:MAX_TREND_PANELS]
+        fig = rk_svg.Figure(figsize=(7.0, 1.3 * len(shown) + 0.4))
+        ax = fig.subplots(len(shown), 1, squeeze=False, sharex=True)
+        rows = []
+        for k, label in enumerate(labels):
+            xs, ys, unit = series[trial][label]
+            if k < len(shown):
+                ax[k][0].plot(xs, ys, "o-", markersize=3)
+                ax[k][0].set_ylabel(label if len(label) <= 28 else "…" + label[-27:])
+            first, last = ys[0], ys[-1]
+            change = "%+.1f %%" % (100.0 * (last - first) / abs(first)) if first else "—"
+            fmt = (lambda v: percent(v)) if unit == "fraction" else (lambda v: ("%s %s" % (num(v), unit)).strip())
+            rows.append("<tr><td>%s</td><td class=\"num\">%d</td><td class=\"num\">%s</td><td class=\"num\">%s</td>"
+                        "<td class=\"num\">%s</td><td class=\"num\">%s … %s</td></tr>" % (
+                            esc(label), len(ys), esc(fmt(first)), esc(fmt(last)), esc(change),
+                            esc(fmt(min(ys))), esc(fmt(max(ys)))))
+        ax[-1][0].set_xlabel("days since the first night")
+        ax[0][0].set_title(trial)
+        fig.salt = "trend%d" % len(parts)
+        parts.append("<h3>%s</h3><figure>%s</figure><table><tr><th>figure</th><th>nights</th><th>first</th>"
+                     "<th>last</th><th>change</th><th>range</th></tr>%s</table>" % (
+                         esc(trial), fig.to_svg(), "".join(rows)))
+    return "".join(parts)
+
+
+def parse_utc(text):
+    """An ISO-8601 UTC time as the summaries write it (with or without milliseconds), or None."""
+    for f in ("%Y-%m-%dT%H:%M:%S.%fZ", "%Y-%m-%dT%H:%M:%SZ"):
+        try:
+            return datetime.datetime.strptime(text, f)
+        except (TypeError, ValueError):
+            pass
+    return None
+
+
+def index_html(summary, root, history=None):
     """(page, not_listed): rk-nightly's ROOT/index.html — every trial, failures first, with its result, a one-line
     reason, its headline figures (from TRIAL/out/report.json) and a link to TRIAL/out/report.html — and the
     [(trial, error)] whose row could not be made (a damaged report.json...): such a row says so, and the other
@@ -272,4 +371,10 @@ def index_html(summary, root):
     body = ("<section id=\"trials\"><h2>Trials (failures first)</h2><table><tr><th>trial</th><th>result</th>"
             "<th>reason</th><th>headline figures</th><th>wall s</th><th>steps run / skipped</th><th>report</th></tr>"
             + "\n".join(rows) + "</table></section>")
+    if history is not None:
+        try:
+            trend = trend_html(list(history) + [summary])
+        except Exception as e:  # noqa: BLE001 - the trend never costs the index
+            trend = "<p class=\"warning\">trend not drawn: %s</p>" % esc(one_line("%s: %s" % (type(e).__name__, e)))
+        body += "<section id=\"trend\"><h2>Trend of the headline figures</h2>%s</section>" % trend
     return page("rk-nightly: " + os.path.basename(root.rstrip("/")), head, [], body), not_listed
