@@ -9,6 +9,8 @@
 #   scripts/setup.sh --browser  also Debian's chromium, for the headless-browser test of the report pages
 #   scripts/setup.sh --tshark   also Debian's tshark (Wireshark's ASTERIX dissector), the independent decoder the
 #                               radar-feed test checks rk-import asterix against
+#   scripts/setup.sh --kml-schema  also xmllint and the OGC KML 2.2 schema (taken out of Debian's pytrainer package,
+#                               not installed: build-cache/kml-schema/), which the KML export test validates against
 #   scripts/setup.sh --gige     also Aravis' software GigE Vision camera and arv-tool (aravis-tools, -cli), which the
 #                               aravis: capture test runs in a private network namespace, and faketime (the
 #                               software camera's clock set back and forth: a camera clock that resets)
@@ -21,6 +23,7 @@ FUZZ=0
 BROWSER=0
 TSHARK=0
 GIGE=0
+KML_SCHEMA=0
 for arg in "$@"; do
   case "$arg" in
     --asan) ASAN=1 ;;
@@ -30,6 +33,7 @@ for arg in "$@"; do
     --browser) BROWSER=1 ;;
     --tshark) TSHARK=1 ;;
     --gige) GIGE=1 ;;
+    --kml-schema) KML_SCHEMA=1 ;;
     *) echo "setup.sh: error: unknown option $arg" >&2; exit 2 ;;
   esac
 done
@@ -59,6 +63,7 @@ if [ "$TSHARK" = 1 ]; then PACKAGES+=(tshark); fi
 # Aravis' software GigE Vision camera (arv-fake-gv-camera-0.8) and arv-tool-0.8 for the aravis: capture tests;
 # faketime to give the software camera a clock that resets.
 if [ "$GIGE" = 1 ]; then PACKAGES+=(aravis-tools aravis-tools-cli iproute2 util-linux faketime); fi
+if [ "$KML_SCHEMA" = 1 ]; then PACKAGES+=(libxml2-utils); fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
@@ -71,6 +76,24 @@ if [ ${#missing[@]} -gt 0 ]; then
   echo "setup: installing ${missing[*]}" >&2
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}" >&2
+fi
+
+# The OGC KML 2.2 schema (ogckml22.xsd with the atom-author-link.xsd and xAL.xsd it imports): Debian ships it only
+# inside pytrainer, a GTK application; its .deb is downloaded and only the schemas taken out, nothing installed.
+SCHEMA_DIR=$ROOT/build-cache/kml-schema
+if [ "$KML_SCHEMA" = 1 ] && [ ! -f "$SCHEMA_DIR/usr/share/pytrainer/schemas/ogckml22.xsd" ]; then
+  mkdir -p "$ROOT/build-cache/deb"
+  if ! (cd "$ROOT/build-cache/deb" && apt-get download pytrainer >&2 2>/dev/null); then
+    SUDO=""
+    if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; fi
+    $SUDO apt-get update -qq
+    (cd "$ROOT/build-cache/deb" && apt-get download pytrainer >&2)
+  fi
+  rm -rf "$SCHEMA_DIR"
+  dpkg-deb -x "$(ls "$ROOT"/build-cache/deb/pytrainer_*.deb | head -1)" "$SCHEMA_DIR.tmp"
+  mkdir -p "$SCHEMA_DIR/usr/share/pytrainer"
+  mv "$SCHEMA_DIR.tmp/usr/share/pytrainer/schemas" "$SCHEMA_DIR/usr/share/pytrainer/schemas"
+  rm -rf "$SCHEMA_DIR.tmp"
 fi
 
 # The report pages' interactive figures (uPlot, three.js, bundled by esbuild) and their browser test's driver

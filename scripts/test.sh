@@ -12,7 +12,8 @@ ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 # a few seconds each after the suite; RK_FUZZ_TEST=1 does the same here.
 # tshark (Wireshark's ASTERIX dissector) is the independent decoder of the radar-feed test: always installed.
 # The aravis: capture test runs Aravis' software GigE camera in a private network namespace: always installed.
-SETUP=(--asan-only --tshark --gige)
+# The OGC KML 2.2 schema and xmllint validate rk-export's KML: always installed.
+SETUP=(--asan-only --tshark --gige --kml-schema)
 if [ "${CI:-}" = true ] || [ "${RK_SLURM_TEST:-}" = 1 ]; then SETUP+=(--slurm); fi
 FUZZ=0
 if [ "${CI:-}" = true ] || [ "${RK_FUZZ_TEST:-}" = 1 ]; then FUZZ=1; SETUP+=(--fuzz); fi

@@ -177,8 +177,9 @@ try {
   for (const tv of linked) {
     if (tv === undefined || Math.abs(Number(tv) - t) > 0.5 / zoomed.pxPerS + 0.1) fail("3-D view at t_s " + tv + ", chart at " + t);
   }
-  if (opt.shots && linked.length) {
-    const v = page.locator(".rk-3d").first();
+  if (opt.shots && (await page.locator(".rk-3d").count())) {
+    const mine = page.locator('.rk-3d[data-group="' + opt.group + '"]');
+    const v = (await mine.count()) ? mine.first() : page.locator(".rk-3d").first();
     await v.scrollIntoViewIfNeeded();
     await v.screenshot({ path: path.join(opt.shots, "view3d.png") });
   }

@@ -10,8 +10,9 @@ rk_cli_script(rk_export/export_cli_data SETUP export_data)
 rk_cli_script(rk_export/export_cli_good REQUIRES export_data)
 
 # The KML files validate against the OGC KML 2.2 schema with xmllint --schema (--nonet): the schema ogckml22.xsd with
-# its atom-author-link.xsd and xAL.xsd from Debian's pytrainer package (/usr/share/pytrainer/schemas), or where
-# $RK_KML_SCHEMA names it; skipped (77) without xmllint or the schema.
+# its atom-author-link.xsd and xAL.xsd taken out of Debian's pytrainer package by scripts/setup.sh --kml-schema
+# (build-cache/kml-schema/; or an installed pytrainer's, or where $RK_KML_SCHEMA names it); skipped (77) without
+# xmllint or the schema.
 rk_cli_script(rk_export/export_cli_kml_schema REQUIRES export_data)
 set_tests_properties(export_cli_kml_schema PROPERTIES SKIP_RETURN_CODE 77)
 

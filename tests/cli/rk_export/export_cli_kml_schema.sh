@@ -4,9 +4,11 @@ set -eu
 # Every test script gets the same three arguments (tests/cli/CMakeLists.txt, rk_cli_script).
 # shellcheck disable=SC2034
 data=$1 expect=$2 src=$3
-schema=${RK_KML_SCHEMA:-/usr/share/pytrainer/schemas/ogckml22.xsd}
+# The schema: $RK_KML_SCHEMA, else where scripts/setup.sh --kml-schema puts it, else an installed pytrainer's.
+schema=${RK_KML_SCHEMA:-$src/build-cache/kml-schema/usr/share/pytrainer/schemas/ogckml22.xsd}
+[ -r "$schema" ] || schema=/usr/share/pytrainer/schemas/ogckml22.xsd
 command -v xmllint >/dev/null || { echo "SKIPPED: no xmllint (Debian package libxml2-utils)"; exit 77; }
-[ -r "$schema" ] || { echo "SKIPPED: no OGC KML 2.2 schema at $schema (Debian package pytrainer ships it; or set RK_KML_SCHEMA)"; exit 77; }
+[ -r "$schema" ] || { echo "SKIPPED: no OGC KML 2.2 schema at $schema (scripts/setup.sh --kml-schema; or set RK_KML_SCHEMA)"; exit 77; }
 grep -q 'ogckml22.xsd 2008-01-23' "$schema" || { echo "$schema is not the OGC KML 2.2 schema"; exit 1; }
 d=$data/export; o=$d/schema; rm -rf "$o"; mkdir -p "$o"
 E=2026-01-01T06:30:00Z

@@ -54,7 +54,7 @@ done
 python3 "$src/tests/cli/rk_export/check_export.py" "$t/out/trajectory/trajectory.csv" --kml "$t/out/trajectory.kml" \
   --czml "$t/out/trajectory.czml" --epoch "$(json "$t/trial.json" 'd["epoch_utc"]')"
 json "$t/out/trajectory.czml" 'd[0]["name"]' | grep -qx ms
-schema=${RK_KML_SCHEMA:-/usr/share/pytrainer/schemas/ogckml22.xsd}
+schema=${RK_KML_SCHEMA:-$src/build-cache/kml-schema/usr/share/pytrainer/schemas/ogckml22.xsd}
 if command -v xmllint >/dev/null && [ -r "$schema" ]; then xmllint --noout --nonet --schema "$schema" "$t/out/trajectory.kml"; fi
 # The report page draws the trajectory and the stations from the tools' WGS-84 columns and the manifest's
 # positions (issue 28: the page converts no coordinates): a plan view in longitude and latitude with the
