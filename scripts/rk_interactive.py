@@ -152,7 +152,8 @@ class Interactive:
                 "data-colour=\"%s\" data-group=\"%s\" data-stations=\"%s\"></div><figcaption>%s — drag to orbit, "
                 "wheel to zoom, right-drag to pan; coloured by %s; grid: the ground plane (u = 0); %s</figcaption>"
                 "</figure>" % (key, x, y, z, colour, _attr(group), _attr(st), _html(title),
-                               "time (dark: start, yellow: end)" if colour == "time" else "status",
+                               "time (dark: start, yellow: end; or by status: green ok, blue reacquired, "
+                               "orange predicted, grey lost, red invalid)" if colour == "time" else "status",
                                "black: the stations; red: the target and the lines of sight at the charts' cursor"
                                if st else "red: the target at the charts' cursor"))
 

@@ -243,16 +243,40 @@ function make3d(el) {
   // The path: every row, coloured by time (or status).
   const pos = new Float32Array(pts.length * 3), col = new Float32Array(pts.length * 3);
   const t0 = tab.t[pts[0]], t1 = tab.t[pts[pts.length - 1]];
+  const paint = (by) => {
+    pts.forEach((i, k) => {
+      const rgb = by === "status" && tab.status ? (STATUS_RGB[tab.status[i]] || [0, 0, 0])
+        : viridis((tab.t[i] - t0) / Math.max(t1 - t0, 1e-9));
+      col.set(rgb, 3 * k);
+    });
+  };
   pts.forEach((i, k) => {
     const p = v3(X[i], Y[i], Z[i]);
     pos.set([p.x, p.y, p.z], 3 * k);
-    const rgb = el.dataset.colour === "status" && tab.status ? (STATUS_RGB[tab.status[i]] || [0, 0, 0])
-      : viridis((tab.t[i] - t0) / Math.max(t1 - t0, 1e-9));
-    col.set(rgb, 3 * k);
   });
+  paint(el.dataset.colour);
   const geo = new THREE.BufferGeometry();
   geo.setAttribute("position", new THREE.BufferAttribute(pos, 3));
   geo.setAttribute("color", new THREE.BufferAttribute(col, 3));
+  // Colour by time (viridis: dark at the start, yellow at the end) or by status (green ok, blue reacquired,
+  // orange predicted, grey lost, red invalid).
+  if (tab.status) {
+    const pick = document.createElement("select");
+    pick.className = "rk-colour";
+    for (const [v, label] of [["time", "colour by time"], ["status", "colour by status"]]) {
+      const o = document.createElement("option");
+      o.value = v;
+      o.textContent = label;
+      o.selected = v === el.dataset.colour;
+      pick.appendChild(o);
+    }
+    pick.addEventListener("change", () => {
+      paint(pick.value);
+      geo.attributes.color.needsUpdate = true;
+      render();
+    });
+    el.insertBefore(pick, canvasBox);
+  }
   scene.add(new THREE.Line(geo, new THREE.LineBasicMaterial({ vertexColors: true })));
   // The ground plane (u = 0 of the frame) as a grid.
   const grid = new THREE.GridHelper(span * 1.4, 14, 0x999999, 0xdddddd);

@@ -17,6 +17,7 @@
 //     the row of TABLE.csv at that t_s (to float32 precision: 1e-6 relative);
 //   - the 3-D view of UNIT (when the page has one) follows the cursor: its read-out's t_s is the chart's;
 //   - a double click resets the zoom to the whole series on every panel of UNIT;
+//   - each 3-D view recoloured by status and back by time;
 // and prints the figures (first paint, load, chart count, data span). Exit 77 when chromium or playwright-core
 // is missing (the test is then reported skipped).
 import fs from "node:fs";
@@ -191,6 +192,13 @@ try {
   const reset = await page.evaluate((g) => window.rkCharts.filter((o) => o.rkGroup === g).map((o) => [o.scales.x.min, o.scales.x.max]), opt.group);
   for (const [lo, hi] of reset) {
     if (lo > span.t0 + 1e-9 || hi < span.t1 - 1e-9) fail("after a double click a panel shows [" + lo + ", " + hi + "], not the whole [" + span.t0 + ", " + span.t1 + "]");
+  }
+  // The 3-D views coloured by status, then by time again.
+  const pickers = page.locator("select.rk-colour");
+  for (let i = 0; i < (await pickers.count()); ++i) {
+    await pickers.nth(i).scrollIntoViewIfNeeded();
+    await pickers.nth(i).selectOption("status");
+    await pickers.nth(i).selectOption("time");
   }
   await page.waitForTimeout(100);
   if (problems.length) fail(problems.join("; "));
