@@ -20,7 +20,7 @@ import uPlot from "uplot";
 import * as THREE from "three";
 import { OrbitControls } from "three/examples/jsm/controls/OrbitControls.js";
 
-const data = JSON.parse(document.getElementById("rk-data").textContent);
+let data = null;  // parsed after the page's first paint (boot, at the end)
 const decoded = new Map();
 
 function bytes(b64) {
@@ -351,10 +351,16 @@ function start() {
     window.rkMakeAll();
   }
 }
-Promise.all(Object.keys(data.tables).map(decodeTable)).then(() => {
-  start();
-  window.rkReady = true;
-}, (e) => {
-  document.querySelectorAll(".rk-chart, .rk-3d").forEach((el) => { el.textContent = "figure not drawn: " + e.message; });
-  throw e;
-});
+// The data (megabytes for a long trial) are read after the page has painted its text and tables: a frame, then
+// a task.
+function boot() {
+  data = JSON.parse(document.getElementById("rk-data").textContent);
+  Promise.all(Object.keys(data.tables).map(decodeTable)).then(() => {
+    start();
+    window.rkReady = true;
+  }, (e) => {
+    document.querySelectorAll(".rk-chart, .rk-3d").forEach((el) => { el.textContent = "figure not drawn: " + e.message; });
+    throw e;
+  });
+}
+requestAnimationFrame(() => setTimeout(boot, 0));
