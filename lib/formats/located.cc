@@ -6,6 +6,7 @@
 #include <map>
 
 #include "geo/angles.h"
+#include "formats/vector_cells.h"
 #include "io/error.h"
 
 namespace rk::formats {
@@ -84,18 +85,6 @@ void LocatedWriter::Add(const LocatedRecord& row) {
 
 namespace {
 
-// Three optional numbers of a row: all given, all empty, or a DataError at the first empty one.
-std::optional<Eigen::Vector3d> Triple(const io::CsvTable& table, std::size_t i, const int (&cols)[3]) {
-  if (cols[0] < 0 || cols[1] < 0 || cols[2] < 0) return std::nullopt;
-  std::optional<double> v[3];
-  for (int k = 0; k < 3; ++k) v[k] = table.OptionalDouble(i, cols[k]);
-  if (!v[0] && !v[1] && !v[2]) return std::nullopt;
-  for (int k = 0; k < 3; ++k) {
-    if (!v[k]) throw table.CellError(i, cols[k], "empty where the row's other coordinates are given");
-  }
-  return Eigen::Vector3d(*v[0], *v[1], *v[2]);
-}
-
 // The position columns of LocatedRead::kPositions; the WGS-84 ones are required.
 struct PositionColumns {
   int enu[3] = {-1, -1, -1}, sigma[3] = {-1, -1, -1}, geo[3] = {-1, -1, -1};
@@ -120,14 +109,14 @@ PositionColumns FindPositionColumns(const io::CsvTable& table) {
 }
 
 void ReadPositions(const io::CsvTable& table, std::size_t i, const PositionColumns& p, LocatedRecord* r) {
-  r->enu_m = Triple(table, i, p.enu);
-  r->sigma_enu_m = Triple(table, i, p.sigma);
+  r->enu_m = internal::VectorCells(table, i, p.enu);
+  r->sigma_enu_m = internal::VectorCells(table, i, p.sigma);
   if (r->sigma_enu_m) {
     for (int k = 0; k < 3; ++k) {
       if ((*r->sigma_enu_m)(k) < 0.0) throw table.CellError(i, p.sigma[k], "a 1-sigma must not be negative");
     }
   }
-  const std::optional<Eigen::Vector3d> g = Triple(table, i, p.geo);
+  const std::optional<Eigen::Vector3d> g = internal::VectorCells(table, i, p.geo);
   if (!g) return;
   if (!((*g)(0) >= -90.0 && (*g)(0) <= 90.0)) throw table.CellError(i, p.geo[0], "latitude must be in [-90, 90]");
   if (!((*g)(1) >= -180.0 && (*g)(1) <= 360.0)) throw table.CellError(i, p.geo[1], "longitude must be in [-180, 360]");

@@ -3,6 +3,7 @@
 
 #include <map>
 
+#include "formats/vector_cells.h"
 #include "io/error.h"
 
 namespace rk::formats {
@@ -27,17 +28,6 @@ TrajectoryColumnsAt FindColumns(const io::CsvTable& table) {
   c.rms = table.Column("rms_residual_arcsec");
   c.id = table.Column("id");
   return c;
-}
-
-// Three optional numbers: all present (a vector), all empty (nullopt), or a DataError at the first empty one.
-std::optional<Eigen::Vector3d> Vector(const io::CsvTable& table, std::size_t i, const int (&cols)[3]) {
-  std::optional<double> v[3];
-  for (int k = 0; k < 3; ++k) v[k] = table.OptionalDouble(i, cols[k]);
-  if (!v[0] && !v[1] && !v[2]) return std::nullopt;
-  for (int k = 0; k < 3; ++k) {
-    if (!v[k]) throw table.CellError(i, cols[k], "empty where the row's other coordinates are given");
-  }
-  return Eigen::Vector3d(*v[0], *v[1], *v[2]);
 }
 
 std::optional<geo::Geodetic> Wgs84(const io::CsvTable& table, std::size_t i, const TrajectoryColumnsAt& c,
@@ -82,9 +72,9 @@ TrajectoryFile ReadTrajectory(const io::CsvTable& table) {
     }
     it->second = {r.t_s, r.line};
     if (!ParseRowStatus(table.Cell(i, c.status), &r.status)) throw table.CellError(i, c.status, "unknown status");
-    r.enu_m = Vector(table, i, c.enu);
+    r.enu_m = internal::VectorCells(table, i, c.enu);
     r.geodetic = Wgs84(table, i, c, r.status);
-    r.sigma_enu_m = Vector(table, i, c.sigma);
+    r.sigma_enu_m = internal::VectorCells(table, i, c.sigma);
     if (r.sigma_enu_m) {
       for (int k = 0; k < 3; ++k) {
         if ((*r.sigma_enu_m)(k) < 0.0) throw table.CellError(i, c.sigma[k], "a 1-sigma must not be negative");
