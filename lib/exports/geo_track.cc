@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "io/error.h"
 
@@ -78,16 +79,20 @@ io::RunSummary GeoTrack::Summary() const {
   return s;
 }
 
-GeoTrack FromTrajectory(const formats::TrajectoryFile& file) {
+namespace {
+
+// The rows of a trajectory or a located target (their records share the fields a path needs).
+template <class File>
+GeoTrack FromRecords(const File& file, InputKind kind) {
   GeoTrack t;
   t.source = file.source;
-  t.kind = InputKind::kTrajectory;
+  t.kind = kind;
   t.has_id = file.has_id;
-  for (const formats::TrajectoryRecord& r : file.rows) {
+  for (const auto& r : file.rows) {
     PathSample s;
     s.t_s = r.t_s;
     s.sigma_enu_m = r.sigma_enu_m;
-    s.n_stations = r.n_stations;
+    if constexpr (std::is_same_v<File, formats::TrajectoryFile>) s.n_stations = r.n_stations;
     s.line = r.line;
     AddRow(&t, r.id, r.status, r.geodetic, s);
   }
@@ -95,21 +100,11 @@ GeoTrack FromTrajectory(const formats::TrajectoryFile& file) {
   return t;
 }
 
-GeoTrack FromLocated(const formats::LocatedFile& file) {
-  GeoTrack t;
-  t.source = file.source;
-  t.kind = InputKind::kLocated;
-  t.has_id = file.has_id;
-  for (const formats::LocatedRecord& r : file.rows) {
-    PathSample s;
-    s.t_s = r.t_s;
-    s.sigma_enu_m = r.sigma_enu_m;
-    s.line = r.line;
-    AddRow(&t, r.id, r.status, r.geodetic, s);
-  }
-  CloseRuns(&t);
-  return t;
-}
+}  // namespace
+
+GeoTrack FromTrajectory(const formats::TrajectoryFile& file) { return FromRecords(file, InputKind::kTrajectory); }
+
+GeoTrack FromLocated(const formats::LocatedFile& file) { return FromRecords(file, InputKind::kLocated); }
 
 GeoTrack ReadGeoTrack(const std::string& path, InputKind kind, io::BadRows bad_rows) {
   GeoTrack t;
