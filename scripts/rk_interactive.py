@@ -60,13 +60,12 @@ def encode(values, quantum=None):
         return _packed(quantum, int(k[0]), n, deltas.tobytes())
     # Without numpy: the same, a row at a time.
     inf = float("inf")
-    ks = [round(x / quantum) if quantum and x == x and abs(x) != inf else None for x in values] if quantum else None
     if quantum is None:
         big = max((abs(x) for x in values if x == x and abs(x) != inf), default=None)
         if big is None:
             return _packed(1, 0, n, _i32([NULL_DELTA] * n))
         quantum = 10.0 ** (math.floor(math.log10(big)) - 7) if big > 0 else 1.0
-        ks = [round(x / quantum) if x == x and abs(x) != inf else None for x in values]
+    ks = [round(x / quantum) if x == x and abs(x) != inf else None for x in values]
     k0 = next((k for k in ks if k is not None), 0)
     deltas, last = [], k0
     for k in ks:
