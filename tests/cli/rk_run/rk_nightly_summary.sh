@@ -50,6 +50,16 @@ assert row and row.group(1) == "4", row and row.groups()     # the hand-made nig
 assert row.group(4).startswith("+"), row.groups()            # 0.2 up since the first night
 print("trend:", row.groups())
 PY
+# The history is rk-nightly's own folder: made a link to a folder elsewhere, it is neither followed nor written
+# through (a warning in the log), and nothing there is read, written or removed.
+mv "$r/.rk-nightly/history" "$data/run/history.real"; rm -rf "$data/run/elsewhere"; mkdir -p "$data/run/elsewhere"
+echo '{"started_utc": "2026-01-01T00:00:00Z", "trials": []}' > "$data/run/elsewhere/summary-0.json"
+ln -s "$data/run/elsewhere" "$r/.rk-nightly/history"
+rk-nightly "$r" --no-plots -q
+test "$(ls -A "$data/run/elsewhere")" = summary-0.json
+grep -q 'not kept for the trend' "$r/rk-nightly.log"
+grep -q 'A trend needs two nights or more' "$r/index.html"
+rm "$r/.rk-nightly/history"; mv "$data/run/history.real" "$r/.rk-nightly/history"
 # The holder's output goes to a file: a sleep left on the test's stdout kept ctest waiting for its 60 s.
 flock -o "$r/.rk-nightly/lock" sleep 60 > "$data/run/nightly_holder.out" 2>&1 & holder=$!
 while flock -n "$r/.rk-nightly/lock" true; do sleep 0.05; done
