@@ -29,7 +29,16 @@ cat >"$d/run.sh" <<'SH'
 set -eu
 d=$1 expect=$2
 ip link set lo up
-arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK1 >"$d/fake.log" 2>&1 &
+# The software camera is the test's stand-in for hardware: a real camera's clock and sender do not wait for
+# the host's scheduler, the software one's single thread does (a wake-up late by a period misses that frame; one
+# late by a quarter stamps it off its grid — seen on a loaded CI machine). It runs at a real-time priority above
+# rk-capture's receive thread (SCHED_FIFO 10) where the kernel allows it, so that what the test measures is
+# rk-capture, not the scheduler's treatment of the stand-in. (Harder for rk-capture, not easier: the camera
+# takes its CPU first.)
+rt=
+if chrt -f 20 true 2>/dev/null; then rt="chrt -f 20"; fi
+echo "software camera scheduling: ${rt:-default}" >"$d/fake_sched.txt"
+$rt arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK1 >"$d/fake.log" 2>&1 &
 fake=$!
 trap 'kill $fake 2>/dev/null || true' EXIT
 for _ in $(seq 50); do rk-capture --list-cameras | grep -q '^Aravis-Fake-RK1,' && break; sleep 0.1; done
@@ -52,7 +61,7 @@ rk-capture --config "$d/station.json" --out "$d/trial2" --duration 14 --report "
 cap=$!
 sleep 3; kill -STOP $fake; sleep 2; kill -CONT $fake
 sleep 2; kill $fake; wait $fake 2>/dev/null || true; sleep 3
-arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK1 >"$d/fake2.log" 2>&1 &
+$rt arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK1 >"$d/fake2.log" 2>&1 &
 fake=$!
 wait $cap
 # A camera whose clock resets (power cycle: the software camera restarted with its clock at 2001-01-01), then
@@ -61,23 +70,23 @@ wait $cap
 faketime_lib=$(ls /usr/lib/*/faketime/libfaketimeMT.so.1 2>/dev/null | head -1 || true)
 if [ -n "$faketime_lib" ]; then
   kill $fake; wait $fake 2>/dev/null || true
-  arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK1 >"$d/fake_clock1.log" 2>&1 &
+  $rt arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK1 >"$d/fake_clock1.log" 2>&1 &
   fake=$!
   for _ in $(seq 50); do rk-capture --list-cameras | grep -q '^Aravis-Fake-RK1,' && break; sleep 0.1; done
   rk-capture --config "$d/station.json" --out "$d/trial_clock" --duration 16 --report "$d/report_clock.json" --quiet &
   cap=$!
   sleep 3; kill $fake; wait $fake 2>/dev/null || true
-  LD_PRELOAD=$faketime_lib FAKETIME='@2001-01-01 00:00:00' DONT_FAKE_MONOTONIC=1 arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK1 >"$d/fake_clock2.log" 2>&1 &
+  LD_PRELOAD=$faketime_lib FAKETIME='@2001-01-01 00:00:00' DONT_FAKE_MONOTONIC=1 $rt arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK1 >"$d/fake_clock2.log" 2>&1 &
   fake=$!
   sleep 5; kill $fake; wait $fake 2>/dev/null || true
-  arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK1 >"$d/fake_clock3.log" 2>&1 &
+  $rt arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK1 >"$d/fake_clock3.log" 2>&1 &
   fake=$!
   wait $cap
 fi
 # Packet loss (the software camera's own option: 5 GVSP packets in 1000 lost; no resends): incomplete frames.
 # One software camera at a time: both would listen on the GVCP port of the one address.
 kill $fake; wait $fake 2>/dev/null || true
-arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK2 -r 5 >"$d/fake3.log" 2>&1 &
+$rt arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK2 -r 5 >"$d/fake3.log" 2>&1 &
 lossy=$!
 # (and IEEE 1588 asked for, which the software camera does not have: said, not silently ignored; and 16-bit
 # frames, Mono16)
@@ -105,11 +114,16 @@ assert all(x > 0 for x in dt), "camera stamps not strictly increasing"
 # period): each frame's place on the period grid, phased on a frame mid-run (the first frame can come on the
 # default rate's grid, before the rate set takes hold). Under load the camera can miss a boundary itself (its
 # frame id does not skip: nothing was lost on the way); those are counted, not taken for drops.
+# Tolerances on the stand-in's own timing: tight when it runs at a real-time priority (run.sh), looser when the
+# kernel refused that and it shares the CPU with everything else (what rk-capture must do is unchanged: every
+# frame the camera sent written, below).
+realtime = "chrt" in open(d + "/fake_sched.txt").read()
+ON_GRID_MIN, CAMERA_MISSED_MAX = (0.98, 0.02) if realtime else (0.90, 0.10)
 grid = cam[1:]
 m = len(grid) // 2
 k = [round((c - grid[m]) / PERIOD) for c in grid]
 on_grid = sum(abs(c - grid[m] - i * PERIOD) < 0.25 * PERIOD for c, i in zip(grid, k))
-assert on_grid >= 0.98 * len(k), (on_grid, len(k))
+assert on_grid >= ON_GRID_MIN * len(k), (on_grid, len(k), realtime)
 k = [i - k[0] for i in k]
 assert all(b > a for a, b in zip(k, k[1:]))
 n, sk, sc = len(k), sum(k), sum(grid)
@@ -120,7 +134,7 @@ missed_by_camera = spanned - len(rows)
 # Frame count = duration × rate within one frame, and every frame the camera sent written (no seq gap, frame
 # ids all arrived, below).
 assert abs(spanned - RATE * DURATION) <= 1, (spanned, len(rows))
-assert missed_by_camera <= 0.02 * spanned, missed_by_camera
+assert missed_by_camera <= CAMERA_MISSED_MAX * spanned, (missed_by_camera, realtime)
 assert all(len(r["camera_ts_s"].split(".")[1]) >= 6 for r in rows)
 # t_s from the camera's stamp through the clock mapping, said so, strictly increasing, within a few ms of the
 # host's arrival (the software camera stamps when it sends: its stamps jitter too).
@@ -154,6 +168,7 @@ elif rt.startswith("nice"):
     assert sched[1] == "0" and nice == -10, (rt, sched, nice)
 else:
     assert sched[1] == "0" and nice == 0, (rt, sched, nice)
+print("software camera real-time:", realtime)
 print("frames", len(rows), "spanned", spanned, "missed by the camera", missed_by_camera, "period", period,
       "clock", clock["drift_ppm"], clock["residual_rms_s"], "receive thread", rt)
 # The pause and the restart: two gaps (the pause from the camera's own stamps, the restart from its silence),
