@@ -6,6 +6,7 @@ fetched from anywhere when they are opened."""
 import datetime
 import html
 import json
+import math
 import os
 import re
 import urllib.parse
@@ -42,6 +43,33 @@ details summary{cursor:pointer;color:#1f3a5f}
 """
 
 FAILED_RESULTS = ("failed", "locked")
+
+
+# Angles that wrap — azimuth, yaw, roll, longitude, right ascension: a whole turn apart is the same direction.
+# Between two rows more than half a turn apart a figure's line is the wrap (359.9° → 0.1°), not a motion across
+# the panel, and is not drawn; the values stay as the CSV has them (the read-out and the axis show them). One rule
+# for the static figures (rk-report) and the interactive charts (rk_interactive → scripts/web/rk_plots.js).
+_WRAPPING_ANGLE = re.compile(r"(?:^|_)(?:az|yaw|roll|lon|ra)_deg$")
+HALF_TURN_DEG = 180.0
+
+
+def angle_wraps(column):
+    """Whether a column is an angle that wraps (its 1σ column is not)."""
+    return bool(_WRAPPING_ANGLE.search(column)) and not column.startswith("sigma_")
+
+
+def wrap_breaks(values):
+    """Indices i whose row is more than half a turn from the previous finite row (no row between them is
+    finite-less: a missing value already breaks a line)."""
+    out, last = [], None
+    for i, v in enumerate(values):
+        if not (isinstance(v, (int, float)) and math.isfinite(v)):
+            last = None
+            continue
+        if last is not None and abs(v - last) > HALF_TURN_DEG:
+            out.append(i)
+        last = v
+    return out
 
 
 def esc(x):

@@ -14,6 +14,8 @@ import math
 import os
 import zlib
 
+import rk_html
+
 try:  # Debian python3-numpy (with python3-matplotlib): 20× faster encoding; the same without it
     import numpy as np
 except ImportError:
@@ -133,11 +135,14 @@ class Interactive:
             return ""
         key = self._register(tab, cols)
         bands = [c for c in cols if tab.sigma_of(c)]
-        return ("<figure><div class=\"rk-chart\" data-table=\"%s\" data-cols=\"%s\" data-group=\"%s\"></div>"
+        wrap = [c for c in cols if rk_html.angle_wraps(c)]
+        return ("<figure><div class=\"rk-chart\" data-table=\"%s\" data-cols=\"%s\" data-group=\"%s\"%s></div>"
                 "<figcaption>%s — drag to zoom, double-click to reset (every panel of %s follows); the line under "
-                "each panel reads the value%s at the cursor%s</figcaption></figure>" % (
-                    key, _attr(cols), _attr(group), _html(title), _html(group),
-                    " and its 1σ" if bands else "", "; shaded band: ±1σ" if bands else ""))
+                "each panel reads the value%s at the cursor%s%s</figcaption></figure>" % (
+                    key, _attr(cols), _attr(group), " data-wrap=\"%s\"" % _attr(wrap) if wrap else "",
+                    _html(title), _html(group), " and its 1σ" if bands else "", "; shaded band: ±1σ" if bands else "",
+                    "; %s: no line across the wrap (a jump of more than %g° between rows)" % (
+                        ", ".join(wrap), rk_html.HALF_TURN_DEG) if wrap else ""))
 
     def view3d(self, tab, x, y, z, group, title, stations=(), colour="time"):
         """The path in 3-D (x, y, z: ENU columns in metres) with the stations [(name, e, n, u)] and, at the time

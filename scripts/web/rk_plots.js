@@ -11,7 +11,8 @@
 //   <div class="rk-chart" data-table=ID data-cols='["az_deg",...]' data-group=UNIT data-title=...>
 //     one panel per column against t_s, its ±1σ band, the lost / invalid / predicted spans shaded; drag to zoom,
 //     double-click to reset; the panels of one group (a unit) share their time window and cursor; the read-out
-//     under each panel gives every series' value and 1σ at the cursor.
+//     under each panel gives every series' value and 1σ at the cursor. data-wrap='["az_deg"]': columns that are
+//     angles that wrap, whose line is not drawn across a wrap (more than half a turn between neighbouring rows).
 //   <div class="rk-3d" data-table=ID data-x=e_m data-y=n_m data-z=u_m data-colour=time|status
 //        data-stations='[{"name", "e", "n", "u"}]' data-group=UNIT>
 //     the path coloured by time (or status), the stations, the ground plane, and at the cursor's time the
@@ -97,11 +98,51 @@ function group(name) {
 
 const COLOURS = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b"];
 
-function makePanel(el, tab, col, k, g, groupName) {
+// An angle that wraps (data-wrap, scripts/rk_html.py angle_wraps): the rows [i, j] of each pair of neighbouring
+// values more than half a turn apart (359.9° → 0.1°), where the line is the wrap, not a motion.
+const HALF_TURN_DEG = 180;
+function wrapBreaks(t, y) {
+  const out = [];
+  let last = -1;
+  for (let i = 0; i < y.length; ++i) {
+    if (y[i] === null || t[i] === null) { last = -1; continue; }
+    if (last >= 0 && Math.abs(y[i] - y[last]) > HALF_TURN_DEG) out.push([last, i]);
+    last = i;
+  }
+  return out;
+}
+
+// uPlot's series.gaps: the spans (canvas pixels) its line is clipped over — its own null gaps and, for an angle
+// that wraps, each wrap's span (at least a pixel wide, so a wrap between rows drawn on one pixel column is not
+// drawn either). Sorted and merged, as uPlot's clip expects.
+function wrapGaps(t, breaks) {
+  return (u, sidx, i0, i1, nullGaps) => {
+    if (!breaks.length) return nullGaps;
+    const out = nullGaps.map((g) => g.slice());
+    let lo = 0, hi = breaks.length;          // the first break ending at or after i0
+    while (lo < hi) { const m = (lo + hi) >> 1; if (breaks[m][1] < i0) lo = m + 1; else hi = m; }
+    for (let b = lo; b < breaks.length && breaks[b][0] <= i1; ++b) {
+      const p0 = Math.round(u.valToPos(t[breaks[b][0]], "x", true));
+      const p1 = Math.round(u.valToPos(t[breaks[b][1]], "x", true));
+      out.push([p0, Math.max(p1, p0 + 1)]);
+    }
+    out.sort((p, q) => p[0] - q[0]);
+    const merged = [];
+    for (const g of out) {
+      const m = merged[merged.length - 1];
+      if (m && g[0] <= m[1]) m[1] = Math.max(m[1], g[1]); else merged.push(g);
+    }
+    return merged;
+  };
+}
+
+function makePanel(el, tab, col, k, g, groupName, wraps) {
   const sigma = tab.sigma[col] || null;
   const y = tab.cols[col];
   const colour = COLOURS[k % COLOURS.length];
-  const series = [{ label: "t_s" }, { label: col, stroke: colour, width: 1, spanGaps: false,
+  const breaks = wraps ? wrapBreaks(tab.t, y) : [];
+  const gaps = wrapGaps(tab.t, breaks);
+  const series = [{ label: "t_s" }, { label: col, stroke: colour, width: 1, spanGaps: false, gaps,
                                       points: { show: false } }];
   const rows = [tab.t, y];
   const bands = [];
@@ -109,8 +150,8 @@ function makePanel(el, tab, col, k, g, groupName) {
     const lo = y.map((v, i) => (v === null || sigma[i] === null ? null : v - sigma[i]));
     const hi = y.map((v, i) => (v === null || sigma[i] === null ? null : v + sigma[i]));
     rows.push(hi, lo);
-    series.push({ label: col + " +1σ", stroke: "transparent", points: { show: false } },
-                { label: col + " −1σ", stroke: "transparent", points: { show: false } });
+    series.push({ label: col + " +1σ", stroke: "transparent", spanGaps: false, gaps, points: { show: false } },
+                { label: col + " −1σ", stroke: "transparent", spanGaps: false, gaps, points: { show: false } });
     bands.push({ series: [2, 3], fill: colour + "40" });
   }
   const readout = document.createElement("div");
@@ -164,6 +205,7 @@ function makePanel(el, tab, col, k, g, groupName) {
   };
   const u = new uPlot(opts, rows, box);
   u.rkColumn = col;
+  u.rkWrapBreaks = breaks;
   u.rkReadout = readout;
   u.rkGroup = groupName;
   g.charts.push(u);
@@ -179,8 +221,11 @@ function makePanel(el, tab, col, k, g, groupName) {
 function makeChart(el) {
   const tab = table(el.dataset.table);
   const cols = JSON.parse(el.dataset.cols);
+  const wrap = new Set(JSON.parse(el.dataset.wrap || "[]"));
   const g = group(el.dataset.group || el.dataset.table);
-  cols.forEach((c, k) => { if (tab.cols[c]) makePanel(el, tab, c, k, g, el.dataset.group || el.dataset.table); });
+  cols.forEach((c, k) => {
+    if (tab.cols[c]) makePanel(el, tab, c, k, g, el.dataset.group || el.dataset.table, wrap.has(c));
+  });
 }
 
 // --------------------------------------------------------------------------------------------- 3-D view

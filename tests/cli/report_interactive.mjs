@@ -3,7 +3,7 @@
 // playwright-core (no browser download).
 //
 //   node report_interactive.mjs PAGE.html --csv TABLE.csv --group UNIT --column COL [--window S]
-//        [--screenshots DIR] [--max-fcp-ms MS] [--chromium PATH]
+//        [--screenshots DIR] [--max-fcp-ms MS] [--chromium PATH] [--wrap]
 //
 // Checks, in order, failing (exit 1) at the first that does not hold:
 //   - no request leaves the page (every host resolves to nothing, the proxy is a dead port; any request other
@@ -18,6 +18,9 @@
 //   - the 3-D view of UNIT (when the page has one) follows the cursor: its read-out's t_s is the chart's;
 //   - a double click resets the zoom to the whole series on every panel of UNIT;
 //   - each 3-D view recoloured by status and back by time;
+//   - with --wrap (COL an angle that wraps, scripts/rk_html.py angle_wraps): the wraps of COL in TABLE.csv (rows
+//     more than 180° from the previous finite row; at least one) are the panel's, and its line, ±1σ band included,
+//     is clipped over each of them on the whole series and again after the reset (no line across the panel);
 // and prints the figures (first paint, load, chart count, data span). Exit 77 when chromium or playwright-core
 // is missing (the test is then reported skipped).
 import fs from "node:fs";
@@ -37,6 +40,7 @@ for (let i = 0; i < args.length; ++i) {
   else if (a === "--screenshots") opt.shots = next();
   else if (a === "--max-fcp-ms") opt.maxFcp = Number(next());
   else if (a === "--chromium") opt.chromium = next();
+  else if (a === "--wrap") opt.wrap = true;
   else if (!opt.page) opt.page = a;
   else fail("usage: unexpected argument " + a);
 }
@@ -65,6 +69,44 @@ function csvRows(file) {
   const lines = fs.readFileSync(file, "utf8").split("\n").filter((l) => l && !l.startsWith("#"));
   const head = lines[0].split(",");
   return { head, rows: lines.slice(1).map((l) => l.split(",")) };
+}
+
+// COL's wraps in TABLE.csv: [t_s of the row before, t_s of the row after].
+function csvWraps() {
+  const { head, rows } = csvRows(opt.csv);
+  const it = head.indexOf("t_s"), ic = head.indexOf(opt.column);
+  const out = [];
+  let last = null;
+  for (const r of rows) {
+    const v = r[ic] === "" ? NaN : Number(r[ic]);
+    if (!Number.isFinite(v)) { last = null; continue; }
+    if (last && Math.abs(v - last.v) > 180) out.push([last.t, Number(r[it])]);
+    last = { v, t: Number(r[it]) };
+  }
+  return out;
+}
+
+// The panel's wraps and, for each drawn series, whether a clip gap of its path covers each wrap's pixel span.
+async function checkWraps(page, k, expected, when) {
+  const got = await page.evaluate((k) => {
+    const u = window.rkCharts[k];
+    const t = u.data[0];
+    const breaks = (u.rkWrapBreaks || []).map(([a, b]) => [t[a], t[b]]);
+    const covered = u.series.slice(1).filter((s) => s._paths).map((s) => (u.rkWrapBreaks || []).map(([a, b]) => {
+      const p0 = Math.round(u.valToPos(t[a], "x", true)), p1 = Math.max(Math.round(u.valToPos(t[b], "x", true)), p0 + 1);
+      const inView = t[b] >= u.scales.x.min && t[a] <= u.scales.x.max;
+      return !inView || (s._paths.gaps || []).some((g) => g[0] <= p0 && g[1] >= p1);
+    }));
+    return { breaks, covered };
+  }, k);
+  const same = got.breaks.length === expected.length &&
+    got.breaks.every(([a, b], i) => Math.abs(a - expected[i][0]) <= 1e-9 * Math.max(1, Math.abs(a)) &&
+                                    Math.abs(b - expected[i][1]) <= 1e-9 * Math.max(1, Math.abs(b)));
+  if (!same) fail(when + ": the panel's wraps " + JSON.stringify(got.breaks) + " are not the CSV's " + JSON.stringify(expected));
+  if (!got.covered.length || got.covered.some((c) => c.some((x) => !x))) {
+    fail(when + ": a line drawn across a wrap of " + opt.column + " " + JSON.stringify(got.covered));
+  }
+  return got.breaks.length;
 }
 
 const browser = await chromium.launch({
@@ -116,6 +158,9 @@ try {
     const t = u.data[0].filter((v) => v !== null);
     return { t0: t[0], t1: t[t.length - 1], min: u.scales.x.min, max: u.scales.x.max };
   }, k);
+  const wraps = opt.wrap ? csvWraps() : [];
+  if (opt.wrap && !wraps.length) fail("--wrap: " + opt.column + " never wraps in " + opt.csv + ": nothing checked");
+  if (opt.wrap) await checkWraps(page, k, wraps, "whole series");
   // Drag boxes, each at most 40 times narrower than the window shown (a 1-s box on an hour is under a pixel),
   // until the window is --window seconds about the data's middle.
   const mid = (span.t0 + span.t1) / 2;
@@ -193,6 +238,7 @@ try {
   for (const [lo, hi] of reset) {
     if (lo > span.t0 + 1e-9 || hi < span.t1 - 1e-9) fail("after a double click a panel shows [" + lo + ", " + hi + "], not the whole [" + span.t0 + ", " + span.t1 + "]");
   }
+  if (opt.wrap) await checkWraps(page, k, wraps, "after the reset");
   // The 3-D views coloured by status, then by time again.
   const pickers = page.locator("select.rk-colour");
   for (let i = 0; i < (await pickers.count()); ++i) {
@@ -204,7 +250,8 @@ try {
   if (problems.length) fail(problems.join("; "));
   console.log("report_interactive: " + opt.page + ": first paint " + timing.fcp.toFixed(0) + " ms, load " +
               timing.load.toFixed(0) + " ms, " + made.charts + " panels, " + made.views.length + " 3-D views; zoomed to [" +
-              zoomed.min.toFixed(3) + ", " + zoomed.max.toFixed(3) + "] s and back; read-out " + read.text);
+              zoomed.min.toFixed(3) + ", " + zoomed.max.toFixed(3) + "] s and back; read-out " + read.text +
+              (opt.wrap ? "; " + wraps.length + " wrap(s) of " + opt.column + ", no line across them" : ""));
 } catch (e) {
   console.error("report_interactive: FAIL: " + (e && e.stack ? e.stack : e));
   result = 1;
