@@ -119,6 +119,9 @@ assert all(x > 0 for x in dt), "camera stamps not strictly increasing"
 # frame the camera sent written, below).
 realtime = "chrt" in open(d + "/fake_sched.txt").read()
 ON_GRID_MIN, CAMERA_MISSED_MAX = (0.98, 0.02) if realtime else (0.90, 0.10)
+# t_s against the host's arrival: a few ms (the stand-in stamps when it sends); without the priority, under
+# half a period (no frame mapped onto its neighbour's time).
+ARRIVAL_MAX_S = 0.005 if realtime else 0.4 * PERIOD
 grid = cam[1:]
 m = len(grid) // 2
 k = [round((c - grid[m]) / PERIOD) for c in grid]
@@ -143,7 +146,7 @@ t = [float(r["t_s"]) for r in rows]
 assert all(b > a for a, b in zip(t, t[1:]))
 host = [float(r["host_mono_s"]) for r in rows]
 arrival = [h - host[0] + t[0] for h in host]
-assert max(abs(a - b) for a, b in zip(t, arrival)) < 0.005
+assert max(abs(a - b) for a, b in zip(t, arrival)) < ARRIVAL_MAX_S, (max(abs(a - b) for a, b in zip(t, arrival)), realtime)
 seq = [int(r["seq"]) for r in rows]
 assert seq == list(range(len(rows))), "a frame dropped or duplicated"
 c = json.load(open(d + "/report.json"))["summary"]["cameras"]["gige"]
@@ -217,7 +220,8 @@ if os.path.exists(d + "/report_clock.json"):
     host4 = [float(r["host_mono_s"]) for r in rows4]
     assert all(b > a for a, b in zip(t4, t4[1:]))
     off = [t - (h - host4[0] + t4[0]) for t, h in zip(t4, host4)]
-    assert max(abs(o) for o in off) < 0.01, max(abs(o) for o in off)  # a new mapping starts from one arrival
+    # a new mapping starts from one arrival: within 10 ms (with the stand-in's priority; else ARRIVAL_MAX_S)
+    assert max(abs(o) for o in off) < (0.01 if realtime else ARRIVAL_MAX_S), (max(abs(o) for o in off), realtime)
     assert sum(r["time_source"] == "camera" for r in rows4) >= len(rows4) - 3, [r["time_source"] for r in rows4]
     print("clock reset: frames", len(rows4), "worst t_s - arrival", max(abs(o) for o in off))
 else:
