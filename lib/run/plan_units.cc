@@ -105,7 +105,15 @@ std::vector<UnitPlan> PlanByUnit(const TrialManifest& m, const std::vector<Step>
   if (m.multi_station()) {
     units.push_back(UnitOf(trial::kTrajectoryUnit, "intersection of the stations", plan));
   } else if (std::any_of(plan.begin(), plan.end(), [](const Step& s) { return s.unit == trial::kTrajectoryUnit; })) {
-    units.push_back(UnitOf(trial::kTrajectoryUnit, "export of the located target", plan));
+    // A single station's camera may itself be named "trajectory" (SPEC.md allows it): one unit, whose line
+    // already lists the export steps beside the camera's, not the same unit twice.
+    const auto same = std::find_if(units.begin(), units.end(),
+                                   [](const UnitPlan& u) { return u.unit == trial::kTrajectoryUnit; });
+    if (same != units.end()) {
+      same->what += ", and export of the located target";
+    } else {
+      units.push_back(UnitOf(trial::kTrajectoryUnit, "export of the located target", plan));
+    }
   }
   for (const trial::StationEntry& st : stations) UnusedLogs(st, plan, &units);
   if (plan.empty()) {

@@ -290,6 +290,14 @@ TEST(Plan, PlanByUnitSaysWhatIsPlannedAndSkipped) {
   EXPECT_EQ(j["skipped"][0]["step"], "resample-range");
   EXPECT_EQ(j["planned"].size(), 5u);
 
+  // A single station's camera named "trajectory" (allowed): one unit for it and the exports, not two.
+  const TrialManifest named = ParseManifest(Replaced(WithSteps("{}"), "\"az\":", "\"trajectory\":"), "/t/trial.json");
+  const std::vector<UnitPlan> n_units = PlanByUnit(named, BuildPlan(named, PlanOptions{}));
+  ASSERT_EQ(n_units.size(), 1u);
+  EXPECT_EQ(n_units[0].Line(),
+            "trajectory (beacon camera, and export of the located target): planned extract-beacon, locate, "
+            "plot-located, smooth, plot-rates, resample-range, export-kml, export-czml");
+
   // A theodolite trial whose manifest lists no images (rk-sim theodolite --images none): no camera.
   const TrialManifest theo = ParseManifest(R"({"theodolite": "theodolite.csv"})", "/t/trial.json");
   const std::vector<UnitPlan> t_units = PlanByUnit(theo, BuildPlan(theo, PlanOptions{}));
