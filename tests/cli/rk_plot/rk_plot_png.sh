@@ -13,4 +13,16 @@ test "$(od -An -tx1 -N8 "$d/out.png" | tr -d ' \n')" = 89504e470d0a1a0a
 test -z "$(ls -A "$d" | grep '^\.rk-plot-' || true)"   # no temporary left behind
 "$plot" -i - --columns range_m --x t_s -o - < "$d/a.csv" > "$d/stdout.png"
 test "$(od -An -tx1 -N4 "$d/stdout.png" | tr -d ' \n')" = 89504e47
+# An azimuth crossing north: no line across the plot at the wrap. Drawn exactly as the same rows with a gap
+# (an empty az_deg) halfway between the two rows of the wrap: the points stay, the line between them does not.
+printf 't_s,az_deg\n0,359.0\n0.1,359.5\n0.2,0.1\n0.3,0.6\n' > "$d/north.csv"
+printf 't_s,az_deg\n0,359.0\n0.1,359.5\n0.15,\n0.2,0.1\n0.3,0.6\n' > "$d/north_gap.csv"
+"$plot" -i "$d/north.csv" --columns az_deg -o "$d/north.png"
+"$plot" -i "$d/north_gap.csv" --columns az_deg -o "$d/north_gap.png"
+cmp "$d/north.png" "$d/north_gap.png"
+# ... and a column that does not wrap (range_m) keeps its line across the same jump.
+sed 's/az_deg/range_m/' "$d/north.csv" > "$d/jump.csv"; sed 's/az_deg/range_m/' "$d/north_gap.csv" > "$d/jump_gap.csv"
+"$plot" -i "$d/jump.csv" --columns range_m -o "$d/jump.png"
+"$plot" -i "$d/jump_gap.csv" --columns range_m -o "$d/jump_gap.png"
+! cmp -s "$d/jump.png" "$d/jump_gap.png"
 echo ok
