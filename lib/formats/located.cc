@@ -207,9 +207,11 @@ io::CsvRowRule LocatedRowRule(LocatedRead what) {
       rule.optional_numbers.push_back(c);
     }
   }
-  // Non-decreasing only: a points track's ids share their frames' times (ReadLocated checks each id; a time
-  // repeated in a file without ids stops the run rather than dropping a row).
+  // Non-decreasing overall (a points track's ids share their frames' times), strictly increasing per id, or over
+  // the whole file when it has no id column: a repeated time is a duplicated record, dropped with a warning.
   rule.non_decreasing = "t_s";
+  rule.increasing_per = "id";
+  rule.texts = {"id"};
   return rule;
 }
 

@@ -97,9 +97,11 @@ io::CsvRowRule TrajectoryRowRule() {
   rule.optional_numbers = {"e_m", "n_m", "u_m", "lat_deg", "lon_deg", "h_m", "sigma_e_m", "sigma_n_m", "sigma_u_m",
                            "rms_residual_arcsec"};
   rule.optional_integers = {"n_stations"};
-  rule.texts = {"status"};
-  // Non-decreasing only: one trajectory per id shares the output times (ReadTrajectory checks each id).
+  rule.texts = {"status", "id"};
+  // Non-decreasing overall (the trajectories of several ids share the output times), strictly increasing per id
+  // or over a file without ids, as ReadTrajectory requires: a duplicated record is skipped, not a stop.
   rule.non_decreasing = "t_s";
+  rule.increasing_per = "id";
   return rule;
 }
 

@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <cstring>
 #include <limits>
+#include <map>
+#include <string>
 
 #include "io/error.h"
 #include "io/file_util.h"
@@ -698,6 +700,8 @@ void CsvTable::DropBadRows(const CsvRowRule& rule) {
   // back costs only itself. Patience sorting, O(n log n).
   std::vector<bool> keep(rows(), false);
   const int c_order = rule.non_decreasing.empty() ? -1 : Column(rule.non_decreasing);
+  const int c_per = rule.increasing_per.empty() ? -1 : Column(rule.increasing_per);
+  const bool strict = rule.increasing || (!rule.increasing_per.empty() && c_per < 0);
   if (c_order < 0) {
     for (std::size_t r : usable) keep[r] = true;
   } else {
@@ -709,7 +713,7 @@ void CsvTable::DropBadRows(const CsvRowRule& rule) {
     std::vector<std::ptrdiff_t> after(usable.size(), -1);  // the next element of i's run
     for (std::size_t i = usable.size(); i-- > 0;) {
       const auto less = [&](std::size_t a, std::size_t b) {
-        return rule.increasing ? -t[a] <= -t[b] : -t[a] < -t[b];
+        return strict ? -t[a] <= -t[b] : -t[a] < -t[b];
       };
       const auto at = std::upper_bound(tails.begin(), tails.end(), i, less);
       const std::size_t k = static_cast<std::size_t>(at - tails.begin());
@@ -751,6 +755,28 @@ void CsvTable::DropBadRows(const CsvRowRule& rule) {
       std::size_t line = 0, col = 0;
       CellPosition(r, c_order, &line, &col);
       skipped_.push_back(SkippedRow{line, col, why});
+    }
+    // 3. Within each value of `increasing_per` (the run above is in order overall): a repeated time is a
+    // duplicated record; the later row goes.
+    if (c_per >= 0) {
+      std::map<std::string, std::size_t, std::less<>> last;  // value → its last kept row (in usable)
+      for (std::size_t i = 0; i < usable.size(); ++i) {
+        if (!in_run[i]) continue;
+        const std::size_t r = usable[i];
+        const auto [it, first] = last.try_emplace(CellText(r, c_per), i);
+        if (first) continue;
+        if (t[i] > t[it->second]) {
+          it->second = i;
+          continue;
+        }
+        keep[r] = false;
+        std::size_t line = 0, col = 0;
+        CellPosition(r, c_order, &line, &col);
+        skipped_.push_back(SkippedRow{line, col, "column '" + rule.non_decreasing + "' repeats for " +
+                                                     rule.increasing_per + " '" + it->first + "' (" +
+                                                     CellText(r, c_order) + " on line " +
+                                                     std::to_string(Line(usable[it->second])) + ")"});
+      }
     }
   }
   KeepRows(keep);

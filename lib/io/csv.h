@@ -43,6 +43,9 @@ struct CsvRowRule {
   std::vector<std::string> texts;              // not empty
   std::string non_decreasing;                  // a number column that never goes backwards ("t_s")
   bool increasing = false;                     // ... nor repeats a value
+  // ... nor repeats a value among the rows of one value of this column (a points track's ids share their
+  // frames' times); over the whole file, as `increasing`, when the file has no such column.
+  std::string increasing_per;
 };
 
 struct CsvReadOptions {

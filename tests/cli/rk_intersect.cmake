@@ -15,6 +15,11 @@ rk_cli_script(rk_intersect/rk_intersect_bad_input REQUIRES intersect_data)
 # equal the trajectory of the same rows without ids; an id seen by one station only gets none and a warning.
 rk_cli_script(rk_intersect/rk_intersect_ids REQUIRES intersect_data)
 
+# A duplicated record (a row written twice): in a located file without ids and, for one (id, time), in a file
+# with ids. Without --bad-rows skip exit 3 at the copy's file:line:col, no output, the failure report; with it
+# the copy is dropped with a warning naming it and the trajectory equals the one from the files without it.
+rk_cli_script(rk_intersect/rk_intersect_duplicates REQUIRES intersect_data)
+
 # Station clock offsets (SPEC §7, issue 33): rk-sim multistation --time-offsets, rk-intersect
 # --estimate-time-offsets (report time_offsets within 3 σ of the truth, no warning on a climbing turn, the
 # trajectory much closer than without), a known time_offset_s applied, another time reference, and bad

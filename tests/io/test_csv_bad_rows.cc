@@ -108,6 +108,32 @@ TEST(CsvBadRows, IncreasingRuleSkipsRepeatedTimes) {
   EXPECT_NE(t.skipped()[0].reason.find("repeats"), std::string::npos);
 }
 
+// A points track: times shared between ids, strictly increasing within each id. A repeated (id, time) is a
+// duplicated record and goes (the later row, with the id and the line of the first); the same time for two
+// ids stays; a file without the id column is held to strictly increasing times over the whole file.
+TEST(CsvBadRows, IncreasingPerIdSkipsDuplicatedRecordsOnly) {
+  WarningCapture warnings;
+  CsvReadOptions o = SkipTurret();
+  o.rule.increasing_per = "id";
+  const CsvTable t = CsvTable::Parse(
+      "t_s,id,az_deg\n0.0,a,1\n0.0,b,2\n0.1,a,3\n0.1,b,4\n0.1,a,3\n0.2,a,5\n0.2,b,6\n", "p.csv", o);
+  ASSERT_EQ(t.rows(), 6u);
+  const int c = t.RequireColumn("az_deg");
+  const std::vector<double> kept = {1, 2, 3, 4, 5, 6};
+  for (std::size_t r = 0; r < kept.size(); ++r) EXPECT_EQ(t.Double(r, c), kept[r]) << "row " << r;
+  ASSERT_EQ(t.skipped().size(), 1u);
+  EXPECT_EQ(t.skipped()[0].line, 6u);
+  EXPECT_EQ(t.skipped()[0].column, 1u);
+  EXPECT_NE(t.skipped()[0].reason.find("repeats for id 'a' (0.1 on line 4)"), std::string::npos)
+      << t.skipped()[0].reason;
+
+  const CsvTable plain = CsvTable::Parse("t_s,az_deg\n0.0,1\n0.1,2\n0.1,2\n0.2,3\n", "l.csv", o);
+  ASSERT_EQ(plain.rows(), 3u);
+  ASSERT_EQ(plain.skipped().size(), 1u);
+  EXPECT_EQ(plain.skipped()[0].line, 4u);
+  EXPECT_NE(plain.skipped()[0].reason.find("repeats"), std::string::npos) << plain.skipped()[0].reason;
+}
+
 // One wild time far ahead (a garbled serial line that still parses) costs that row only, not every
 // row after it; a row that jumped back costs only itself.
 TEST(CsvBadRows, OneWildTimeAheadCostsOneRow) {

@@ -48,4 +48,11 @@ check "$d/traj.csv" --czml "$o/noepoch.czml" --epoch 2000-01-01T00:00:00Z
 rk-export kml --trajectory "$o/bad.csv" --bad-rows skip -o "$o/skip.kml" 2> "$o/skip.err"
 grep -q 'bad.csv:4:[0-9]*: skipped bad row' "$o/skip.err"
 check "$d/traj.csv" --kml "$o/skip.kml"
+# A duplicated record (row 3 written twice): an error at the copy without --bad-rows skip (no output), dropped as
+# "repeats" with it, the export as from the clean file.
+{ head -4 "$d/traj.csv"; sed -n 4p "$d/traj.csv"; tail -n +5 "$d/traj.csv"; } > "$o/dup.csv"
+"$expect" 3 "$o/dup.kml" 'dup.csv:5:1: .*time does not increase' -- rk-export kml --trajectory "$o/dup.csv" -o "$o/dup.kml"
+rk-export kml --trajectory "$o/dup.csv" --bad-rows skip -o "$o/dup.kml" 2> "$o/dup.err"
+grep -q 'dup.csv:5:1: skipped bad row: .*repeats' "$o/dup.err"
+check "$d/traj.csv" --kml "$o/dup.kml"
 echo ok
