@@ -14,9 +14,11 @@ pct=$(json "$t/out/report.json" '"%.1f %%" % (100 * [s for s in d["steps"] if s[
 python3 "$check" "$t/out/report.html" --expect "$pct" --expect "az/extract-beacon" --expect "Warnings"
 # The interactive figures (issue 34), driven by playwright-core: a zoom box dragged to a 1-s window on the azimuth
 # panel and back, every panel of the unit following, the read-out at the cursor equal to located.csv's row.
+# (Its first paint under playwright includes SwiftShader's WebGL start, 0.5-1.1 s here: held to 3 s, not the
+# 1.5 s target, which rk_report_hour_page times over the DevTools pipe.)
 if command -v node > /dev/null; then
   node "$src/tests/cli/report_interactive.mjs" "$t/out/report.html" --csv "$t/out/az/located.csv" --group az \
-    --column az_deg --window 1
+    --column az_deg --window 1 --max-fcp-ms 3000
 else
   echo "node is not installed: the interactive figures were not driven (scripts/setup.sh installs it)"
 fi
