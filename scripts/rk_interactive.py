@@ -16,10 +16,20 @@ import zlib
 
 import rk_html
 
-try:  # Debian python3-numpy (with python3-matplotlib): 20× faster encoding; the same without it
-    import numpy as np
-except ImportError:
-    np = None
+# Debian python3-numpy (with python3-matplotlib) encodes a long series 20× faster, to the same bytes; it is
+# imported only for one (importing it costs ≈ 70 ms, a third of a short trial's page).
+NUMPY_FROM_ROWS = 20000
+_numpy = []
+
+
+def numpy_or_none():
+    if not _numpy:
+        try:
+            import numpy
+            _numpy.append(numpy)
+        except ImportError:
+            _numpy.append(None)
+    return _numpy[0]
 
 ASSETS = "rk_report_assets"
 SCRIPT, STYLE = "rk_plots.js", "uPlot.min.css"
@@ -42,9 +52,13 @@ def find_assets(script_path):
 NULL_DELTA = -2 ** 31
 
 
-def encode(values, quantum=None):
-    """The series' dict, or None when a jump between two rows does not fit an int32 (then float64)."""
+def encode(values, quantum=None, use_numpy=None):
+    """The series' dict, or None when a jump between two rows does not fit an int32 (then float64). use_numpy:
+    True / False, or None: for a series of NUMPY_FROM_ROWS rows or more, where numpy is installed."""
     n = len(values)
+    if use_numpy is None:
+        use_numpy = n >= NUMPY_FROM_ROWS
+    np = numpy_or_none() if use_numpy else None
     if np is not None:
         v = np.asarray(values, dtype=np.float64)
         fin = np.isfinite(v)
