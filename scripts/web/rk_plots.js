@@ -136,6 +136,22 @@ function wrapGaps(t, breaks) {
   };
 }
 
+// The rows on either side of each wrap, drawn as points: a target that sits on north and jitters across it wraps
+// between every pair of rows, and its line, cut at each wrap, would show nothing at all.
+function wrapPoints(t, breaks) {
+  if (!breaks.length) return null;
+  return (u) => {
+    const { min, max } = u.scales.x;
+    let lo = 0, hi = breaks.length;          // the first break ending at or after min
+    while (lo < hi) { const m = (lo + hi) >> 1; if (t[breaks[m][1]] < min) lo = m + 1; else hi = m; }
+    const out = [];
+    for (let b = lo; b < breaks.length && t[breaks[b][0]] <= max; ++b) {
+      for (const i of breaks[b]) if (out[out.length - 1] !== i && t[i] >= min && t[i] <= max) out.push(i);
+    }
+    return out;
+  };
+}
+
 function makePanel(el, tab, col, k, g, groupName, wraps) {
   const sigma = tab.sigma[col] || null;
   const y = tab.cols[col];
@@ -143,7 +159,8 @@ function makePanel(el, tab, col, k, g, groupName, wraps) {
   const breaks = wraps ? wrapBreaks(tab.t, y) : [];
   const gaps = wrapGaps(tab.t, breaks);
   const series = [{ label: "t_s" }, { label: col, stroke: colour, width: 1, spanGaps: false, gaps,
-                                      points: { show: false } }];
+                                      points: { show: false, size: 3, fill: colour,
+                                                filter: wrapPoints(tab.t, breaks) } }];
   const rows = [tab.t, y];
   const bands = [];
   if (sigma) {

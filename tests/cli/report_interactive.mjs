@@ -20,7 +20,8 @@
 //   - each 3-D view recoloured by status and back by time;
 //   - with --wrap (COL an angle that wraps, scripts/rk_html.py angle_wraps): the wraps of COL in TABLE.csv (rows
 //     more than 180° from the previous finite row; at least one) are the panel's, and its line, ±1σ band included,
-//     is clipped over each of them on the whole series and again after the reset (no line across the panel);
+//     is clipped over each of them on the whole series and again after the reset (no line across the panel),
+//     and the rows beside the wraps in view are drawn as points;
 // and prints the figures (first paint, load, chart count, data span). Exit 77 when chromium or playwright-core
 // is missing (the test is then reported skipped).
 import fs from "node:fs";
@@ -97,7 +98,10 @@ async function checkWraps(page, k, expected, when) {
       const inView = t[b] >= u.scales.x.min && t[a] <= u.scales.x.max;
       return !inView || (s._paths.gaps || []).some((g) => g[0] <= p0 && g[1] >= p1);
     }));
-    return { breaks, covered };
+    // The rows on either side of a wrap in view are drawn as points (the line between them is cut).
+    const inView = (u.rkWrapBreaks || []).some(([a, b]) => t[b] >= u.scales.x.min && t[a] <= u.scales.x.max);
+    const points = !inView || (u.series[1].points._paths !== null && u.series[1].points._paths !== undefined);
+    return { breaks, covered, points };
   }, k);
   const same = got.breaks.length === expected.length &&
     got.breaks.every(([a, b], i) => Math.abs(a - expected[i][0]) <= 1e-9 * Math.max(1, Math.abs(a)) &&
@@ -106,6 +110,7 @@ async function checkWraps(page, k, expected, when) {
   if (!got.covered.length || got.covered.some((c) => c.some((x) => !x))) {
     fail(when + ": a line drawn across a wrap of " + opt.column + " " + JSON.stringify(got.covered));
   }
+  if (!got.points) fail(when + ": the rows beside the wraps of " + opt.column + " are not drawn as points");
   return got.breaks.length;
 }
 

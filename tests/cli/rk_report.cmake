@@ -18,7 +18,9 @@ set_tests_properties(rk_report_pages_in_chromium PROPERTIES SKIP_RETURN_CODE 77)
 # trial's page with its azimuth turned to cross north mid-track. Neither the static page's line nor the interactive
 # panel's (its ±1σ band included) is drawn across the wrap: the static line is one piece more than its gaps; in
 # headless Chromium the panel's wraps equal the CSV's and every drawn series is clipped over each, on the whole
-# series and after a zoom and reset. Skipped (77) without chromium or node, once the static page has passed.
+# series and after a zoom and reset. A target sitting on north (its azimuth jittering across it, a wrap between
+# every pair of rows): every row drawn as a point, statically and in the browser. Skipped (77) without chromium or
+# node, once the static pages have passed.
 rk_cli_script(rk_report/rk_report_azimuth_wrap REQUIRES report_pages)
 set_tests_properties(rk_report_azimuth_wrap PROPERTIES SKIP_RETURN_CODE 77)
 
