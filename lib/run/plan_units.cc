@@ -104,7 +104,9 @@ std::vector<UnitPlan> PlanByUnit(const TrialManifest& m, const std::vector<Step>
   if (m.radar) units.push_back(UnitOf("radar", "radar", plan));
   if (m.multi_station()) {
     units.push_back(UnitOf(trial::kTrajectoryUnit, "intersection of the stations", plan));
-  } else if (std::any_of(plan.begin(), plan.end(), [](const Step& s) { return s.unit == trial::kTrajectoryUnit; })) {
+  } else if (std::any_of(plan.begin(), plan.end(), [](const Step& s) {
+               return s.unit == trial::kTrajectoryUnit && s.kind.rfind("export-", 0) == 0;
+             })) {
     // A single station's camera may itself be named "trajectory" (SPEC.md allows it): one unit, whose line
     // already lists the export steps beside the camera's, not the same unit twice.
     const auto same = std::find_if(units.begin(), units.end(),

@@ -297,6 +297,13 @@ TEST(Plan, PlanByUnitSaysWhatIsPlannedAndSkipped) {
   EXPECT_EQ(n_units[0].Line(),
             "trajectory (beacon camera, and export of the located target): planned extract-beacon, locate, "
             "plot-located, smooth, plot-rates, resample-range, export-kml, export-czml");
+  // ... and without a range log nothing is exported: the camera's unit is said to be the camera's only.
+  const TrialManifest named_no_range =
+      ParseManifest(Replaced(Replaced(WithSteps("{}"), "\"az\":", "\"trajectory\":"), "\"range\": \"range.csv\",", ""),
+                    "/t/trial.json");
+  const std::vector<UnitPlan> r_units = PlanByUnit(named_no_range, BuildPlan(named_no_range, PlanOptions{}));
+  ASSERT_EQ(r_units.size(), 1u);
+  EXPECT_EQ(r_units[0].what, "beacon camera");
 
   // A theodolite trial whose manifest lists no images (rk-sim theodolite --images none): no camera.
   const TrialManifest theo = ParseManifest(R"({"theodolite": "theodolite.csv"})", "/t/trial.json");
