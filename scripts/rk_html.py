@@ -72,6 +72,22 @@ def wrap_breaks(values):
     return out
 
 
+def cut_at_wraps(breaks, x, *series):
+    """x and the series drawn against it (y, its band's edges) with a gap before each row of `breaks`
+    (wrap_breaks): x halfway between the two rows, NaN in every series, so that a line through them stops there.
+    Lists, in the order given."""
+    cut = set(breaks)
+    cols = [[] for _ in range(1 + len(series))]
+    for i, row in enumerate(zip(x, *series)):
+        if i in cut:
+            cols[0].append((x[i - 1] + x[i]) / 2)
+            for c in cols[1:]:
+                c.append(math.nan)
+        for c, v in zip(cols, row):
+            c.append(v)
+    return cols
+
+
 def esc(x):
     return html.escape("" if x is None else str(x), quote=True)
 

@@ -112,6 +112,13 @@ function wrapBreaks(t, y) {
   return out;
 }
 
+// The first of the breaks that does not end before what is in view (endsBefore(row): that row is before it).
+function firstBreakInView(breaks, endsBefore) {
+  let lo = 0, hi = breaks.length;
+  while (lo < hi) { const m = (lo + hi) >> 1; if (endsBefore(breaks[m][1])) lo = m + 1; else hi = m; }
+  return lo;
+}
+
 // uPlot's series.gaps: the spans (canvas pixels) its line is clipped over — its own null gaps and, for an angle
 // that wraps, each wrap's span (at least a pixel wide, so a wrap between rows drawn on one pixel column is not
 // drawn either). Sorted and merged, as uPlot's clip expects.
@@ -119,9 +126,7 @@ function wrapGaps(t, breaks) {
   return (u, sidx, i0, i1, nullGaps) => {
     if (!breaks.length) return nullGaps;
     const out = nullGaps.map((g) => g.slice());
-    let lo = 0, hi = breaks.length;          // the first break ending at or after i0
-    while (lo < hi) { const m = (lo + hi) >> 1; if (breaks[m][1] < i0) lo = m + 1; else hi = m; }
-    for (let b = lo; b < breaks.length && breaks[b][0] <= i1; ++b) {
+    for (let b = firstBreakInView(breaks, (j) => j < i0); b < breaks.length && breaks[b][0] <= i1; ++b) {
       const p0 = Math.round(u.valToPos(t[breaks[b][0]], "x", true));
       const p1 = Math.round(u.valToPos(t[breaks[b][1]], "x", true));
       out.push([p0, Math.max(p1, p0 + 1)]);
@@ -142,10 +147,8 @@ function wrapPoints(t, breaks) {
   if (!breaks.length) return null;
   return (u) => {
     const { min, max } = u.scales.x;
-    let lo = 0, hi = breaks.length;          // the first break ending at or after min
-    while (lo < hi) { const m = (lo + hi) >> 1; if (t[breaks[m][1]] < min) lo = m + 1; else hi = m; }
     const out = [];
-    for (let b = lo; b < breaks.length && t[breaks[b][0]] <= max; ++b) {
+    for (let b = firstBreakInView(breaks, (j) => t[j] < min); b < breaks.length && t[breaks[b][0]] <= max; ++b) {
       for (const i of breaks[b]) if (out[out.length - 1] !== i && t[i] >= min && t[i] <= max) out.push(i);
     }
     return out;
