@@ -202,8 +202,12 @@ def _figure(label, value, unit, note):
     """(label, value or None, unit, note, text): one headline figure; the text as the pages show it."""
     if not _is_number(value):
         return (label, None, unit, note, "—")
-    text = percent(value) if unit == "fraction" else ("%s %s" % (num(value), unit)).strip()
-    return (label, value, unit, note, text)
+    return (label, value, unit, note, value_text(value, unit))
+
+
+def value_text(value, unit):
+    """A headline figure's value as the pages show it: a fraction as a percentage, else the number and its unit."""
+    return percent(value) if unit == "fraction" else ("%s %s" % (num(value), unit)).strip()
 
 
 def typed_headline(step):
@@ -366,11 +370,10 @@ def trend_html(summaries):
                 ax[k][0].set_ylabel(label if len(label) <= 28 else "…" + label[-27:])
             first, last = ys[0], ys[-1]
             change = "%+.1f %%" % (100.0 * (last - first) / abs(first)) if first else "—"
-            fmt = (lambda v: percent(v)) if unit == "fraction" else (lambda v: ("%s %s" % (num(v), unit)).strip())
             rows.append("<tr><td>%s</td><td class=\"num\">%d</td><td class=\"num\">%s</td><td class=\"num\">%s</td>"
                         "<td class=\"num\">%s</td><td class=\"num\">%s … %s</td></tr>" % (
-                            esc(label), len(ys), esc(fmt(first)), esc(fmt(last)), esc(change),
-                            esc(fmt(min(ys))), esc(fmt(max(ys)))))
+                            esc(label), len(ys), esc(value_text(first, unit)), esc(value_text(last, unit)),
+                            esc(change), esc(value_text(min(ys), unit)), esc(value_text(max(ys), unit))))
         ax[-1][0].set_xlabel("days since the first night")
         ax[0][0].set_title(trial)
         fig.salt = "trend%d" % len(parts)
@@ -381,7 +384,7 @@ def trend_html(summaries):
 
 
 def parse_utc(text):
-    """An ISO-8601 UTC time as the summaries write it (with or without milliseconds), or None."""
+    """An ISO-8601 UTC time as the summaries write it (rk_batch.utc_now; with or without milliseconds), or None."""
     for f in ("%Y-%m-%dT%H:%M:%S.%fZ", "%Y-%m-%dT%H:%M:%SZ"):
         try:
             return datetime.datetime.strptime(text, f)
