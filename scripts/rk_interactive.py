@@ -12,6 +12,7 @@ import base64
 import json
 import math
 import os
+import sys
 import zlib
 
 import rk_html
@@ -95,11 +96,15 @@ def encode(values, quantum=None, use_numpy=None):
     return _packed(quantum, k0, n, _i32(deltas))
 
 
-def _i32(ints):
-    a = array.array("i", ints)
-    if array.array("H", [1]).tobytes()[0] != 1:
+def _little_endian(a):
+    """An array's bytes, little-endian (what the page's Int32Array / Float64Array read)."""
+    if sys.byteorder != "little":
         a.byteswap()
     return a.tobytes()
+
+
+def _i32(ints):
+    return _little_endian(array.array("i", ints))
 
 
 def _packed(quantum, k0, n, raw):
@@ -107,10 +112,8 @@ def _packed(quantum, k0, n, raw):
 
 
 def encode_f64(values):
-    a = array.array("d", values)
-    if array.array("H", [1]).tobytes()[0] != 1:
-        a.byteswap()
-    return {"f64": base64.b64encode(zlib.compress(a.tobytes(), 6)).decode("ascii"), "n": len(values)}
+    raw = _little_endian(array.array("d", values))
+    return {"f64": base64.b64encode(zlib.compress(raw, 6)).decode("ascii"), "n": len(values)}
 
 
 def series(values, quantum=None):
@@ -118,8 +121,8 @@ def series(values, quantum=None):
 
 
 def _attr(v):
-    return (json.dumps(v) if not isinstance(v, str) else v).replace("&", "&amp;").replace("'", "&#39;") \
-        .replace("<", "&lt;").replace(">", "&gt;").replace('"', "&quot;")
+    """An attribute's value: text as it is, anything else as JSON, escaped (rk_html.esc)."""
+    return rk_html.esc(v if isinstance(v, str) else json.dumps(v))
 
 
 class Interactive:
@@ -154,7 +157,8 @@ class Interactive:
                 "<figcaption>%s — drag to zoom, double-click to reset (every panel of %s follows); the line under "
                 "each panel reads the value%s at the cursor%s%s</figcaption></figure>" % (
                     key, _attr(cols), _attr(group), " data-wrap=\"%s\"" % _attr(wrap) if wrap else "",
-                    _html(title), _html(group), " and its 1σ" if bands else "", "; shaded band: ±1σ" if bands else "",
+                    rk_html.esc(title), rk_html.esc(group), " and its 1σ" if bands else "",
+                    "; shaded band: ±1σ" if bands else "",
                     "; %s: no line across the wrap (a jump of more than %g° between rows)" % (
                         ", ".join(wrap), rk_html.HALF_TURN_DEG) if wrap else ""))
 
@@ -169,7 +173,7 @@ class Interactive:
         return ("<figure><div class=\"rk-3d\" data-table=\"%s\" data-x=\"%s\" data-y=\"%s\" data-z=\"%s\" "
                 "data-colour=\"%s\" data-group=\"%s\" data-stations=\"%s\"></div><figcaption>%s — drag to orbit, "
                 "wheel to zoom, right-drag to pan; coloured by %s; grid: the ground plane (u = 0); %s</figcaption>"
-                "</figure>" % (key, x, y, z, colour, _attr(group), _attr(st), _html(title),
+                "</figure>" % (key, x, y, z, colour, _attr(group), _attr(st), rk_html.esc(title),
                                "time (dark: start, yellow: end; or by status: green ok, blue reacquired, "
                                "orange predicted, grey lost, red invalid)" if colour == "time" else "status",
                                "black: the stations; red: the target and the lines of sight at the charts' cursor"
@@ -202,6 +206,3 @@ class Interactive:
                 ".rk-chart,.rk-3d{width:100%%;max-width:1100px}</style>"
                 "<script type=\"application/json\" id=\"rk-data\">%s</script><script>%s</script>" % (style, data, script))
 
-
-def _html(s):
-    return str(s).replace("&", "&amp;").replace("<", "&lt;").replace(">", "&gt;")
