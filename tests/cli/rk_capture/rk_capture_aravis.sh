@@ -38,10 +38,12 @@ ip link set lo up
 rt=
 if chrt -f 20 true 2>/dev/null; then rt="chrt -f 20"; fi
 echo "software camera scheduling: ${rt:-default}" >"$d/fake_sched.txt"
+# Until Aravis lists the software camera NAME (it answers discovery a moment after it starts), 5 s at most.
+listed() { for _ in $(seq 50); do rk-capture --list-cameras | grep -q "^Aravis-Fake-$1," && break; sleep 0.1; done; }
 $rt arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK1 >"$d/fake.log" 2>&1 &
 fake=$!
 trap 'kill $fake 2>/dev/null || true' EXIT
-for _ in $(seq 50); do rk-capture --list-cameras | grep -q '^Aravis-Fake-RK1,' && break; sleep 0.1; done
+listed RK1
 rk-capture --list-cameras >"$d/list.csv"
 rk-capture --config "$d/station.json" --out "$d/trial" --duration 10 --report "$d/report.json" --quiet &
 cap=$!
@@ -72,7 +74,7 @@ if [ -n "$faketime_lib" ]; then
   kill $fake; wait $fake 2>/dev/null || true
   $rt arv-fake-gv-camera-0.8 -i 127.0.0.1 -s RK1 >"$d/fake_clock1.log" 2>&1 &
   fake=$!
-  for _ in $(seq 50); do rk-capture --list-cameras | grep -q '^Aravis-Fake-RK1,' && break; sleep 0.1; done
+  listed RK1
   rk-capture --config "$d/station.json" --out "$d/trial_clock" --duration 16 --report "$d/report_clock.json" --quiet &
   cap=$!
   sleep 3; kill $fake; wait $fake 2>/dev/null || true
@@ -92,7 +94,7 @@ lossy=$!
 # frames, Mono16)
 sed -e 's/Aravis-Fake-RK1/Aravis-Fake-RK2/' -e 's/"fps": 20,/"fps": 20, "ptp": true,/' \
   -e 's/"ExposureTimeAbs": 2500}/"ExposureTimeAbs": 2500, "PixelFormat": "Mono16"}/' "$d/station.json" >"$d/lossy.json"
-for _ in $(seq 50); do rk-capture --list-cameras | grep -q '^Aravis-Fake-RK2,' && break; sleep 0.1; done
+listed RK2
 rk-capture --config "$d/lossy.json" --out "$d/trial3" --duration 5 --report "$d/report3.json" --quiet
 kill $lossy
 # A camera that does not answer: exit 4, one line naming it, no trial left behind.
