@@ -64,6 +64,10 @@ if [ "$TSHARK" = 1 ]; then PACKAGES+=(tshark); fi
 # faketime to give the software camera a clock that resets.
 if [ "$GIGE" = 1 ]; then PACKAGES+=(aravis-tools aravis-tools-cli iproute2 util-linux faketime); fi
 if [ "$KML_SCHEMA" = 1 ]; then PACKAGES+=(libxml2-utils); fi
+# npm for the report pages' packages (below): Debian's nodejs and npm when the machine has no npm of its own.
+if ! command -v npm >/dev/null 2>&1; then PACKAGES+=(nodejs npm); fi
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; fi
 missing=()
 for p in "${PACKAGES[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
@@ -71,8 +75,6 @@ for p in "${PACKAGES[@]}"; do
   fi
 done
 if [ ${#missing[@]} -gt 0 ]; then
-  SUDO=""
-  if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; fi
   echo "setup: installing ${missing[*]}" >&2
   $SUDO apt-get update -qq
   DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends "${missing[@]}" >&2
@@ -84,8 +86,6 @@ SCHEMA_DIR=$ROOT/build-cache/kml-schema
 if [ "$KML_SCHEMA" = 1 ] && [ ! -f "$SCHEMA_DIR/usr/share/pytrainer/schemas/ogckml22.xsd" ]; then
   mkdir -p "$ROOT/build-cache/deb"
   if ! (cd "$ROOT/build-cache/deb" && apt-get download pytrainer >&2 2>/dev/null); then
-    SUDO=""
-    if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; fi
     $SUDO apt-get update -qq
     (cd "$ROOT/build-cache/deb" && apt-get download pytrainer >&2)
   fi
@@ -98,14 +98,7 @@ fi
 
 # The report pages' interactive figures (uPlot, three.js, bundled by esbuild) and their browser test's driver
 # (playwright-core): npm packages pinned in package-lock.json, installed into node_modules/ from the npm registry
-# (Debian's nodejs and npm when no npm is on the machine). Nothing of them is fetched when a page is opened.
-if ! command -v npm >/dev/null 2>&1; then
-  SUDO=""
-  if [ "$(id -u)" -ne 0 ]; then SUDO=sudo; fi
-  echo "setup: installing nodejs npm" >&2
-  $SUDO apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $SUDO apt-get install -y -q --no-install-recommends nodejs npm >&2
-fi
+# (npm itself with the packages above). Nothing of them is fetched when a page is opened.
 if [ ! -f "$ROOT/node_modules/.package-lock.json" ] || [ "$ROOT/package-lock.json" -nt "$ROOT/node_modules/.package-lock.json" ]; then
   (cd "$ROOT" && npm ci --no-audit --no-fund --loglevel=error >&2)
 fi
